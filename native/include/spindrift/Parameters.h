@@ -1,0 +1,70 @@
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include <glm/vec3.hpp>
+#include <nlohmann/json.hpp>
+
+#include "spindrift/parameters.def"
+
+namespace spindrift {
+
+/// The C++ type behind each parameter type name used in parameters.def.
+namespace parameter_types {
+using Float = float;
+using Int = int;
+using Bool = bool;
+using Color = glm::vec3;
+using Vec3 = glm::vec3;
+using Choice = std::string;
+}  // namespace parameter_types
+
+#define SPINDRIFT_DECLARE_MEMBER(group, name, type, defaultValue, minimum, maximum, choices, doc) \
+  parameter_types::type name = parameter_types::type defaultValue;
+
+/// Parameters of the liquid pipeline (scene key `liquid`).
+struct LiquidParameters {
+  SPINDRIFT_LIQUID_PARAMETERS(SPINDRIFT_DECLARE_MEMBER)
+};
+
+/// Parameters of the foam pipeline (scene key `foam`).
+struct FoamParameters {
+  SPINDRIFT_FOAM_PARAMETERS(SPINDRIFT_DECLARE_MEMBER)
+};
+
+#undef SPINDRIFT_DECLARE_MEMBER
+
+/// Every parameter, each with the default that parameters.def gives it.
+struct Parameters {
+  LiquidParameters liquid;
+  FoamParameters foam;
+};
+
+/// One row of parameters.def, for tools that list, document or build user interfaces from the table.
+struct ParameterInfo {
+  std::string key;   ///< "group.name", as in the scene file and `--set`.
+  std::string type;  ///< Float, Int, Bool, Color, Vec3 or Choice.
+  nlohmann::json defaultValue;
+  double minimum = 0.0;
+  double maximum = 0.0;
+  std::vector<std::string> choices;
+  std::string doc;
+};
+
+const std::vector<ParameterInfo>& parameterTable();
+
+/// Sets one parameter from JSON ("liquid.base_color", [0.2, 0.4, 0.8]); throws Error naming the key when the
+/// key is unknown, the value has the wrong type, or it lies outside the parameter's range.
+void setParameter(Parameters& parameters, const std::string& key, const nlohmann::json& value);
+nlohmann::json getParameter(const Parameters& parameters, const std::string& key);
+
+/// Reads a scene file's group object (e.g. the value of "liquid"); unknown keys are errors. `where` prefixes
+/// messages, e.g. "scene.json: liquid".
+void setParameterGroup(Parameters& parameters, const std::string& group, const nlohmann::json& object,
+                       const std::string& where);
+
+/// docs/parameters.md, generated from the table.
+std::string parametersMarkdown();
+
+}  // namespace spindrift

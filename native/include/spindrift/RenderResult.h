@@ -1,0 +1,63 @@
+#pragma once
+
+#include <cstddef>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "spindrift/Particles.h"
+
+namespace spindrift {
+
+/// One layer of the output, e.g. "composite" with channels R, G, B, A. Pixels are interleaved 32-bit floats,
+/// top row first, linear colour, premultiplied alpha.
+struct ImageLayer {
+  std::string name;
+  std::vector<std::string> channels;
+  std::vector<float> pixels;
+
+  std::size_t channelCount() const { return channels.size(); }
+};
+
+struct PassTiming {
+  std::string name;
+  double gpuMilliseconds = 0.0;  ///< From a GL_TIME_ELAPSED query around the pass.
+  double cpuMilliseconds = 0.0;  ///< Wall time of the calls that issued the pass.
+};
+
+struct SkippedPass {
+  std::string name;
+  std::string reason;
+};
+
+/// What a frame cost and contained; `--stats` writes it as JSON.
+struct FrameStats {
+  int frame = 0;
+  int width = 0;
+  int height = 0;
+  std::string glRenderer;
+  std::string glVersion;
+  ParticleCounts counts;                 ///< Everything the sources held, by kind.
+  std::size_t liquidParticlesDrawn = 0;  ///< Liquid particles left after frustum culling.
+  double loadMilliseconds = 0.0;         ///< Reading particle files.
+  double prepareMilliseconds = 0.0;      ///< CPU preparation: culling and packing.
+  double readbackMilliseconds = 0.0;
+  double totalMilliseconds = 0.0;  ///< Wall time of the whole frame, loading included.
+  std::vector<PassTiming> passes;
+  std::vector<SkippedPass> skipped;
+
+  nlohmann::json toJson() const;
+};
+
+struct RenderResult {
+  int width = 0;
+  int height = 0;
+  std::vector<ImageLayer> layers;
+  FrameStats stats;
+
+  /// The layer with this name, or nullptr.
+  const ImageLayer* layer(const std::string& name) const;
+};
+
+}  // namespace spindrift

@@ -1,0 +1,36 @@
+#pragma once
+
+#include <memory>
+#include <string>
+
+#include "spindrift/RenderResult.h"
+#include "spindrift/Scene.h"
+
+namespace spindrift {
+
+/// Renders frames of scenes. It owns a thread of its own on which an EGL OpenGL 4.5 context is current, so a
+/// host application's GL context (Blender's, for one) is never touched. Construction throws Error with one
+/// clear line when no OpenGL 4.5 context can be made. A Renderer renders one frame at a time; GL objects
+/// live as long as the Renderer and are reused across frames.
+class Renderer {
+ public:
+  Renderer();
+  ~Renderer();
+  Renderer(const Renderer&) = delete;
+  Renderer& operator=(const Renderer&) = delete;
+
+  /// Loads the frame's particles and background, renders every pass the scene needs and reads them back.
+  RenderResult renderFrame(const Scene& scene, int frame);
+  /// Renders already loaded particles (world space); `counts` describes them for the stats.
+  RenderResult renderParticles(const Scene& scene, const Particles& particles, int frame);
+
+  /// GL_RENDERER and GL_VERSION of the renderer's context, e.g. "llvmpipe (LLVM 15.0.6, 256 bits)".
+  std::string glRenderer() const;
+  std::string glVersion() const;
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
+
+}  // namespace spindrift

@@ -1,0 +1,62 @@
+#pragma once
+
+#include <filesystem>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include <glm/mat4x4.hpp>
+#include <glm/vec3.hpp>
+
+#include "spindrift/Camera.h"
+#include "spindrift/Parameters.h"
+#include "spindrift/Particles.h"
+
+namespace spindrift {
+
+enum class ParticleRole { Liquid, Foam };
+
+/// One entry of the scene file's `particles` list. Paths are absolute (resolved against the scene file) and
+/// may hold `####`, which stands for the frame number padded with zeros to the number of `#`.
+struct ParticleSource {
+  std::filesystem::path path;
+  std::string grid;  ///< Point grid name in a .vdb; empty means the first point grid.
+  ParticleRole role = ParticleRole::Liquid;
+  /// For foam sources: every particle of this kind, instead of the per-particle flags of the file.
+  std::optional<ParticleKind> kind;
+  float radius = 0.05f;  ///< World units; a per-particle radius attribute overrides it.
+  glm::mat4 worldFromFile{1.0f};
+};
+
+/// What lies behind the liquid. Paths are absolute or empty, and may hold `####` like particle paths.
+struct Background {
+  std::filesystem::path image;        ///< Colour, or empty.
+  std::filesystem::path depth;        ///< Planar eye depth; empty means the image's own depth channel, if any.
+  bool depthExplicit = false;         ///< True when the scene named `depth`, which must then be found.
+  std::filesystem::path environment;  ///< Equirectangular, +Z up as Blender's world; or empty.
+  glm::vec3 color{0.05f, 0.05f, 0.06f};
+};
+
+/// A scene file, version 1 (docs/scene-format.md), parsed and validated.
+struct Scene {
+  std::filesystem::path file;
+  Camera camera;
+  std::vector<ParticleSource> particles;
+  Background background;
+  Parameters parameters;
+};
+
+/// Reads and validates a scene file; throws Error naming the file and key at fault.
+Scene loadScene(const std::filesystem::path& sceneFile);
+/// The same from text; `sceneFile` names it in messages and anchors relative paths.
+Scene parseScene(const std::string& jsonText, const std::filesystem::path& sceneFile);
+
+/// Replaces a run of `#` in the file name with the zero-padded frame number; paths without `#` are returned
+/// as they are.
+std::filesystem::path pathForFrame(const std::filesystem::path& pattern, int frame);
+
+/// Reads every particle source of a frame and brings it to world space. Non-finite positions and radii are
+/// dropped and counted in `counts.droppedNonFinite`.
+Particles loadParticles(const Scene& scene, int frame, ParticleCounts* counts = nullptr);
+
+}  // namespace spindrift

@@ -1,0 +1,31 @@
+#pragma once
+
+#include <filesystem>
+#include <optional>
+#include <vector>
+
+namespace spindrift {
+
+/// An image in memory: `channels` interleaved 32-bit floats per pixel, top row first, linear colour.
+struct FloatImage {
+  int width = 0;
+  int height = 0;
+  int channels = 0;
+  std::vector<float> pixels;
+
+  bool empty() const { return pixels.empty(); }
+};
+
+/// Reads an image's colour as RGBA (alpha 1 where the file has none; grey repeated to RGB). In a multilayer
+/// EXR the first layer named like "Combined" (Blender's "ViewLayer.Combined.R" ...) is taken; otherwise the
+/// plain R, G, B, A channels. Throws Error naming the file when it cannot be read or has no colour.
+FloatImage readColorImage(const std::filesystem::path& path);
+
+/// Reads planar eye depth as one channel: a channel named "Z" or ending in ".Z" whose layer looks like
+/// depth ("Depth.Z", "ViewLayer.Depth.Z", "depth.Z", "Z"). Returns nothing when the file has no such channel.
+std::optional<FloatImage> readDepthImage(const std::filesystem::path& path);
+
+/// Resamples to a new size: bilinear for colour, nearest for depth (`nearest`), so depth edges stay sharp.
+FloatImage resizeImage(const FloatImage& image, int width, int height, bool nearest);
+
+}  // namespace spindrift
