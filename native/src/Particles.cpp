@@ -29,4 +29,17 @@ const char* particleKindName(ParticleKind kind) {
   return "unknown";
 }
 
+ParticleCounts countByKind(const Particles& particles) {
+  ParticleCounts counts;
+  for (ParticleKind kind : particles.kinds) {
+    switch (kind) {
+      case ParticleKind::Liquid: ++counts.liquid; break;
+      case ParticleKind::Spray: ++counts.spray; break;
+      case ParticleKind::Bubble: ++counts.bubble; break;
+      case ParticleKind::Foam: ++counts.foam; break;
+    }
+  }
+  return counts;
+}
+
 }  // namespace spindrift

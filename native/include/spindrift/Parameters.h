@@ -59,10 +59,10 @@ const std::vector<ParameterInfo>& parameterTable();
 void setParameter(Parameters& parameters, const std::string& key, const nlohmann::json& value);
 nlohmann::json getParameter(const Parameters& parameters, const std::string& key);
 
-/// Reads a scene file's group object (e.g. the value of "liquid"); unknown keys are errors. `where` prefixes
-/// messages, e.g. "scene.json: liquid".
+/// Reads a scene file's group object (e.g. the value of "liquid"); unknown keys are errors. Messages start
+/// with `fileLabel`, e.g. "scene.json: liquid.ambient: 2 is outside [0, 1]".
 void setParameterGroup(Parameters& parameters, const std::string& group, const nlohmann::json& object,
-                       const std::string& where);
+                       const std::string& fileLabel);
 
 /// docs/parameters.md, generated from the table.
 std::string parametersMarkdown();

@@ -32,11 +32,12 @@ struct ParticleCounts {
   std::size_t spray = 0;
   std::size_t bubble = 0;
   std::size_t foam = 0;
-  std::size_t droppedNonFinite = 0;  ///< Positions or radii with NaN or Inf, never drawn.
+  std::size_t droppedInvalid = 0;  ///< NaN or Inf positions, and radii that are not finite and positive.
 
   std::size_t total() const { return liquid + spray + bubble + foam; }
 };
 
 const char* particleKindName(ParticleKind kind);
+ParticleCounts countByKind(const Particles& particles);
 
 }  // namespace spindrift

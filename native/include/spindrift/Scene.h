@@ -44,6 +44,7 @@ struct Scene {
   std::vector<ParticleSource> particles;
   Background background;
   Parameters parameters;
+  int frame = 1;  ///< The frame rendered when the command line names none.
 };
 
 /// Reads and validates a scene file; throws Error naming the file and key at fault.
@@ -55,8 +56,8 @@ Scene parseScene(const std::string& jsonText, const std::filesystem::path& scene
 /// as they are.
 std::filesystem::path pathForFrame(const std::filesystem::path& pattern, int frame);
 
-/// Reads every particle source of a frame and brings it to world space. Non-finite positions and radii are
-/// dropped and counted in `counts.droppedNonFinite`.
+/// Reads every particle source of a frame and brings it to world space. Particles with a non-finite position,
+/// or a radius that is not finite and positive, are dropped and counted in `counts->droppedInvalid`.
 Particles loadParticles(const Scene& scene, int frame, ParticleCounts* counts = nullptr);
 
 }  // namespace spindrift

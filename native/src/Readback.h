@@ -1,0 +1,17 @@
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "gl/GlObjects.h"
+#include "spindrift/RenderResult.h"
+
+namespace spindrift {
+
+/// Reads a texture's first `channels.size()` channels into a layer, top row first.
+ImageLayer readLayer(const Texture2D& texture, const std::string& name, const std::vector<std::string>& channels);
+/// A layer with every channel of every pixel set to `value`, for passes a frame did not need to run.
+ImageLayer filledLayer(int width, int height, const std::string& name, const std::vector<std::string>& channels,
+                       float value);
+
+}  // namespace spindrift

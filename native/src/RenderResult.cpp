@@ -1,0 +1,38 @@
+#include "spindrift/RenderResult.h"
+
+namespace spindrift {
+
+const ImageLayer* RenderResult::layer(const std::string& name) const {
+  for (const ImageLayer& candidate : layers)
+    if (candidate.name == name) return &candidate;
+  return nullptr;
+}
+
+nlohmann::json FrameStats::toJson() const {
+  nlohmann::json passesJson = nlohmann::json::array();
+  for (const PassTiming& pass : passes)
+    passesJson.push_back({{"name", pass.name}, {"gpu_ms", pass.gpuMilliseconds}, {"cpu_ms", pass.cpuMilliseconds}});
+  nlohmann::json skippedJson = nlohmann::json::array();
+  for (const SkippedPass& pass : skipped) skippedJson.push_back({{"name", pass.name}, {"reason", pass.reason}});
+  return {
+      {"frame", frame},
+      {"resolution", {width, height}},
+      {"gl_renderer", glRenderer},
+      {"gl_version", glVersion},
+      {"particles",
+       {{"liquid", counts.liquid},
+        {"spray", counts.spray},
+        {"bubble", counts.bubble},
+        {"foam", counts.foam},
+        {"dropped_invalid", counts.droppedInvalid},
+        {"liquid_drawn", liquidParticlesDrawn}}},
+      {"passes", passesJson},
+      {"skipped", skippedJson},
+      {"load_ms", loadMilliseconds},
+      {"prepare_ms", prepareMilliseconds},
+      {"readback_ms", readbackMilliseconds},
+      {"total_ms", totalMilliseconds},
+  };
+}
+
+}  // namespace spindrift

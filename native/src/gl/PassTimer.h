@@ -1,0 +1,40 @@
+#pragma once
+
+#include <chrono>
+#include <string>
+#include <vector>
+
+#include "gl/GlObjects.h"
+#include "spindrift/RenderResult.h"
+
+namespace spindrift {
+
+/// Times each pass of a frame with a GL_TIME_ELAPSED query (GPU time) and a steady clock (the CPU time spent
+/// issuing it). Queries are pooled and reused, so timing allocates no GL objects after the first frames.
+class PassTimer {
+ public:
+  /// Starts timing a pass; the matching `end` must follow before the next `begin` (passes do not nest).
+  void begin(const std::string& passName);
+  void end();
+  /// Waits for the frame's queries and returns one timing per pass, in order; clears the frame.
+  std::vector<PassTiming> collect();
+
+ private:
+  std::vector<QueryObject> queries_;
+  std::vector<PassTiming> frame_;
+  std::chrono::steady_clock::time_point started_;
+};
+
+/// Times the scope it lives in as one pass.
+class ScopedPassTimer {
+ public:
+  ScopedPassTimer(PassTimer& timer, const std::string& passName) : timer_(timer) { timer_.begin(passName); }
+  ~ScopedPassTimer() { timer_.end(); }
+  ScopedPassTimer(const ScopedPassTimer&) = delete;
+  ScopedPassTimer& operator=(const ScopedPassTimer&) = delete;
+
+ private:
+  PassTimer& timer_;
+};
+
+}  // namespace spindrift

@@ -1,0 +1,38 @@
+#pragma once
+
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "gl/GlObjects.h"
+
+namespace spindrift {
+
+/// Where the shaders are: $SPINDRIFT_SHADER_DIR if set, else `../share/spindrift/shaders` beside the
+/// directory of the Spindrift library file (the same shape in the build tree and an install). Never the
+/// working directory. Throws Error listing the places looked at.
+std::filesystem::path findShaderDirectory();
+
+/// Loads GLSL from the shader directory, resolves `#include "lib/name.glsl"` (each file once) with a `#line`
+/// after every switch of file, and reports compile errors with file names and lines instead of source-string
+/// numbers.
+class ShaderLibrary {
+ public:
+  explicit ShaderLibrary(std::filesystem::path directory);
+
+  /// Compiles and links one program from stage files named by extension: .vert, .frag, .comp.
+  ProgramObject program(const std::vector<std::string>& stageFiles) const;
+  /// The source of one stage after includes are resolved; `files` receives the name of each source-string
+  /// number used in `#line` directives.
+  std::string expandedSource(const std::string& file, std::vector<std::string>& files) const;
+
+  const std::filesystem::path& directory() const { return directory_; }
+
+ private:
+  std::filesystem::path directory_;
+};
+
+/// The location of a uniform; throws Error when the program has no active uniform of that name.
+GLint uniformLocation(GLuint program, const char* name);
+
+}  // namespace spindrift

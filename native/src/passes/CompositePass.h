@@ -1,0 +1,29 @@
+#pragma once
+
+#include "gl/GlObjects.h"
+#include "gl/ShaderLibrary.h"
+#include "passes/BackgroundPass.h"
+#include "passes/LiquidShadePass.h"
+
+namespace spindrift {
+
+/// The final image.
+struct CompositeData {
+  const Texture2D& color;  ///< RGBA32F, premultiplied.
+};
+
+/// Puts the liquid layer over the background.
+class CompositePass {
+ public:
+  explicit CompositePass(const ShaderLibrary& shaders);
+  /// `liquid` is null when the frame has no liquid in view.
+  CompositeData run(const BackgroundData& background, const LiquidData* liquid, int width, int height);
+
+ private:
+  ProgramObject program_;
+  VertexArrayObject emptyVertexArray_;
+  FramebufferObject framebuffer_;
+  Texture2D color_;
+};
+
+}  // namespace spindrift

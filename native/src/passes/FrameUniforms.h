@@ -1,0 +1,35 @@
+#pragma once
+
+#include <glm/mat4x4.hpp>
+#include <glm/vec4.hpp>
+
+#include "gl/GlObjects.h"
+#include "spindrift/Camera.h"
+
+namespace spindrift {
+
+/// The frame block every shader includes (shaders/lib/frame.glsl), std140, bound at uniform binding 0.
+struct FrameUniforms {
+  glm::mat4 clipFromCamera;
+  glm::mat4 cameraFromWorld;
+  glm::mat4 worldFromCamera;
+  glm::vec4 viewportSize;  ///< width, height, 1/width, 1/height
+  glm::vec4 clipPlanes;    ///< near, far, log(far / near), 0
+  glm::vec4 tanHalfFov;    ///< tan(fov_x / 2), tan(fov_y / 2), 0, 0
+
+  static FrameUniforms fromCamera(const Camera& camera);
+};
+
+/// The uniform buffer that holds FrameUniforms for the frame being drawn.
+class FrameUniformBuffer {
+ public:
+  void update(const Camera& camera);
+
+ private:
+  BufferObject buffer_;
+};
+
+/// Draws the fullscreen triangle of shaders/fullscreen.vert into the bound framebuffer.
+void drawFullscreenTriangle(GLuint emptyVertexArray);
+
+}  // namespace spindrift

@@ -1,0 +1,39 @@
+// The frame's camera, shared by every pass (binding 0). Mirrors FrameUniforms in
+// native/src/passes/FrameUniforms.h, std140. Camera space is Blender's: looking down -Z, +Y up; "eye depth"
+// is planar depth along the view axis (positive in front of the camera), as in Blender's Depth pass.
+layout(std140, binding = 0) uniform FrameBlock {
+  mat4 clipFromCamera;
+  mat4 cameraFromWorld;
+  mat4 worldFromCamera;
+  vec4 viewportSize;  // width, height, 1/width, 1/height
+  vec4 clipPlanes;    // near, far, log(far / near), unused
+  vec4 tanHalfFov;    // tan(fov_x / 2), tan(fov_y / 2), unused, unused
+} frame;
+
+// What depth and normal outputs hold where there is no surface: Blender's "nothing here" depth.
+const float kNoSurfaceDepth = 1e10;
+
+float getNearClip() { return frame.clipPlanes.x; }
+float getFarClip() { return frame.clipPlanes.y; }
+vec3 getCameraWorldPosition() { return frame.worldFromCamera[3].xyz; }
+
+// The camera-space ray through a window position (gl_FragCoord.xy, origin bottom left), scaled so that its
+// z is -1: multiplying it by an eye depth gives the camera-space point at that depth.
+vec3 cameraRayFromFragCoord(vec2 fragCoord) {
+  vec2 ndc = fragCoord * frame.viewportSize.zw * 2.0 - 1.0;
+  return vec3(ndc * frame.tanHalfFov.xy, -1.0);
+}
+
+vec3 worldPositionFromFragCoord(vec2 fragCoord, float eyeDepth) {
+  return (frame.worldFromCamera * vec4(cameraRayFromFragCoord(fragCoord) * eyeDepth, 1.0)).xyz;
+}
+
+vec3 worldDirectionFromFragCoord(vec2 fragCoord) {
+  return normalize(mat3(frame.worldFromCamera) * cameraRayFromFragCoord(fragCoord));
+}
+
+// The depth-buffer value written with gl_FragDepth: logarithmic in eye depth, so a 32-bit float depth buffer
+// orders surfaces with the same relative precision from the near to the far plane.
+float depthBufferFromEyeDepth(float eyeDepth) {
+  return clamp(log(max(eyeDepth, getNearClip()) / getNearClip()) / frame.clipPlanes.z, 0.0, 1.0);
+}

@@ -1,0 +1,129 @@
+// End to end: the `spindrift` command on a scene written here, its EXR read back with OpenImageIO.
+#include <gtest/gtest.h>
+
+#include <sys/wait.h>
+
+#include <cmath>
+#include <fstream>
+#include <set>
+#include <sstream>
+
+#include <OpenImageIO/imageio.h>
+#include <nlohmann/json.hpp>
+
+#include "TempDirectory.h"
+
+namespace {
+
+struct CommandResult {
+  int exitCode;
+  std::string stderrText;
+};
+
+CommandResult runCli(const std::string& arguments, const std::string& environment = "") {
+  TempDirectory directory;
+  const std::string errorsFile = (directory.path() / "stderr.txt").string();
+  const std::string command = environment + " " + SPINDRIFT_CLI_PATH + " " + arguments + " 2>" + errorsFile;
+  const int status = std::system(command.c_str());
+  std::ifstream errors(errorsFile);
+  std::stringstream text;
+  text << errors.rdbuf();
+  return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, text.str()};
+}
+
+// Eight particles around the origin, one of them NaN, seen by a camera on -Y.
+std::filesystem::path writeScene(const TempDirectory& directory, const std::string& extra = "") {
+  directory.write("particles.ply",
+                  "ply\nformat ascii 1.0\nelement vertex 8\nproperty float x\nproperty float y\nproperty float z\n"
+                  "end_header\n0 0 0\n0.3 0 0\n-0.3 0 0\n0 0 0.3\n0 0 -0.3\n0.2 0.2 0.2\n-0.2 -0.2 0.1\nnan 0 0\n");
+  return directory.write("scene.json", R"({"version": 1, "frame": 3,
+      "camera": {"width": 64, "height": 48, "fov_y_deg": 40, "position": [0, -3, 0], "target": [0, 0, 0],
+                 "up": [0, 0, 1]},
+      "particles": [{"path": "particles.ply", "radius": 0.2}],
+      "background": {"color": [0.2, 0.3, 0.4]})" + extra + "}");
+}
+
+}  // namespace
+
+TEST(CLI, RendersExrPngAndStats) {
+  TempDirectory directory;
+  const std::filesystem::path scene = writeScene(directory);
+  const auto exr = directory.path() / "out.exr", png = directory.path() / "out.png",
+             stats = directory.path() / "stats.json";
+  const CommandResult result =
+      runCli("render " + scene.string() + " -o " + exr.string() + " --png " + png.string() + " --stats " + stats.string());
+  ASSERT_EQ(result.exitCode, 0) << result.stderrText;
+  EXPECT_TRUE(std::filesystem::exists(png));
+
+  auto input = OIIO::ImageInput::open(exr.string());
+  ASSERT_TRUE(input) << OIIO::geterror();
+  const OIIO::ImageSpec spec = input->spec();
+  EXPECT_EQ(spec.width, 64);
+  EXPECT_EQ(spec.height, 48);
+  const std::set<std::string> channels(spec.channelnames.begin(), spec.channelnames.end());
+  const std::set<std::string> expected{"composite.R", "composite.G", "composite.B", "composite.A",
+                                       "liquid.R",    "liquid.G",    "liquid.B",    "liquid.A",
+                                       "depth.Z",     "normal.X",    "normal.Y",    "normal.Z"};
+  EXPECT_EQ(channels, expected);
+  std::vector<float> pixels(std::size_t(spec.width) * spec.height * spec.nchannels);
+  ASSERT_TRUE(input->read_image(0, 0, 0, spec.nchannels, OIIO::TypeDesc::FLOAT, pixels.data()));
+  std::size_t nonFinite = 0;
+  for (float value : pixels) nonFinite += !std::isfinite(value);
+  EXPECT_EQ(nonFinite, 0u);
+
+  nlohmann::json json;
+  std::ifstream(stats) >> json;
+  EXPECT_EQ(json["frame"], 3) << "the scene's `frame` is the default";
+  EXPECT_EQ(json["particles"]["liquid"], 7);
+  EXPECT_EQ(json["particles"]["dropped_invalid"], 1);
+  std::vector<std::string> passes;
+  for (const auto& pass : json["passes"]) passes.push_back(pass["name"]);
+  EXPECT_EQ(passes, (std::vector<std::string>{"background", "sphere_impostors", "liquid_shade", "composite"}));
+  EXPECT_FALSE(json["gl_renderer"].get<std::string>().empty());
+}
+
+TEST(CLI, SequenceWritesOneFilePerFrame) {
+  TempDirectory directory;
+  const std::filesystem::path scene = writeScene(directory);
+  const CommandResult result = runCli("render " + scene.string() + " --frames 4-6 -q -o " +
+                                      (directory.path() / "frame_####.exr").string());
+  ASSERT_EQ(result.exitCode, 0) << result.stderrText;
+  for (const char* name : {"frame_0004.exr", "frame_0005.exr", "frame_0006.exr"})
+    EXPECT_TRUE(std::filesystem::exists(directory.path() / name)) << name;
+}
+
+TEST(CLI, BadSceneIsOneErrorLineAndExitCodeOne) {
+  TempDirectory directory;
+  const std::filesystem::path scene = writeScene(directory, R"(, "liquid": {"ambient": 5})");
+  const auto exr = directory.path() / "out.exr";
+  const CommandResult result = runCli("render " + scene.string() + " -o " + exr.string());
+  EXPECT_EQ(result.exitCode, 1);
+  EXPECT_NE(result.stderrText.find("liquid.ambient"), std::string::npos) << result.stderrText;
+  EXPECT_FALSE(std::filesystem::exists(exr)) << "a failed render leaves no output";
+}
+
+TEST(CLI, UsageErrorsExitWithTwo) {
+  EXPECT_EQ(runCli("render").exitCode, 2);
+  EXPECT_EQ(runCli("render scene.json --frames 9-3 -o x.exr").exitCode, 2);
+  EXPECT_EQ(runCli("frobnicate").exitCode, 2);
+}
+
+TEST(CLI, SeveralFramesNeedAFramePatternInTheOutput) {
+  TempDirectory directory;
+  const std::filesystem::path scene = writeScene(directory);
+  const CommandResult result = runCli("render " + scene.string() + " --frames 1-2 -o " + (directory.path() / "x.exr").string());
+  EXPECT_EQ(result.exitCode, 1);
+  EXPECT_NE(result.stderrText.find("####"), std::string::npos) << result.stderrText;
+}
+
+// With no usable EGL vendor there is no OpenGL: one clear line and exit code 1, never a crash.
+TEST(CLI, NoOpenGLIsAClearErrorNotACrash) {
+  const CommandResult result = runCli("info", "__EGL_VENDOR_LIBRARY_FILENAMES=/nonexistent/egl_vendor.json");
+  EXPECT_EQ(result.exitCode, 1) << result.stderrText;
+  EXPECT_NE(result.stderrText.find("no OpenGL 4.5 context"), std::string::npos) << result.stderrText;
+}
+
+TEST(CLI, ParamsMarkdownIsTheParameterTable) {
+  const CommandResult result = runCli("params --markdown > /dev/null");
+  EXPECT_EQ(result.exitCode, 0);
+}

@@ -1,0 +1,86 @@
+// GL tests: repeated renders in one process must not grow GL objects or resident memory.
+#include <gtest/gtest.h>
+
+#include <unistd.h>
+
+#include <fstream>
+#include <random>
+
+#include "gl/GlObjects.h"
+#include "spindrift/Error.h"
+#include "spindrift/Renderer.h"
+
+using namespace spindrift;
+
+namespace {
+
+long residentKilobytes() {
+  std::ifstream statm("/proc/self/statm");
+  long sizePages = 0, residentPages = 0;
+  statm >> sizePages >> residentPages;
+  return residentPages * (sysconf(_SC_PAGESIZE) / 1024);
+}
+
+std::array<long, std::size_t(GlObjectType::Count)> liveObjects() {
+  std::array<long, std::size_t(GlObjectType::Count)> counts{};
+  for (std::size_t i = 0; i < counts.size(); ++i) counts[i] = liveGlObjectCount(GlObjectType(i));
+  return counts;
+}
+
+Particles randomParticles(std::mt19937& random, int count) {
+  std::uniform_real_distribution<float> coordinate(-1.0f, 1.0f);
+  Particles particles;
+  for (int i = 0; i < count; ++i)
+    particles.append({coordinate(random), coordinate(random), coordinate(random)}, 0.05f, ParticleKind::Liquid, 0.0f,
+                     glm::vec3(0.0f));
+  return particles;
+}
+
+}  // namespace
+
+TEST(GLResources, TwoHundredFramesKeepObjectsAndMemoryFlat) {
+  Scene scene;
+  scene.camera = Camera::lookAt(96, 64, 45.0f, {0, -4, 1}, {0, 0, 0}, {0, 0, 1});
+  Renderer renderer;
+  std::mt19937 random(7);
+  std::array<long, std::size_t(GlObjectType::Count)> afterWarmUp{};
+  long residentAfterWarmUp = 0;
+  for (int frame = 1; frame <= 200; ++frame) {
+    // Particle counts vary from frame to frame, and every tenth frame is empty, as in a real sequence.
+    const int count = frame % 10 == 0 ? 0 : 200 + int(random() % 800);
+    const RenderResult result = renderer.renderParticles(scene, randomParticles(random, count), frame);
+    ASSERT_EQ(result.layers.size(), 4u);
+    if (frame == 20) {
+      afterWarmUp = liveObjects();
+      residentAfterWarmUp = residentKilobytes();
+    }
+  }
+  EXPECT_EQ(liveObjects(), afterWarmUp);
+  const long growth = residentKilobytes() - residentAfterWarmUp;
+  EXPECT_LT(growth, 8 * 1024) << "resident memory grew by " << growth << " KiB over 180 frames";
+}
+
+TEST(GLResources, RenderersReleaseEverythingTheyMade) {
+  const auto before = liveObjects();
+  for (int i = 0; i < 3; ++i) {
+    Scene scene;
+    scene.camera = Camera::lookAt(32, 32, 45.0f, {0, -4, 0}, {0, 0, 0}, {0, 0, 1});
+    Renderer renderer;
+    Particles particles;
+    particles.append({0, 0, 0}, 0.5f, ParticleKind::Liquid, 0.0f, glm::vec3(0));
+    renderer.renderParticles(scene, particles, 1);
+  }
+  EXPECT_EQ(liveObjects(), before);
+}
+
+TEST(GLResources, ErrorsInsideAFrameReachTheCallerAndTheRendererGoesOn) {
+  Renderer renderer;
+  Scene scene;
+  scene.camera = Camera::lookAt(32, 32, 45.0f, {0, -4, 0}, {0, 0, 0}, {0, 0, 1});
+  scene.background.image = "/nonexistent/background.exr";
+  Particles particles;
+  particles.append({0, 0, 0}, 0.5f, ParticleKind::Liquid, 0.0f, glm::vec3(0));
+  EXPECT_THROW(renderer.renderParticles(scene, particles, 1), Error);
+  scene.background.image.clear();
+  EXPECT_NO_THROW(renderer.renderParticles(scene, particles, 1));
+}

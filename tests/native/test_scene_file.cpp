@@ -1,0 +1,154 @@
+#include <gtest/gtest.h>
+
+#include <glm/gtc/matrix_access.hpp>
+
+#include "TempDirectory.h"
+#include "spindrift/Error.h"
+#include "spindrift/Scene.h"
+
+using namespace spindrift;
+
+namespace {
+
+const char* kParticlesPly =
+    "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\nproperty float z\n"
+    "end_header\n0 0 0\n1 0 0\nnan 0 0\n";
+
+std::string sceneWith(const std::string& cameraExtra, const std::string& rest = "") {
+  return R"({"version": 1, "camera": {"width": 64, "height": 32, "fov_y_deg": 40)" + cameraExtra + "}," +
+         R"("particles": [{"path": "p.ply", "radius": 0.1}])" + rest + "}";
+}
+
+const std::string kLookAt = R"(, "position": [0, -5, 1], "target": [0, 0, 1], "up": [0, 0, 1])";
+
+// Parses a scene from text in a directory that holds p.ply; returns the error message, or "" on success.
+std::string errorOf(const std::string& text) {
+  TempDirectory directory;
+  directory.write("p.ply", kParticlesPly);
+  try {
+    parseScene(text, directory.path() / "scene.json");
+  } catch (const Error& error) {
+    return error.what();
+  }
+  return "";
+}
+
+}  // namespace
+
+TEST(SceneFile, ReadsAMinimalSceneWithDefaults) {
+  TempDirectory directory;
+  directory.write("p.ply", kParticlesPly);
+  const Scene scene = parseScene(sceneWith(kLookAt), directory.path() / "scene.json");
+  EXPECT_EQ(scene.camera.width, 64);
+  EXPECT_EQ(scene.camera.height, 32);
+  EXPECT_FLOAT_EQ(scene.camera.nearClip, 0.01f);
+  EXPECT_FLOAT_EQ(scene.camera.farClip, 1000.0f);
+  EXPECT_EQ(scene.frame, 1);
+  ASSERT_EQ(scene.particles.size(), 1u);
+  EXPECT_EQ(scene.particles[0].path, directory.path() / "p.ply");
+  EXPECT_EQ(scene.particles[0].role, ParticleRole::Liquid);
+  // The camera at (0,-5,1) looking at (0,0,1): its -Z axis is world +Y, its +Y axis world +Z.
+  EXPECT_NEAR(glm::column(scene.camera.worldFromCamera, 2).y, -1.0f, 1e-6f);
+  EXPECT_NEAR(glm::column(scene.camera.worldFromCamera, 1).z, 1.0f, 1e-6f);
+}
+
+TEST(SceneFile, WorldFromCameraIsRowMajor) {
+  TempDirectory directory;
+  directory.write("p.ply", kParticlesPly);
+  // Row-major: the translation is the last column of the rows as written.
+  const Scene scene = parseScene(
+      sceneWith(R"(, "world_from_camera": [1,0,0,3, 0,1,0,4, 0,0,1,5, 0,0,0,1])"), directory.path() / "s.json");
+  EXPECT_EQ(scene.camera.position(), glm::vec3(3, 4, 5));
+}
+
+TEST(SceneFile, LoadsParticlesToWorldDroppingNaN) {
+  TempDirectory directory;
+  directory.write("p.ply", kParticlesPly);
+  const Scene scene = parseScene(
+      R"({"version": 1, "camera": {"width": 8, "height": 8, "fov_y_deg": 40, "position": [0,-5,0],
+          "target": [0,0,0], "up": [0,0,1]},
+          "particles": [{"path": "p.ply", "radius": 0.25, "role": "foam", "kind": "spray",
+                         "world_from_file": [2,0,0,10, 0,2,0,0, 0,0,2,0, 0,0,0,1]}]})",
+      directory.path() / "scene.json");
+  ParticleCounts counts;
+  const Particles particles = loadParticles(scene, 1, &counts);
+  ASSERT_EQ(particles.size(), 2u);
+  EXPECT_EQ(particles.positions[1], glm::vec3(12, 0, 0));
+  EXPECT_EQ(particles.kinds[0], ParticleKind::Spray);
+  EXPECT_FLOAT_EQ(particles.radii[0], 0.25f);
+  EXPECT_EQ(counts.spray, 2u);
+  EXPECT_EQ(counts.droppedInvalid, 1u);
+}
+
+TEST(SceneFile, FramePatternIsZeroPadded) {
+  EXPECT_EQ(pathForFrame("/c/fluid_data_####.vdb", 7), std::filesystem::path("/c/fluid_data_0007.vdb"));
+  EXPECT_EQ(pathForFrame("/c/p_#.ply", 123), std::filesystem::path("/c/p_123.ply"));
+  EXPECT_EQ(pathForFrame("/c#/plain.ply", 5), std::filesystem::path("/c#/plain.ply"));
+}
+
+TEST(SceneFile, MissingFrameFileNamesTheFrame) {
+  TempDirectory directory;
+  directory.write("p_0001.ply", kParticlesPly);
+  const Scene scene = parseScene(
+      R"({"version": 1, "camera": {"width": 8, "height": 8, "fov_y_deg": 40, "position": [0,-5,0],
+          "target": [0,0,0], "up": [0,0,1]}, "particles": [{"path": "p_####.ply", "radius": 1}]})",
+      directory.path() / "scene.json");
+  EXPECT_EQ(loadParticles(scene, 1).size(), 2u);
+  try {
+    loadParticles(scene, 2);
+    FAIL();
+  } catch (const Error& error) {
+    EXPECT_NE(std::string(error.what()).find("p_0002.ply"), std::string::npos) << error.what();
+  }
+}
+
+// Each bad file gets one error that names the key at fault.
+struct BadScene {
+  const char* name;
+  std::string text;
+  const char* expectedInMessage;
+};
+
+class SceneFileErrors : public testing::TestWithParam<BadScene> {};
+
+TEST_P(SceneFileErrors, NameTheKey) {
+  const std::string message = errorOf(GetParam().text);
+  ASSERT_FALSE(message.empty()) << "accepted a bad scene";
+  EXPECT_NE(message.find("scene.json"), std::string::npos) << message;
+  EXPECT_NE(message.find(GetParam().expectedInMessage), std::string::npos) << message;
+  EXPECT_EQ(message.find('\n'), std::string::npos) << "one line: " << message;
+}
+
+INSTANTIATE_TEST_SUITE_P(
+    Cases, SceneFileErrors,
+    testing::Values(
+        BadScene{"NotJson", "{\"version\": 1,", "not valid JSON"},
+        BadScene{"NotAnObject", "[1, 2]", "expected an object"},
+        BadScene{"WrongVersion", R"({"version": 2})", "version"},
+        BadScene{"UnknownTopLevelKey", sceneWith(kLookAt, R"(, "liquidd": {})"), "liquidd"},
+        BadScene{"MissingCamera", R"({"version": 1, "particles": []})", "camera"},
+        BadScene{"ZeroWidth", R"({"version": 1, "camera": {"width": 0, "height": 32, "fov_y_deg": 40)" + kLookAt + "}, \"particles\": []}", "camera.width"},
+        BadScene{"FractionalHeight", R"({"version": 1, "camera": {"width": 8, "height": 3.5, "fov_y_deg": 40)" + kLookAt + "}, \"particles\": []}", "camera.height"},
+        BadScene{"FovOutOfRange", R"({"version": 1, "camera": {"width": 8, "height": 8, "fov_y_deg": 180)" + kLookAt + "}, \"particles\": []}", "camera.fov_y_deg"},
+        BadScene{"FarBeforeNear", sceneWith(kLookAt + R"(, "near": 1, "far": 0.5)"), "camera.far"},
+        BadScene{"NoCameraPose", sceneWith(""), "camera.world_from_camera"},
+        BadScene{"BothPoses", sceneWith(kLookAt + R"(, "world_from_camera": [1,0,0,0,0,1,0,0,0,0,1,0,0,0,0,1])"), "camera.world_from_camera"},
+        BadScene{"ShortMatrix", sceneWith(R"(, "world_from_camera": [1,0,0])"), "camera.world_from_camera"},
+        BadScene{"SingularMatrix", sceneWith(R"(, "world_from_camera": [0,0,0,0,0,0,0,0,0,0,0,0,0,0,0,1])"), "singular"},
+        BadScene{"ProjectiveMatrix", sceneWith(R"(, "world_from_camera": [1,0,0,0,0,1,0,0,0,0,1,0,0,0,1,1])"), "affine"},
+        BadScene{"TargetIsPosition", sceneWith(R"(, "position": [1,1,1], "target": [1,1,1], "up": [0,0,1])"), "camera.target"},
+        BadScene{"UpAlongView", sceneWith(R"(, "position": [0,0,0], "target": [0,0,1], "up": [0,0,1])"), "camera.up"},
+        BadScene{"ParticlesNotAList", R"({"version": 1, "camera": {"width": 8, "height": 8, "fov_y_deg": 40)" + kLookAt + R"(}, "particles": {}})", "particles"},
+        BadScene{"MissingParticleFile", R"({"version": 1, "camera": {"width": 8, "height": 8, "fov_y_deg": 40)" + kLookAt + R"(}, "particles": [{"path": "nope.ply", "radius": 1}]})", "particles[0].path"},
+        BadScene{"WrongExtension", R"({"version": 1, "camera": {"width": 8, "height": 8, "fov_y_deg": 40)" + kLookAt + R"(}, "particles": [{"path": "p.txt", "radius": 1}]})", "particles[0].path"},
+        BadScene{"NegativeRadius", R"({"version": 1, "camera": {"width": 8, "height": 8, "fov_y_deg": 40)" + kLookAt + R"(}, "particles": [{"path": "p.ply", "radius": -1}]})", "particles[0].radius"},
+        BadScene{"UnknownRole", R"({"version": 1, "camera": {"width": 8, "height": 8, "fov_y_deg": 40)" + kLookAt + R"(}, "particles": [{"path": "p.ply", "radius": 1, "role": "solid"}]})", "particles[0].role"},
+        BadScene{"KindOnLiquid", R"({"version": 1, "camera": {"width": 8, "height": 8, "fov_y_deg": 40)" + kLookAt + R"(}, "particles": [{"path": "p.ply", "radius": 1, "kind": "spray"}]})", "particles[0].kind"},
+        BadScene{"GridOnPly", R"({"version": 1, "camera": {"width": 8, "height": 8, "fov_y_deg": 40)" + kLookAt + R"(}, "particles": [{"path": "p.ply", "radius": 1, "grid": "x"}]})", "particles[0].grid"},
+        BadScene{"TypoInSource", R"({"version": 1, "camera": {"width": 8, "height": 8, "fov_y_deg": 40)" + kLookAt + R"(}, "particles": [{"path": "p.ply", "raduis": 1}]})", "particles[0].raduis"},
+        BadScene{"MissingBackgroundImage", sceneWith(kLookAt, R"(, "background": {"image": "bg.exr"})"), "background.image"},
+        BadScene{"NegativeBackgroundColor", sceneWith(kLookAt, R"(, "background": {"color": [0, -1, 0]})"), "background.color"},
+        BadScene{"UnknownParameter", sceneWith(kLookAt, R"(, "liquid": {"base_colour": [1, 1, 1]})"), "liquid.base_colour"},
+        BadScene{"ParameterOutOfRange", sceneWith(kLookAt, R"(, "liquid": {"ambient": 7})"), "liquid.ambient"},
+        BadScene{"NaNInMatrix", sceneWith(R"(, "world_from_camera": [1,0,0,0,0,1,0,0,0,0,1,0,0,0,0,"x"])"), "camera.world_from_camera"}),
+    [](const testing::TestParamInfo<BadScene>& info) { return info.param.name; });
