@@ -231,8 +231,9 @@ ParticleFileData readPly(const std::filesystem::path& path) {
   for (const PlyElement& element : header.elements) {
     const std::size_t rowBytes = std::max<std::size_t>(1, minimumRowBytes(element, header.format));
     if (element.count > bytesForRows / rowBytes) {
-      fail(path, "header declares " + std::to_string(element.count) + " " + element.name +
-                     " rows but the file has only " + std::to_string(bodyBytes) + " bytes of data");
+      fail(path, "truncated, or a wrong count: the header declares " + std::to_string(element.count) + " " +
+                     element.name + " rows, more than the " + std::to_string(bodyBytes) +
+                     " bytes of data can hold");
     }
   }
 
