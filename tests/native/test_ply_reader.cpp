@@ -2,6 +2,7 @@
 
 #include <cmath>
 #include <filesystem>
+#include <ostream>
 #include <string>
 
 #include <gtest/gtest.h>
@@ -128,6 +129,11 @@ struct MalformedCase {
   const char* file;
   const char* expectedWords;  // A part of the message that says what is wrong.
 };
+
+// Names the case by its file in test output and CTest names, instead of gtest's byte dump.
+void PrintTo(const MalformedCase& malformed, std::ostream* stream) {
+  *stream << malformed.file;
+}
 
 class PlyReaderMalformed : public ::testing::TestWithParam<MalformedCase> {};
 

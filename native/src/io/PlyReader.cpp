@@ -206,6 +206,89 @@ void reserveVertices(const VertexLayout& layout, std::size_t count, ParticleFile
   if (layout.vx >= 0) data->velocities.reserve(count);
 }
 
+void readAsciiBody(const std::filesystem::path& path, const std::vector<char>& bytes, std::size_t bodyOffset,
+                   const PlyHeader& header, const PlyElement* vertexElement, const VertexLayout& layout,
+                   ParticleFileData* data) {
+  std::vector<double> values;
+  AsciiCursor cursor(bytes, bodyOffset);
+  std::vector<std::string> words;
+  for (const PlyElement& element : header.elements) {
+    const bool isVertex = &element == vertexElement;
+    for (std::uint64_t row = 0; row < element.count; ++row) {
+      if (!cursor.nextRow(&words)) {
+        fail(path, "truncated: element '" + element.name + "' declares " + std::to_string(element.count) +
+                       " rows, the file ends after " + std::to_string(row));
+      }
+      // Built only for a message: a per-row string would dominate the time of large files.
+      const auto where = [&] {
+        return "line " + std::to_string(cursor.lineNumber()) + " of the data (" + element.name + " " +
+               std::to_string(row) + "): ";
+      };
+      values.assign(element.properties.size(), 0.0);
+      std::size_t wordIndex = 0;
+      for (std::size_t index = 0; index < element.properties.size(); ++index) {
+        const PlyProperty& property = element.properties[index];
+        double listLength = 1.0;
+        if (property.isList) {
+          if (wordIndex >= words.size() || !parseAsciiNumber(words[wordIndex++], &listLength) ||
+              !(listLength >= 0.0) || listLength != std::floor(listLength)) {
+            fail(path, where() + "bad list length for '" + property.name + "'");
+          }
+        }
+        if (listLength > double(words.size() - wordIndex)) fail(path, where() + "too few values");
+        for (std::size_t item = 0; item < std::size_t(listLength); ++item) {
+          if (!parseAsciiNumber(words[wordIndex++], &values[index])) {
+            fail(path, where() + "'" + words[wordIndex - 1] + "' is not a number");
+          }
+        }
+      }
+      if (wordIndex != words.size()) {
+        fail(path, where() + std::to_string(words.size()) + " values, expected " + std::to_string(wordIndex));
+      }
+      if (isVertex) storeVertex(layout, values, data, path, row);
+    }
+  }
+  if (cursor.nextRow(&words)) {
+    fail(path, "line " + std::to_string(cursor.lineNumber()) +
+                   " of the data is more than the header's element counts declare");
+  }
+}
+
+void readBinaryBody(const std::filesystem::path& path, const std::vector<char>& bytes, std::size_t bodyOffset,
+                    const PlyHeader& header, const PlyElement* vertexElement, const VertexLayout& layout,
+                    ParticleFileData* data) {
+  std::vector<double> values;
+  const bool fileIsLittleEndian = header.format == PlyFormat::BinaryLittleEndian;
+  BinaryCursor cursor(path, bytes, bodyOffset, fileIsLittleEndian != hostIsLittleEndian());
+  for (const PlyElement& element : header.elements) {
+    const bool isVertex = &element == vertexElement;
+    values.assign(element.properties.size(), 0.0);
+    for (std::uint64_t row = 0; row < element.count; ++row) {
+      for (std::size_t index = 0; index < element.properties.size(); ++index) {
+        const PlyProperty& property = element.properties[index];
+        if (!property.isList) {
+          values[index] = cursor.read(property.valueType, element.name, row);
+          continue;
+        }
+        const double listLength = cursor.read(property.listCountType, element.name, row);
+        if (listLength < 0.0) fail(path, "negative list length in element '" + element.name + "'");
+        const std::size_t itemSize = scalarSize(property.valueType);
+        if (listLength > double(cursor.remaining() / itemSize)) {
+          fail(path, "truncated binary data in element '" + element.name + "' at row " + std::to_string(row));
+        }
+        for (std::size_t item = 0; item < std::size_t(listLength); ++item) {
+          cursor.read(property.valueType, element.name, row);
+        }
+      }
+      if (isVertex) storeVertex(layout, values, data, path, row);
+    }
+  }
+  if (cursor.remaining() != 0) {
+    fail(path, std::to_string(cursor.remaining()) +
+                   " bytes follow the last element: the header's element counts do not match the data");
+  }
+}
+
 }  // namespace
 
 ParticleFileData readPly(const std::filesystem::path& path) {
@@ -215,8 +298,9 @@ ParticleFileData readPly(const std::filesystem::path& path) {
   const std::uintmax_t fileSize = std::filesystem::file_size(path, sizeError);
   if (sizeError) fail(path, "cannot read PLY file: " + sizeError.message());
   std::vector<char> bytes(static_cast<std::size_t>(fileSize));
-  if (!file.read(bytes.data(), static_cast<std::streamsize>(bytes.size())))
+  if (!file.read(bytes.data(), static_cast<std::streamsize>(bytes.size()))) {
     fail(path, "cannot read PLY file");
+  }
 
   std::size_t bodyOffset = 0;
   const PlyHeader header = ply::parseHeader(path, bytes, &bodyOffset);
@@ -239,79 +323,10 @@ ParticleFileData readPly(const std::filesystem::path& path) {
 
   ParticleFileData data;
   reserveVertices(layout, static_cast<std::size_t>(vertexElement->count), &data);
-  std::vector<double> values;
-
   if (header.format == PlyFormat::Ascii) {
-    AsciiCursor cursor(bytes, bodyOffset);
-    std::vector<std::string> words;
-    for (const PlyElement& element : header.elements) {
-      const bool isVertex = &element == &*vertexElement;
-      for (std::uint64_t row = 0; row < element.count; ++row) {
-        if (!cursor.nextRow(&words)) {
-          fail(path, "truncated: element '" + element.name + "' declares " + std::to_string(element.count) +
-                         " rows, the file ends after " + std::to_string(row));
-        }
-        const std::string where = "line " + std::to_string(cursor.lineNumber()) + " of the data (" +
-                                  element.name + " " + std::to_string(row) + "): ";
-        values.assign(element.properties.size(), 0.0);
-        std::size_t wordIndex = 0;
-        for (std::size_t index = 0; index < element.properties.size(); ++index) {
-          const PlyProperty& property = element.properties[index];
-          double listLength = 1.0;
-          if (property.isList) {
-            if (wordIndex >= words.size() || !parseAsciiNumber(words[wordIndex++], &listLength) ||
-                !(listLength >= 0.0) || listLength != std::floor(listLength)) {
-              fail(path, where + "bad list length for '" + property.name + "'");
-            }
-          }
-          if (listLength > double(words.size() - wordIndex)) fail(path, where + "too few values");
-          for (std::size_t item = 0; item < std::size_t(listLength); ++item) {
-            if (!parseAsciiNumber(words[wordIndex++], &values[index])) {
-              fail(path, where + "'" + words[wordIndex - 1] + "' is not a number");
-            }
-          }
-        }
-        if (wordIndex != words.size()) {
-          fail(path, where + std::to_string(words.size()) + " values, expected " + std::to_string(wordIndex));
-        }
-        if (isVertex) storeVertex(layout, values, &data, path, row);
-      }
-    }
-    if (cursor.nextRow(&words)) {
-      fail(path, "line " + std::to_string(cursor.lineNumber()) +
-                     " of the data is more than the header's element counts declare");
-    }
-    return data;
-  }
-
-  const bool fileIsLittleEndian = header.format == PlyFormat::BinaryLittleEndian;
-  BinaryCursor cursor(path, bytes, bodyOffset, fileIsLittleEndian != hostIsLittleEndian());
-  for (const PlyElement& element : header.elements) {
-    const bool isVertex = &element == &*vertexElement;
-    values.assign(element.properties.size(), 0.0);
-    for (std::uint64_t row = 0; row < element.count; ++row) {
-      for (std::size_t index = 0; index < element.properties.size(); ++index) {
-        const PlyProperty& property = element.properties[index];
-        if (!property.isList) {
-          values[index] = cursor.read(property.valueType, element.name, row);
-          continue;
-        }
-        const double listLength = cursor.read(property.listCountType, element.name, row);
-        if (listLength < 0.0) fail(path, "negative list length in element '" + element.name + "'");
-        const std::size_t itemSize = scalarSize(property.valueType);
-        if (listLength > double(cursor.remaining() / itemSize)) {
-          fail(path, "truncated binary data in element '" + element.name + "' at row " + std::to_string(row));
-        }
-        for (std::size_t item = 0; item < std::size_t(listLength); ++item) {
-          cursor.read(property.valueType, element.name, row);
-        }
-      }
-      if (isVertex) storeVertex(layout, values, &data, path, row);
-    }
-  }
-  if (cursor.remaining() != 0) {
-    fail(path, std::to_string(cursor.remaining()) +
-                   " bytes follow the last element: the header's element counts do not match the data");
+    readAsciiBody(path, bytes, bodyOffset, header, &*vertexElement, layout, &data);
+  } else {
+    readBinaryBody(path, bytes, bodyOffset, header, &*vertexElement, layout, &data);
   }
   return data;
 }
