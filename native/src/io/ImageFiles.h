@@ -18,7 +18,10 @@ struct FloatImage {
 
 /// Reads an image's colour as RGBA (alpha 1 where the file has none; grey repeated to RGB). In a multilayer
 /// EXR the first layer named like "Combined" (Blender's "ViewLayer.Combined.R" ...) is taken; otherwise the
-/// plain R, G, B, A channels. Throws Error naming the file when it cannot be read or has no colour.
+/// plain R, G, B, A channels. Colour comes back as Blender's Combined pass is: linear (sRGB and gamma encoded
+/// files are decoded) with premultiplied alpha (unassociated alpha, as in PNG, is multiplied in after
+/// decoding). Pixels outside an EXR's data window but inside its display window are 0. Throws Error naming
+/// the file when it cannot be read or has no colour.
 FloatImage readColorImage(const std::filesystem::path& path);
 
 /// Reads planar eye depth as one channel: a channel named "Z" or ending in ".Z" whose layer looks like

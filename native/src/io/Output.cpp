@@ -1,0 +1,197 @@
+#include "spindrift/Output.h"
+
+#include <unistd.h>
+
+#include <algorithm>
+#include <atomic>
+#include <cmath>
+#include <cstdint>
+#include <memory>
+#include <set>
+#include <string>
+#include <system_error>
+#include <vector>
+
+#include <OpenImageIO/imageio.h>
+
+#include "spindrift/Error.h"
+
+namespace spindrift {
+namespace {
+
+[[noreturn]] void fail(const std::filesystem::path& path, const std::string& what) {
+  throw Error(path.string() + ": " + what);
+}
+
+std::string oneLine(std::string message) {
+  std::replace(message.begin(), message.end(), '\n', ' ');
+  while (!message.empty() && message.back() == ' ')
+    message.pop_back();
+  return message.empty() ? "unknown OpenImageIO error" : message;
+}
+
+void checkLayerSizes(const RenderResult& result, const std::filesystem::path& path) {
+  if (result.width <= 0 || result.height <= 0) {
+    fail(path, "nothing to write: the image is " + std::to_string(result.width) + "x" +
+                   std::to_string(result.height));
+  }
+  const std::size_t pixelCount = std::size_t(result.width) * std::size_t(result.height);
+  for (const ImageLayer& layer : result.layers) {
+    if (layer.channels.empty() || layer.pixels.size() != pixelCount * layer.channelCount()) {
+      fail(path, "layer '" + layer.name + "' has " + std::to_string(layer.pixels.size()) +
+                     " values, expected " + std::to_string(pixelCount) + " pixels of " +
+                     std::to_string(layer.channelCount()) + " channels");
+    }
+  }
+}
+
+// A name beside the target, hidden, and unique per process and call, so concurrent writers never share it.
+std::filesystem::path temporaryPathBeside(const std::filesystem::path& target) {
+  static std::atomic<unsigned> callCounter{0};
+  const std::string suffix = ".tmp-" + std::to_string(::getpid()) + "-" + std::to_string(callCounter++);
+  return target.parent_path() / ("." + target.filename().string() + suffix);
+}
+
+// Removes the temporary file unless the write got as far as renaming it, whatever goes wrong in between.
+class TemporaryFile {
+ public:
+  explicit TemporaryFile(std::filesystem::path path) : path_(std::move(path)) {}
+  ~TemporaryFile() {
+    if (!path_.empty()) {
+      std::error_code ignored;
+      std::filesystem::remove(path_, ignored);
+    }
+  }
+  TemporaryFile(const TemporaryFile&) = delete;
+  TemporaryFile& operator=(const TemporaryFile&) = delete;
+
+  const std::filesystem::path& path() const { return path_; }
+  void release() { path_.clear(); }
+
+ private:
+  std::filesystem::path path_;
+};
+
+// Writes with the OIIO plugin `formatName` under a temporary name beside `target`, then renames it into
+// place, so `target` is either the old file or the complete new one. The format is named rather than
+// guessed from the extension because the temporary name has none.
+void writeThroughTemporaryFile(const std::filesystem::path& target, const char* formatName,
+                               const OIIO::ImageSpec& spec, OIIO::TypeDesc pixelType, const void* pixels) {
+  const std::filesystem::path directory = target.parent_path();
+  if (!directory.empty()) {
+    std::error_code directoryError;
+    std::filesystem::create_directories(directory, directoryError);
+    if (directoryError) {
+      fail(target, "cannot create directory " + directory.string() + ": " + directoryError.message());
+    }
+  }
+  std::unique_ptr<OIIO::ImageOutput> output = OIIO::ImageOutput::create(formatName);
+  if (!output) fail(target, std::string("no ") + formatName + " writer: " + oneLine(OIIO::geterror()));
+
+  TemporaryFile temporary(temporaryPathBeside(target));
+  const bool written = output->open(temporary.path().string(), spec) &&
+                       output->write_image(pixelType, pixels) && output->close();
+  if (!written) {
+    const std::string message = oneLine(output->geterror());
+    output.reset();  // Closes the file before the temporary is removed.
+    fail(target, "cannot write: " + message);
+  }
+  output.reset();
+  std::error_code renameError;
+  std::filesystem::rename(temporary.path(), target, renameError);
+  if (renameError) fail(target, "cannot replace the file: " + renameError.message());
+  temporary.release();
+}
+
+float srgbFromLinear(float linear) {
+  return linear <= 0.0031308f ? 12.92f * linear : 1.055f * std::pow(linear, 1.0f / 2.4f) - 0.055f;
+}
+
+std::uint8_t quantize(float value) {
+  if (std::isnan(value)) return 0;
+  return static_cast<std::uint8_t>(std::lround(std::clamp(value, 0.0f, 1.0f) * 255.0f));
+}
+
+int channelIndex(const ImageLayer& layer, const std::string& channel) {
+  const auto found = std::find(layer.channels.begin(), layer.channels.end(), channel);
+  return found == layer.channels.end() ? -1 : int(found - layer.channels.begin());
+}
+
+}  // namespace
+
+void writeExr(const RenderResult& result, const std::filesystem::path& path) {
+  checkLayerSizes(result, path);
+  if (result.layers.empty()) fail(path, "nothing to write: the result has no layers");
+
+  std::vector<std::string> channelNames;
+  for (const ImageLayer& layer : result.layers) {
+    for (const std::string& channel : layer.channels) {
+      channelNames.push_back(layer.name.empty() ? channel : layer.name + "." + channel);
+    }
+  }
+  const std::set<std::string> uniqueNames(channelNames.begin(), channelNames.end());
+  if (uniqueNames.size() != channelNames.size()) fail(path, "two layers have a channel of the same name");
+
+  // Interleave every layer's channels into one pixel, layer after layer.
+  const std::size_t pixelCount = std::size_t(result.width) * std::size_t(result.height);
+  const std::size_t channelCount = channelNames.size();
+  std::vector<float> interleaved(pixelCount * channelCount);
+  std::size_t firstChannel = 0;
+  for (const ImageLayer& layer : result.layers) {
+    const std::size_t layerChannels = layer.channelCount();
+    for (std::size_t pixel = 0; pixel < pixelCount; ++pixel) {
+      std::copy_n(&layer.pixels[pixel * layerChannels], layerChannels,
+                  &interleaved[pixel * channelCount + firstChannel]);
+    }
+    firstChannel += layerChannels;
+  }
+
+  OIIO::ImageSpec spec(result.width, result.height, int(channelCount), OIIO::TypeFloat);
+  spec.channelnames = channelNames;
+  const auto indexOf = [&](const std::string& name) {
+    const auto found = std::find(channelNames.begin(), channelNames.end(), name);
+    return found == channelNames.end() ? -1 : int(found - channelNames.begin());
+  };
+  spec.alpha_channel = indexOf("composite.A");
+  spec.z_channel = indexOf("depth.Z");
+  spec.attribute("compression", "zip");
+  spec.attribute("oiio:ColorSpace", "Linear");
+  writeThroughTemporaryFile(path, "openexr", spec, OIIO::TypeFloat, interleaved.data());
+}
+
+void writePng(const RenderResult& result, const std::filesystem::path& path) {
+  const auto composite = std::find_if(result.layers.begin(), result.layers.end(),
+                                      [](const ImageLayer& layer) { return layer.name == "composite"; });
+  if (composite == result.layers.end()) fail(path, "cannot write a PNG: the result has no composite layer");
+  checkLayerSizes(result, path);
+  const int red = channelIndex(*composite, "R");
+  const int green = channelIndex(*composite, "G");
+  const int blue = channelIndex(*composite, "B");
+  const int alpha = channelIndex(*composite, "A");
+  if (red < 0 || green < 0 || blue < 0) fail(path, "the composite layer has no R, G and B channels");
+
+  const std::size_t pixelCount = std::size_t(result.width) * std::size_t(result.height);
+  const std::size_t sourceChannels = composite->channelCount();
+  std::vector<std::uint8_t> encoded(pixelCount * 4);
+  for (std::size_t pixel = 0; pixel < pixelCount; ++pixel) {
+    const float* source = &composite->pixels[pixel * sourceChannels];
+    const float opacity = alpha >= 0 ? source[alpha] : 1.0f;
+    std::uint8_t* target = &encoded[pixel * 4];
+    const int rgb[3] = {red, green, blue};
+    for (int c = 0; c < 3; ++c) {
+      // PNG stores straight alpha; where alpha is 0 there is no colour to recover and it stays as it is.
+      const float straight = opacity > 0.0f ? source[rgb[c]] / opacity : source[rgb[c]];
+      target[c] = quantize(srgbFromLinear(straight));
+    }
+    target[3] = quantize(opacity);
+  }
+
+  OIIO::ImageSpec spec(result.width, result.height, 4, OIIO::TypeUInt8);
+  spec.alpha_channel = 3;
+  // The values are already straight alpha; without this OIIO would divide by alpha a second time.
+  spec.attribute("oiio:UnassociatedAlpha", 1);
+  spec.attribute("oiio:ColorSpace", "sRGB");
+  writeThroughTemporaryFile(path, "png", spec, OIIO::TypeUInt8, encoded.data());
+}
+
+}  // namespace spindrift

@@ -1,0 +1,250 @@
+// Images are written here with OpenImageIO directly, as Blender and image editors would write them, and read
+// back through io/ImageFiles.h.
+
+#include <cmath>
+#include <cstdint>
+#include <filesystem>
+#include <fstream>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include <OpenImageIO/imageio.h>
+#include <gtest/gtest.h>
+#include <unistd.h>
+
+#include "io/ImageFiles.h"
+#include "spindrift/Error.h"
+
+namespace spindrift {
+namespace {
+
+// A fresh directory per test, removed afterwards.
+class ImageFilesTest : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    const std::string testName = ::testing::UnitTest::GetInstance()->current_test_info()->name();
+    directory_ = std::filesystem::temp_directory_path() /
+                 ("spindrift-image-files-" + std::to_string(::getpid()) + "-" + testName);
+    std::filesystem::remove_all(directory_);
+    std::filesystem::create_directories(directory_);
+  }
+  void TearDown() override { std::filesystem::remove_all(directory_); }
+
+  std::filesystem::path directory_;
+};
+
+// Writes `pixels` (interleaved, top row first) with OIIO as `fileType`, with the channel names in the given
+// order.
+template <typename Pixel>
+void writeImage(const std::filesystem::path& path, int width, int height,
+                const std::vector<std::string>& channelNames, const std::vector<Pixel>& pixels,
+                OIIO::TypeDesc fileType, bool unassociatedAlpha = false) {
+  OIIO::ImageSpec spec(width, height, int(channelNames.size()), fileType);
+  spec.channelnames = channelNames;
+  if (unassociatedAlpha) spec.attribute("oiio:UnassociatedAlpha", 1);
+  std::unique_ptr<OIIO::ImageOutput> output = OIIO::ImageOutput::create(path.string());
+  ASSERT_TRUE(output && output->open(path.string(), spec)) << OIIO::geterror();
+  ASSERT_TRUE(output->write_image(OIIO::BaseTypeFromC<Pixel>::value, pixels.data()));
+  ASSERT_TRUE(output->close());
+}
+
+// A value that says which channel and pixel it belongs to, so a mix-up of either shows.
+float marker(int channel, int x, int y) {
+  return float(channel * 100 + y * 10 + x);
+}
+
+float linearFromSrgb(float encoded) {
+  return encoded <= 0.04045f ? encoded / 12.92f : std::pow((encoded + 0.055f) / 1.055f, 2.4f);
+}
+
+// Blender's multilayer EXR, channels deliberately out of order, with an AO layer whose RGB must not be
+// taken for colour and a Mist layer whose Z must not be taken for depth.
+TEST_F(ImageFilesTest, ReadsCombinedAndDepthFromABlenderMultilayerExrByName) {
+  const std::vector<std::string> names = {"ViewLayer.Normal.X", "ViewLayer.Combined.B", "ViewLayer.AO.R",
+                                          "ViewLayer.Depth.Z",  "ViewLayer.Combined.A", "ViewLayer.AO.G",
+                                          "ViewLayer.Mist.Z",   "ViewLayer.Combined.R", "ViewLayer.AO.B",
+                                          "ViewLayer.Normal.Z", "ViewLayer.Combined.G", "ViewLayer.Normal.Y"};
+  const int width = 3, height = 2;
+  std::vector<float> pixels;
+  for (int y = 0; y < height; ++y) {
+    for (int x = 0; x < width; ++x) {
+      for (int channel = 0; channel < int(names.size()); ++channel)
+        pixels.push_back(marker(channel, x, y));
+    }
+  }
+  const std::filesystem::path path = directory_ / "render.exr";
+  writeImage(path, width, height, names, pixels, OIIO::TypeFloat);
+
+  const FloatImage color = readColorImage(path);
+  ASSERT_EQ(color.width, width);
+  ASSERT_EQ(color.height, height);
+  ASSERT_EQ(color.channels, 4);
+  const int red = 7, green = 10, blue = 1, alpha = 4, depth = 3;  // Indices into `names`.
+  for (int y = 0; y < height; ++y) {
+    for (int x = 0; x < width; ++x) {
+      const float* pixel = &color.pixels[(y * width + x) * 4];
+      EXPECT_EQ(pixel[0], marker(red, x, y));
+      EXPECT_EQ(pixel[1], marker(green, x, y));
+      EXPECT_EQ(pixel[2], marker(blue, x, y));
+      EXPECT_EQ(pixel[3], marker(alpha, x, y));
+    }
+  }
+
+  const std::optional<FloatImage> depthImage = readDepthImage(path);
+  ASSERT_TRUE(depthImage.has_value());
+  ASSERT_EQ(depthImage->channels, 1);
+  ASSERT_EQ(depthImage->width, width);
+  for (int y = 0; y < height; ++y) {
+    for (int x = 0; x < width; ++x)
+      EXPECT_EQ(depthImage->pixels[y * width + x], marker(depth, x, y));
+  }
+}
+
+TEST_F(ImageFilesTest, ReadsPlainRgbWithOpaqueAlphaAndPlainZ) {
+  const std::filesystem::path path = directory_ / "plain.exr";
+  writeImage(path, 2, 1, {"R", "G", "B", "Z"},
+             std::vector<float>{0.5f, 0.25f, 2.0f, 7.0f, 0.0f, 1.0f, 3.0f, 9.5f},
+             OIIO::TypeHalf);  // Blender's default EXR depth.
+
+  const FloatImage color = readColorImage(path);
+  ASSERT_EQ(color.channels, 4);
+  EXPECT_EQ(color.pixels, (std::vector<float>{0.5f, 0.25f, 2.0f, 1.0f, 0.0f, 1.0f, 3.0f, 1.0f}));
+  const std::optional<FloatImage> depth = readDepthImage(path);
+  ASSERT_TRUE(depth.has_value());
+  EXPECT_EQ(depth->pixels, (std::vector<float>{7.0f, 9.5f}));
+}
+
+TEST_F(ImageFilesTest, ReadsLowerCaseDepthLayer) {
+  const std::filesystem::path path = directory_ / "depth.exr";
+  writeImage(path, 1, 1, {"depth.Z"}, std::vector<float>{4.25f}, OIIO::TypeFloat);
+  const std::optional<FloatImage> depth = readDepthImage(path);
+  ASSERT_TRUE(depth.has_value());
+  EXPECT_EQ(depth->pixels, std::vector<float>{4.25f});
+  // A depth-only file has no colour, and says so.
+  try {
+    readColorImage(path);
+    FAIL() << "a depth-only image was read as colour";
+  } catch (const Error& error) {
+    EXPECT_NE(std::string(error.what()).find(path.string()), std::string::npos) << error.what();
+  }
+}
+
+TEST_F(ImageFilesTest, DecodesSrgbPngAndPremultipliesItsAlpha) {
+  const std::filesystem::path path = directory_ / "background.png";
+  // Stored as an image editor stores PNG: sRGB-encoded colour with unassociated alpha.
+  const std::vector<std::uint8_t> stored = {255, 128, 0, 128, 10, 20, 30, 255};
+  writeImage(path, 2, 1, {"R", "G", "B", "A"}, stored, OIIO::TypeUInt8, /*unassociatedAlpha=*/true);
+
+  const FloatImage color = readColorImage(path);
+  ASSERT_EQ(color.width, 2);
+  ASSERT_EQ(color.channels, 4);
+  const float halfAlpha = 128.0f / 255.0f;
+  EXPECT_NEAR(color.pixels[0], 1.0f * halfAlpha, 1e-5f);
+  EXPECT_NEAR(color.pixels[1], linearFromSrgb(128.0f / 255.0f) * halfAlpha, 1e-5f);
+  EXPECT_NEAR(color.pixels[2], 0.0f, 1e-6f);
+  EXPECT_NEAR(color.pixels[3], halfAlpha, 1e-6f);
+  EXPECT_NEAR(color.pixels[4], linearFromSrgb(10.0f / 255.0f), 1e-6f);
+  EXPECT_NEAR(color.pixels[5], linearFromSrgb(20.0f / 255.0f), 1e-6f);
+  EXPECT_NEAR(color.pixels[6], linearFromSrgb(30.0f / 255.0f), 1e-6f);
+  EXPECT_NEAR(color.pixels[7], 1.0f, 1e-6f);
+  EXPECT_FALSE(readDepthImage(path).has_value());
+}
+
+TEST_F(ImageFilesTest, RepeatsGreyToRgbWithOpaqueAlpha) {
+  const std::filesystem::path path = directory_ / "grey.png";
+  writeImage(path, 2, 2, {"Y"}, std::vector<std::uint8_t>{0, 255, 128, 64}, OIIO::TypeUInt8);
+
+  const FloatImage color = readColorImage(path);
+  ASSERT_EQ(color.width, 2);
+  ASSERT_EQ(color.height, 2);
+  ASSERT_EQ(color.channels, 4);
+  const float expected[4] = {0.0f, 1.0f, linearFromSrgb(128.0f / 255.0f), linearFromSrgb(64.0f / 255.0f)};
+  for (int pixel = 0; pixel < 4; ++pixel) {
+    for (int channel = 0; channel < 3; ++channel) {
+      EXPECT_NEAR(color.pixels[pixel * 4 + channel], expected[pixel], 1e-6f) << pixel;
+    }
+    EXPECT_EQ(color.pixels[pixel * 4 + 3], 1.0f);
+  }
+}
+
+TEST_F(ImageFilesTest, PlacesTheDataWindowInsideTheDisplayWindow) {
+  const std::filesystem::path path = directory_ / "window.exr";
+  OIIO::ImageSpec spec(1, 1, 3, OIIO::TypeFloat);
+  spec.x = 2;
+  spec.y = 1;
+  spec.full_width = 3;
+  spec.full_height = 2;
+  std::unique_ptr<OIIO::ImageOutput> output = OIIO::ImageOutput::create(path.string());
+  ASSERT_TRUE(output->open(path.string(), spec));
+  const float rgb[3] = {0.5f, 0.75f, 1.0f};
+  ASSERT_TRUE(output->write_image(OIIO::TypeFloat, rgb));
+  ASSERT_TRUE(output->close());
+
+  const FloatImage color = readColorImage(path);
+  ASSERT_EQ(color.width, 3);
+  ASSERT_EQ(color.height, 2);
+  const float* lastPixel = &color.pixels[(1 * 3 + 2) * 4];
+  EXPECT_EQ(lastPixel[0], 0.5f);
+  EXPECT_EQ(lastPixel[1], 0.75f);
+  EXPECT_EQ(lastPixel[2], 1.0f);
+  EXPECT_EQ(color.pixels[0], 0.0f);
+}
+
+TEST_F(ImageFilesTest, MissingOrCorruptFilesThrowErrorsNamingThem) {
+  const std::filesystem::path missing = directory_ / "missing.exr";
+  EXPECT_THROW(readColorImage(missing), Error);
+  EXPECT_THROW(readDepthImage(missing), Error);
+
+  const std::filesystem::path corrupt = directory_ / "corrupt.exr";
+  std::ofstream(corrupt) << "not an image at all";
+  try {
+    readColorImage(corrupt);
+    FAIL() << "a corrupt file was read";
+  } catch (const Error& error) {
+    const std::string message = error.what();
+    EXPECT_NE(message.find(corrupt.string()), std::string::npos) << message;
+    EXPECT_EQ(message.find('\n'), std::string::npos) << message;
+  }
+}
+
+TEST(ImageFilesResize, NearestRepeatsPixelsAndBilinearBlendsThem) {
+  FloatImage image;
+  image.width = 2;
+  image.height = 1;
+  image.channels = 1;
+  image.pixels = {0.0f, 1.0f};
+
+  const FloatImage nearest = resizeImage(image, 4, 2, /*nearest=*/true);
+  ASSERT_EQ(nearest.width, 4);
+  ASSERT_EQ(nearest.height, 2);
+  EXPECT_EQ(nearest.pixels, (std::vector<float>{0, 0, 1, 1, 0, 0, 1, 1}));
+
+  // Destination pixel centres fall at source x = 0.25, 0.75, 1.25, 1.75; edges clamp.
+  const FloatImage bilinear = resizeImage(image, 4, 1, /*nearest=*/false);
+  ASSERT_EQ(bilinear.pixels.size(), 4u);
+  EXPECT_FLOAT_EQ(bilinear.pixels[0], 0.0f);
+  EXPECT_FLOAT_EQ(bilinear.pixels[1], 0.25f);
+  EXPECT_FLOAT_EQ(bilinear.pixels[2], 0.75f);
+  EXPECT_FLOAT_EQ(bilinear.pixels[3], 1.0f);
+}
+
+TEST(ImageFilesResize, KeepsChannelsAndRejectsBadSizes) {
+  FloatImage image;
+  image.width = 1;
+  image.height = 1;
+  image.channels = 4;
+  image.pixels = {0.1f, 0.2f, 0.3f, 0.4f};
+  const FloatImage larger = resizeImage(image, 3, 2, /*nearest=*/false);
+  ASSERT_EQ(larger.channels, 4);
+  for (int pixel = 0; pixel < 6; ++pixel)
+    EXPECT_FLOAT_EQ(larger.pixels[pixel * 4 + 2], 0.3f);
+  EXPECT_EQ(resizeImage(image, 1, 1, true).pixels, image.pixels);
+  EXPECT_THROW(resizeImage(image, 0, 5, true), Error);
+  image.pixels.pop_back();
+  EXPECT_THROW(resizeImage(image, 2, 2, true), Error);
+}
+
+}  // namespace
+}  // namespace spindrift

@@ -1,0 +1,223 @@
+// Output files are read back with OpenImageIO directly, not through the project's own readers.
+
+#include <unistd.h>
+
+#include <cmath>
+#include <cstdint>
+#include <filesystem>
+#include <fstream>
+#include <iterator>
+#include <limits>
+#include <map>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include <OpenImageIO/imageio.h>
+#include <gtest/gtest.h>
+
+#include "spindrift/Error.h"
+#include "spindrift/Output.h"
+
+namespace spindrift {
+namespace {
+
+constexpr float kNaN = std::numeric_limits<float>::quiet_NaN();
+
+class OutputTest : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    const std::string testName = ::testing::UnitTest::GetInstance()->current_test_info()->name();
+    directory_ = std::filesystem::temp_directory_path() /
+                 ("spindrift-output-" + std::to_string(::getpid()) + "-" + testName);
+    std::filesystem::remove_all(directory_);
+    std::filesystem::create_directories(directory_);
+  }
+  void TearDown() override { std::filesystem::remove_all(directory_); }
+
+  // Every file in `directory`, so a test can tell that no temporary file was left behind.
+  static std::vector<std::string> filesIn(const std::filesystem::path& directory) {
+    std::vector<std::string> names;
+    for (const auto& entry : std::filesystem::directory_iterator(directory)) {
+      names.push_back(entry.path().filename().string());
+    }
+    return names;
+  }
+
+  std::filesystem::path directory_;
+};
+
+ImageLayer makeLayer(const std::string& name, std::vector<std::string> channels, std::vector<float> pixels) {
+  ImageLayer layer;
+  layer.name = name;
+  layer.channels = std::move(channels);
+  layer.pixels = std::move(pixels);
+  return layer;
+}
+
+// A 2x1 result whose every value says which layer, channel and pixel it is.
+RenderResult makeThreeLayerResult() {
+  RenderResult result;
+  result.width = 2;
+  result.height = 1;
+  result.layers.push_back(
+      makeLayer("composite", {"R", "G", "B", "A"}, {0.1f, 0.2f, 0.3f, 1.0f, 1.1f, 1.2f, 1.3f, kNaN}));
+  result.layers.push_back(makeLayer("depth", {"Z"}, {5.0f, 6.5f}));
+  result.layers.push_back(makeLayer("normal", {"X", "Y", "Z"}, {0.0f, 0.0f, 1.0f, -1.0f, 0.0f, 0.0f}));
+  return result;
+}
+
+std::string fileBytes(const std::filesystem::path& path) {
+  std::ifstream file(path, std::ios::binary);
+  return std::string(std::istreambuf_iterator<char>(file), {});
+}
+
+// The pixels of an 8-bit PNG as stored, straight alpha, without OIIO's premultiplication on read.
+std::vector<std::uint8_t> readStoredPng(const std::filesystem::path& path, OIIO::ImageSpec* spec) {
+  OIIO::ImageSpec config;
+  config.attribute("oiio:UnassociatedAlpha", 1);
+  std::unique_ptr<OIIO::ImageInput> input = OIIO::ImageInput::open(path.string(), &config);
+  if (!input) return {};
+  *spec = input->spec();
+  std::vector<std::uint8_t> pixels(std::size_t(spec->width) * spec->height * spec->nchannels);
+  input->read_image(0, 0, 0, spec->nchannels, OIIO::TypeUInt8, pixels.data());
+  return pixels;
+}
+
+TEST_F(OutputTest, ExrHoldsEveryLayerAsNamedFloatChannels) {
+  const std::filesystem::path path = directory_ / "new" / "sub" / "frame.exr";
+  writeExr(makeThreeLayerResult(), path);
+
+  std::unique_ptr<OIIO::ImageInput> input = OIIO::ImageInput::open(path.string());
+  ASSERT_TRUE(input) << OIIO::geterror();
+  const OIIO::ImageSpec spec = input->spec();
+  EXPECT_EQ(spec.width, 2);
+  EXPECT_EQ(spec.height, 1);
+  EXPECT_EQ(spec.format, OIIO::TypeFloat);
+  EXPECT_EQ(spec.get_string_attribute("compression"), "zip");
+  std::vector<float> pixels(std::size_t(2) * spec.nchannels);
+  ASSERT_TRUE(input->read_image(0, 0, 0, spec.nchannels, OIIO::TypeFloat, pixels.data()));
+
+  // OpenEXR keeps channels sorted by name, so look every value up by its name.
+  std::map<std::string, std::vector<float>> byName;
+  for (int channel = 0; channel < spec.nchannels; ++channel) {
+    byName[spec.channelnames[channel]] = {pixels[channel], pixels[spec.nchannels + channel]};
+  }
+  const std::map<std::string, std::vector<float>> expected = {
+      {"composite.R", {0.1f, 1.1f}}, {"composite.G", {0.2f, 1.2f}}, {"composite.B", {0.3f, 1.3f}},
+      {"composite.A", {1.0f, kNaN}}, {"depth.Z", {5.0f, 6.5f}},     {"normal.X", {0.0f, -1.0f}},
+      {"normal.Y", {0.0f, 0.0f}},    {"normal.Z", {1.0f, 0.0f}}};
+  ASSERT_EQ(byName.size(), expected.size());
+  for (const auto& [name, values] : expected) {
+    ASSERT_EQ(byName.count(name), 1u) << name;
+    for (int pixel = 0; pixel < 2; ++pixel) {
+      if (std::isnan(values[pixel])) {
+        EXPECT_TRUE(std::isnan(byName[name][pixel])) << name;
+      } else {
+        EXPECT_EQ(byName[name][pixel], values[pixel]) << name;
+      }
+    }
+  }
+  EXPECT_EQ(filesIn(path.parent_path()), std::vector<std::string>{"frame.exr"});
+}
+
+TEST_F(OutputTest, PngEncodesLinearValuesWithTheSrgbTransferFunction) {
+  RenderResult result;
+  result.width = 7;
+  result.height = 1;
+  const std::vector<float> linear = {0.0f, 1.0f, 0.5f, 0.0031308f, kNaN, 4.0f, -1.0f};
+  std::vector<float> pixels;
+  for (float value : linear)
+    pixels.insert(pixels.end(), {value, value, value, 1.0f});
+  result.layers.push_back(makeLayer("depth", {"Z"}, std::vector<float>(7, 1.0f)));
+  result.layers.push_back(makeLayer("composite", {"R", "G", "B", "A"}, pixels));
+  const std::filesystem::path path = directory_ / "srgb.png";
+  writePng(result, path);
+
+  OIIO::ImageSpec spec;
+  const std::vector<std::uint8_t> stored = readStoredPng(path, &spec);
+  ASSERT_EQ(spec.nchannels, 4);
+  ASSERT_EQ(spec.format, OIIO::TypeUInt8);
+  // 0.5 linear is 0.7354 in sRGB; 0.0031308 is where the curve turns linear, 12.92 x 0.0031308 = 0.04045.
+  const std::uint8_t expected[7] = {0, 255, 188, 10, 0, 255, 0};
+  for (int pixel = 0; pixel < 7; ++pixel) {
+    EXPECT_EQ(stored[pixel * 4 + 0], expected[pixel]) << "linear " << linear[pixel];
+    EXPECT_EQ(stored[pixel * 4 + 2], expected[pixel]) << "linear " << linear[pixel];
+    EXPECT_EQ(stored[pixel * 4 + 3], 255);
+  }
+}
+
+TEST_F(OutputTest, PngUnpremultipliesAndKeepsAlpha) {
+  RenderResult result;
+  result.width = 3;
+  result.height = 1;
+  // Premultiplied: half-covered mid grey, fully transparent, and a NaN alpha.
+  result.layers.push_back(makeLayer("composite", {"R", "G", "B", "A"},
+                                    {0.25f, 0.25f, 0.0f, 0.5f, 0, 0, 0, 0, 0.5f, 0.5f, 0.5f, kNaN}));
+  const std::filesystem::path path = directory_ / "alpha.png";
+  writePng(result, path);
+
+  OIIO::ImageSpec spec;
+  const std::vector<std::uint8_t> stored = readStoredPng(path, &spec);
+  ASSERT_EQ(stored.size(), 12u);
+  EXPECT_EQ(stored[0], 188);  // 0.25 / 0.5 = 0.5 linear.
+  EXPECT_EQ(stored[1], 188);
+  EXPECT_EQ(stored[2], 0);
+  EXPECT_EQ(stored[3], 128);  // 0.5 x 255 = 127.5, rounded half away from zero.
+  EXPECT_EQ(stored[7], 0);
+  EXPECT_EQ(stored[11], 0);
+}
+
+TEST_F(OutputTest, PngWithoutACompositeLayerIsAnError) {
+  RenderResult result = makeThreeLayerResult();
+  result.layers.erase(result.layers.begin());
+  const std::filesystem::path path = directory_ / "none.png";
+  EXPECT_THROW(writePng(result, path), Error);
+  EXPECT_FALSE(std::filesystem::exists(path));
+}
+
+TEST_F(OutputTest, AFailedWriteThrowsAndLeavesTheGoodFileAlone) {
+  const std::filesystem::path path = directory_ / "frame.exr";
+  writeExr(makeThreeLayerResult(), path);
+  const std::string goodBytes = fileBytes(path);
+  ASSERT_FALSE(goodBytes.empty());
+
+  RenderResult broken = makeThreeLayerResult();
+  broken.layers[1].pixels.pop_back();
+  EXPECT_THROW(writeExr(broken, path), Error);
+  EXPECT_THROW(writePng(broken, path), Error);
+  EXPECT_EQ(fileBytes(path), goodBytes);
+  EXPECT_EQ(filesIn(directory_), std::vector<std::string>{"frame.exr"});
+}
+
+TEST_F(OutputTest, WritingUnderARegularFileThrowsAnErrorNamingThePath) {
+  const std::filesystem::path regularFile = directory_ / "not-a-directory";
+  std::ofstream(regularFile) << "a file where a directory should be";
+  for (const std::filesystem::path& path : {regularFile / "frame.exr", regularFile / "frame.png"}) {
+    try {
+      if (path.extension() == ".exr") {
+        writeExr(makeThreeLayerResult(), path);
+      } else {
+        writePng(makeThreeLayerResult(), path);
+      }
+      FAIL() << "wrote " << path;
+    } catch (const Error& error) {
+      const std::string message = error.what();
+      EXPECT_NE(message.find(path.string()), std::string::npos) << message;
+      EXPECT_EQ(message.find('\n'), std::string::npos) << message;
+    }
+  }
+}
+
+TEST_F(OutputTest, AFailedRenameRemovesTheTemporaryFile) {
+  // The target is a directory with something in it: the data is written, but the rename must fail.
+  const std::filesystem::path path = directory_ / "occupied.exr";
+  std::filesystem::create_directories(path / "keep");
+  EXPECT_THROW(writeExr(makeThreeLayerResult(), path), Error);
+  EXPECT_THROW(writePng(makeThreeLayerResult(), path), Error);
+  EXPECT_TRUE(std::filesystem::is_directory(path / "keep"));
+  EXPECT_EQ(filesIn(directory_), std::vector<std::string>{"occupied.exr"});
+}
+
+}  // namespace
+}  // namespace spindrift
