@@ -1,0 +1,167 @@
+#include <algorithm>
+#include <cstdint>
+#include <mutex>
+#include <string>
+#include <vector>
+
+#include <openvdb/io/File.h>
+#include <openvdb/openvdb.h>
+#include <openvdb/points/AttributeArray.h>
+#include <openvdb/points/PointDataGrid.h>
+
+#include "io/ParticleFile.h"
+#include "spindrift/Error.h"
+
+namespace spindrift {
+namespace {
+
+using openvdb::points::AttributeHandle;
+using openvdb::points::PointDataGrid;
+using openvdb::points::TruncateCodec;
+using openvdb::points::TypedAttributeArray;
+
+// Mantaflow stores attributes at half precision (Blender's default "Half" OpenVDB depth) with TruncateCodec,
+// and openvdb::initialize() does not register the int32 variant: without it reading the grid throws
+// "Cannot create attribute of unregistered type int32_trnc".
+template <typename Array>
+void registerOnce() {
+  if (!Array::isRegistered()) Array::registerType();
+}
+
+void initializeOpenVdb() {
+  static std::once_flag once;
+  std::call_once(once, [] {
+    openvdb::initialize();
+    registerOnce<TypedAttributeArray<std::int32_t, TruncateCodec>>();
+    registerOnce<TypedAttributeArray<float, TruncateCodec>>();
+    registerOnce<TypedAttributeArray<openvdb::Vec3f, TruncateCodec>>();
+  });
+}
+
+std::string joinNames(const std::vector<std::string>& names) {
+  if (names.empty()) return "none";
+  std::string joined;
+  for (const std::string& name : names)
+    joined += (joined.empty() ? "" : ", ") + ("'" + name + "'");
+  return joined;
+}
+
+// Reads a scalar attribute whatever its storage: Mantaflow writes flags as int32 and life as float, but a
+// file written at full precision, or by another tool, may use other numeric types.
+template <typename Out>
+bool readScalar(const PointDataGrid& grid, const std::string& name, std::vector<Out>& values) {
+  const auto leaf0 = grid.tree().cbeginLeaf();
+  if (!leaf0) return false;
+  const std::size_t index = leaf0->attributeSet().find(name);
+  if (index == openvdb::points::AttributeSet::INVALID_POS) return false;
+  const std::string valueType = leaf0->constAttributeArray(index).valueType();
+
+  auto readAs = [&](auto tag) {
+    using Stored = decltype(tag);
+    for (auto leaf = grid.tree().cbeginLeaf(); leaf; ++leaf) {
+      const AttributeHandle<Stored> handle(leaf->constAttributeArray(index));
+      for (auto point = leaf->beginIndexOn(); point; ++point)
+        values.push_back(Out(handle.get(*point)));
+    }
+  };
+  if (valueType == openvdb::typeNameAsString<std::int32_t>()) {
+    readAs(std::int32_t{});
+  } else if (valueType == openvdb::typeNameAsString<float>()) {
+    readAs(float{});
+  } else if (valueType == openvdb::typeNameAsString<double>()) {
+    readAs(double{});
+  } else if (valueType == openvdb::typeNameAsString<std::int64_t>()) {
+    readAs(std::int64_t{});
+  } else if (valueType == openvdb::typeNameAsString<std::int16_t>()) {
+    readAs(std::int16_t{});
+  } else {
+    throw Error("attribute '" + name + "' has unsupported type " + valueType);
+  }
+  return true;
+}
+
+bool readVector(const PointDataGrid& grid, const std::string& name, std::vector<glm::vec3>& values) {
+  const auto leaf0 = grid.tree().cbeginLeaf();
+  if (!leaf0) return false;
+  const std::size_t index = leaf0->attributeSet().find(name);
+  if (index == openvdb::points::AttributeSet::INVALID_POS) return false;
+  const std::string valueType = leaf0->constAttributeArray(index).valueType();
+  if (valueType != openvdb::typeNameAsString<openvdb::Vec3f>()) {
+    throw Error("attribute '" + name + "' has type " + valueType + ", expected vec3s");
+  }
+  for (auto leaf = grid.tree().cbeginLeaf(); leaf; ++leaf) {
+    const AttributeHandle<openvdb::Vec3f> handle(leaf->constAttributeArray(index));
+    for (auto point = leaf->beginIndexOn(); point; ++point) {
+      const openvdb::Vec3f v = handle.get(*point);
+      values.emplace_back(v.x(), v.y(), v.z());
+    }
+  }
+  return true;
+}
+
+PointDataGrid::Ptr readPointGrid(openvdb::io::File& file, const std::string& gridName) {
+  std::vector<std::string> names;
+  std::vector<std::string> pointNames;
+  for (auto name = file.beginName(); name != file.endName(); ++name) {
+    names.push_back(*name);
+    if (file.readGridMetadata(*name)->isType<PointDataGrid>()) pointNames.push_back(*name);
+  }
+  std::string chosen = gridName;
+  if (chosen.empty()) {
+    if (pointNames.empty()) throw Error("no point grid among its grids (" + joinNames(names) + ")");
+    chosen = pointNames.front();
+  } else if (std::find(names.begin(), names.end(), chosen) == names.end()) {
+    throw Error("no grid '" + chosen + "'; its grids are " + joinNames(names));
+  } else if (std::find(pointNames.begin(), pointNames.end(), chosen) == pointNames.end()) {
+    throw Error("grid '" + chosen + "' is not a point grid; its point grids are " + joinNames(pointNames));
+  }
+  return openvdb::gridPtrCast<PointDataGrid>(file.readGrid(chosen));
+}
+
+ParticleFileData readGridPoints(const PointDataGrid& grid) {
+  ParticleFileData data;
+  const auto leaf0 = grid.tree().cbeginLeaf();
+  if (!leaf0) return data;
+  if (leaf0->attributeSet().find("P") == openvdb::points::AttributeSet::INVALID_POS) {
+    throw Error("point grid '" + grid.getName() + "' has no P attribute");
+  }
+  const openvdb::math::Transform& transform = grid.transform();
+  for (auto leaf = grid.tree().cbeginLeaf(); leaf; ++leaf) {
+    const AttributeHandle<openvdb::Vec3f> positions(leaf->constAttributeArray("P"));
+    for (auto point = leaf->beginIndexOn(); point; ++point) {
+      // P is stored relative to the voxel centre, in index units.
+      const openvdb::Vec3d world = transform.indexToWorld(point.getCoord().asVec3d() + positions.get(*point));
+      data.positions.emplace_back(float(world.x()), float(world.y()), float(world.z()));
+    }
+  }
+  readScalar(grid, "U", data.typeFlags);
+  readScalar(grid, "particles_life_secondary", data.life);
+  readScalar(grid, "pscale", data.radii);
+  for (const char* name : {"particles_velocity_secondary", "particles_velocity", "v"}) {
+    if (readVector(grid, name, data.velocities)) break;
+  }
+  return data;
+}
+
+}  // namespace
+
+ParticleFileData readVdbPoints(const std::filesystem::path& path, const std::string& gridName) {
+  initializeOpenVdb();
+  const std::string where = path.string() + ": ";
+  std::error_code ignored;
+  if (!std::filesystem::is_regular_file(path, ignored)) throw Error(where + "no such file");
+  try {
+    openvdb::io::File file(path.string());
+    file.open(/*delayLoad=*/false);
+    const PointDataGrid::Ptr grid = readPointGrid(file, gridName);
+    file.close();
+    return readGridPoints(*grid);
+  } catch (const Error& error) {
+    throw Error(where + error.what());
+  } catch (const std::exception& error) {
+    // OpenVDB reports a file that is not a VDB, a truncated file or an unregistered attribute type this way.
+    throw Error(where + "cannot read OpenVDB points: " + error.what());
+  }
+}
+
+}  // namespace spindrift
