@@ -45,10 +45,11 @@ void applyAssignments(Scene& scene, const std::vector<std::string>& assignments)
 bool hasFramePattern(const std::string& path) { return path.find('#') != std::string::npos; }
 
 int runRender(const RenderOptions& options) {
+  // Usage errors first: a bad frame list is reported as such even when the scene is also wrong.
+  const std::vector<int> requestedFrames = options.frames.empty() ? std::vector<int>{} : cli::parseFrameList(options.frames);
   Scene scene = loadScene(options.scenePath);
   applyAssignments(scene, options.assignments);
-  const std::vector<int> frames =
-      options.frames.empty() ? std::vector<int>{scene.frame} : cli::parseFrameList(options.frames);
+  const std::vector<int> frames = requestedFrames.empty() ? std::vector<int>{scene.frame} : requestedFrames;
   if (frames.size() > 1)
     for (const std::string* path : {&options.exrPath, &options.pngPath})
       if (!path->empty() && !hasFramePattern(*path))

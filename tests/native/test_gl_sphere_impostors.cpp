@@ -77,7 +77,7 @@ TEST(GLSphereImpostors, DepthAndNormalMatchTheAnalyticSphere) {
                                 channel(normal, width, column, row, 2));
       worstNormalError = std::max(worstNormalError, glm::length(rendered - hit->worldNormal));
     }
-  EXPECT_GT(compared, 3000);
+  EXPECT_GT(compared, 2000) << "the sphere covers about pi * 26^2 pixels";
   EXPECT_EQ(coverageMismatches, 0);
   EXPECT_LT(worstDepthError, 1e-3 * radius);
   EXPECT_LT(worstNormalError, 2e-3) << "normals are stored at half precision";
