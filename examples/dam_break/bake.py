@@ -19,6 +19,7 @@ import os
 import re
 import shutil
 import sys
+import tempfile
 import time
 
 import bmesh
@@ -184,7 +185,6 @@ def configure_domain(domain, cache_directory):
     settings.resolution_max = RESOLUTION
     settings.use_adaptive_domain = False  # an adaptive domain would move the cache's origin every frame
 
-    settings.cache_directory = cache_directory
     settings.cache_type = 'ALL'
     settings.cache_frame_start = FRAME_START
     settings.cache_frame_end = FRAME_END
@@ -213,6 +213,10 @@ def configure_domain(domain, cache_directory):
     settings.sndparticle_sampling_trappedair = 6
     settings.sndparticle_life_min = 6.0
     settings.sndparticle_life_max = 16.0
+
+    # Last: changing almost any domain setting makes Blender free the cache in the domain's cache directory,
+    # files on disk included.
+    settings.cache_directory = cache_directory
     return settings
 
 
@@ -471,7 +475,10 @@ def main():
     os.makedirs(output, exist_ok=True)
 
     log("building the scene")
-    domain, _, camera = build_scene(cache_directory)
+    # Without a bake in this session Blender does not know the cache on disk is a finished bake, and may free
+    # it; the domain then gets a scratch directory, as nothing here needs to read the cache.
+    scratch = tempfile.TemporaryDirectory(prefix="dam_break_cache_") if arguments.skip_bake else None
+    domain, _, camera = build_scene(scratch.name if scratch else cache_directory)
     scene = bpy.context.scene
 
     if arguments.skip_bake:
@@ -487,6 +494,8 @@ def main():
         render_background(scene, render_directory)
 
     write_scene_file(os.path.join(output, "scene.json"), camera, domain)
+    if scratch:
+        scratch.cleanup()
     log("done")
 
 
