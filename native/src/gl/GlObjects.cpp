@@ -81,9 +81,9 @@ VertexArrayObject createVertexArray() {
   return VertexArrayObject(id);
 }
 
-QueryObject createTimeElapsedQuery() {
+QueryObject createTimestampQuery() {
   GLuint id = 0;
-  glCreateQueries(GL_TIME_ELAPSED, 1, &id);
+  glCreateQueries(GL_TIMESTAMP, 1, &id);
   return QueryObject(id);
 }
 

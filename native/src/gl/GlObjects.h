@@ -82,7 +82,7 @@ void uploadTexture(Texture2D& texture, GLenum internalFormat, int width, int hei
 BufferObject createBuffer();
 FramebufferObject createFramebuffer();
 VertexArrayObject createVertexArray();
-QueryObject createTimeElapsedQuery();
+QueryObject createTimestampQuery();
 
 /// Throws Error naming `what` when the GL error flag is set.
 void checkGlError(const char* what);

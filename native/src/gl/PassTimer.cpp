@@ -2,24 +2,27 @@
 
 namespace spindrift {
 
+// Each pass is bracketed by two GL_TIMESTAMP queries rather than one GL_TIME_ELAPSED query: Mesa's llvmpipe
+// reports a nonsensical elapsed time for the first query of a context, while its timestamps are sound.
 void PassTimer::begin(const std::string& passName) {
-  if (queries_.size() <= frame_.size()) queries_.push_back(createTimeElapsedQuery());
+  while (queries_.size() < 2 * (frame_.size() + 1)) queries_.push_back(createTimestampQuery());
   frame_.push_back({passName, 0.0, 0.0});
-  glBeginQuery(GL_TIME_ELAPSED, queries_[frame_.size() - 1].id());
+  glQueryCounter(queries_[2 * (frame_.size() - 1)].id(), GL_TIMESTAMP);
   started_ = std::chrono::steady_clock::now();
 }
 
 void PassTimer::end() {
-  glEndQuery(GL_TIME_ELAPSED);
+  glQueryCounter(queries_[2 * (frame_.size() - 1) + 1].id(), GL_TIMESTAMP);
   frame_.back().cpuMilliseconds =
       std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - started_).count();
 }
 
 std::vector<PassTiming> PassTimer::collect() {
   for (std::size_t i = 0; i < frame_.size(); ++i) {
-    GLuint64 nanoseconds = 0;
-    glGetQueryObjectui64v(queries_[i].id(), GL_QUERY_RESULT, &nanoseconds);
-    frame_[i].gpuMilliseconds = double(nanoseconds) * 1e-6;
+    GLuint64 startNanoseconds = 0, endNanoseconds = 0;
+    glGetQueryObjectui64v(queries_[2 * i].id(), GL_QUERY_RESULT, &startNanoseconds);
+    glGetQueryObjectui64v(queries_[2 * i + 1].id(), GL_QUERY_RESULT, &endNanoseconds);
+    frame_[i].gpuMilliseconds = endNanoseconds > startNanoseconds ? double(endNanoseconds - startNanoseconds) * 1e-6 : 0.0;
   }
   std::vector<PassTiming> timings;
   timings.swap(frame_);

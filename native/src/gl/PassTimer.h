@@ -9,7 +9,7 @@
 
 namespace spindrift {
 
-/// Times each pass of a frame with a GL_TIME_ELAPSED query (GPU time) and a steady clock (the CPU time spent
+/// Times each pass of a frame with GL timestamp queries (GPU time) and a steady clock (the CPU time spent
 /// issuing it). Queries are pooled and reused, so timing allocates no GL objects after the first frames.
 class PassTimer {
  public:
