@@ -1,0 +1,39 @@
+#pragma once
+
+#include <cstddef>
+#include <vector>
+
+#include <glm/vec4.hpp>
+
+#include "spindrift/Camera.h"
+#include "spindrift/Parameters.h"
+#include "spindrift/Particles.h"
+
+namespace spindrift {
+
+/// One liquid particle as the impostor passes draw it: the ellipsoid {x : |inverseAxes * (x - centre)| = 1}.
+/// A sphere of radius r has inverseAxes = I / r. Laid out for a std430 shader storage buffer (64 bytes).
+struct EllipsoidInstance {
+  glm::vec4 centreAndBoundingRadius;  ///< World centre; w: radius of a sphere that contains the ellipsoid.
+  glm::vec4 inverseAxesRows[3];       ///< Rows of the world-space inverse of the axes matrix; w unused (0).
+};
+static_assert(sizeof(EllipsoidInstance) == 64, "EllipsoidInstance must match the shaders' std430 layout");
+
+/// The liquid particles of one frame, ready to draw: splashes as spheres, the aggregated body as
+/// anisotropic ellipsoids (Yu and Turk 2013), as the liquid paper's section 4.1 and 4.2 describe.
+struct LiquidPreparation {
+  std::vector<EllipsoidInstance> splashes;    ///< Spheres of the particle's radius.
+  std::vector<EllipsoidInstance> aggregates;  ///< Ellipsoids whose longest axis is at most 1.2 r.
+  std::size_t culled = 0;                     ///< Outside the view frustum (they still count as neighbours).
+  std::size_t isotropicInterior = 0;  ///< Aggregates deep inside the body, drawn as spheres without PCA.
+  double neighbourMilliseconds = 0.0;
+  double anisotropyMilliseconds = 0.0;
+  double totalMilliseconds = 0.0;
+};
+
+/// Frustum-culls, finds neighbours, classifies each liquid particle as splash or aggregate by its anisotropic
+/// density, and builds the ellipsoids (TBB-parallel). Only particles of kind Liquid are considered.
+/// With liquid.layers = merged every visible particle is an aggregate (the earlier two-layer method).
+LiquidPreparation prepareLiquid(const Particles& particles, const Camera& camera, const LiquidParameters& parameters);
+
+}  // namespace spindrift
