@@ -16,7 +16,8 @@ struct DepthLayer {
 
 /// Smooths an aggregate depth layer with the method liquid.smoothing names (plane_fit, bilateral,
 /// curvature_flow, narrow_range or none) and recomputes its normals from the smoothed depth. Empty pixels stay
-/// empty: smoothing never creates a surface. The frame's uniform block (binding 0) must be current.
+/// empty: smoothing never creates a surface. The frame's uniform block (binding 0) must be current. The result
+/// lives in the pass's own textures until its next run, so a frame uses one instance per layer.
 class DepthSmoothingPass {
  public:
   explicit DepthSmoothingPass(const ShaderLibrary& shaders);
