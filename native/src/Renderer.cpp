@@ -1,17 +1,20 @@
 #include "spindrift/Renderer.h"
 
+#include <algorithm>
 #include <chrono>
+#include <optional>
 
 #include "gl/GlThread.h"
 #include "gl/PassTimer.h"
 #include "gl/ShaderLibrary.h"
 #include "passes/BackgroundPass.h"
 #include "passes/CompositePass.h"
+#include "passes/DepthSmoothingPass.h"
+#include "passes/EllipsoidImpostorPass.h"
 #include "passes/FrameUniforms.h"
-#include "passes/LiquidShadePass.h"
-#include "passes/SphereImpostorPass.h"
+#include "passes/RefractionPass.h"
 #include "prep/BackgroundCache.h"
-#include "prep/VisibleSpheres.h"
+#include "prep/LiquidPreparation.h"
 #include "Readback.h"
 
 namespace spindrift {
@@ -29,10 +32,23 @@ struct FramePipeline {
   FrameUniformBuffer frameUniforms;
   PassTimer timer;
   BackgroundPass background{shaders};
-  SphereImpostorPass sphereImpostors{shaders};
-  LiquidShadePass liquidShade{shaders};
+  EllipsoidImpostorPass splashImpostors{shaders};
+  EllipsoidImpostorPass aggregateImpostors{shaders};
+  DepthSmoothingPass frontSmoothing{shaders};
+  DepthSmoothingPass backSmoothing{shaders};
+  RefractionPass refraction{shaders};
   CompositePass composite{shaders};
 };
+
+// The radius r that the paper's parameters are scaled by: the median radius of the liquid particles.
+float typicalLiquidRadius(const Particles& particles) {
+  std::vector<float> radii;
+  for (std::size_t i = 0; i < particles.size(); ++i)
+    if (particles.kinds[i] == ParticleKind::Liquid) radii.push_back(particles.radii[i]);
+  if (radii.empty()) return 1.0f;
+  std::nth_element(radii.begin(), radii.begin() + radii.size() / 2, radii.end());
+  return radii[radii.size() / 2];
+}
 
 }  // namespace
 
@@ -67,12 +83,14 @@ RenderResult Renderer::renderFrame(const Scene& scene, int frame) {
   return result;
 }
 
-// The frame, top to bottom: prepare on the CPU, then background → sphere impostors → liquid shading →
-// composite on the GL thread, then read the layers back. A pass the frame does not need is not run, and the
-// stats say why.
+// The frame, top to bottom, as the liquid paper's figure 4 draws it: prepare the particles on the CPU (split
+// into splashes and aggregates, anisotropic ellipsoids), then on the GL thread the background, the front and
+// back depth layers of splashes and of aggregates, smoothing of the aggregate layers, refraction, and the
+// composite; then read the layers back. A pass the frame does not need is not run, and the stats say why.
 RenderResult Renderer::renderParticles(const Scene& scene, const Particles& particles, int frame) {
   const Clock::time_point start = Clock::now();
   const Camera& camera = scene.camera;
+  const LiquidParameters& liquidParameters = scene.parameters.liquid;
   const int width = camera.width, height = camera.height;
   RenderResult result;
   result.width = width;
@@ -86,14 +104,21 @@ RenderResult Renderer::renderParticles(const Scene& scene, const Particles& part
   stats.counts = countByKind(particles);
 
   const Clock::time_point prepareStart = Clock::now();
-  const VisibleSpheres liquid = visibleSpheres(particles, ParticleKind::Liquid, camera);
+  const LiquidPreparation liquid = prepareLiquid(particles, camera, liquidParameters);
+  const float radius = typicalLiquidRadius(particles);
   const BackgroundImages backgroundImages = impl_->backgroundCache.load(scene.background, frame, width, height);
-  stats.liquidParticlesDrawn = liquid.spheres.size();
   stats.prepareMilliseconds = millisecondsSince(prepareStart);
+  stats.liquid.splashParticles = liquid.splashes.size();
+  stats.liquid.aggregateParticles = liquid.aggregates.size();
+  stats.liquid.isotropicInterior = liquid.isotropicInterior;
+  stats.liquid.culled = liquid.culled;
+  stats.liquid.neighbourMilliseconds = liquid.neighbourMilliseconds;
+  stats.liquid.anisotropyMilliseconds = liquid.anisotropyMilliseconds;
 
   impl_->glThread.run([&] {
     FramePipeline& pipeline = *impl_->pipeline;
     PassTimer& timer = pipeline.timer;
+    auto skip = [&](const char* pass, const char* reason) { stats.skipped.push_back({pass, reason}); };
     pipeline.frameUniforms.update(camera);
 
     std::optional<BackgroundData> background;
@@ -101,19 +126,37 @@ RenderResult Renderer::renderParticles(const Scene& scene, const Particles& part
       ScopedPassTimer timed(timer, "background");
       background.emplace(pipeline.background.run(backgroundImages, width, height));
     }
-    std::optional<SurfaceData> surface;
-    std::optional<LiquidData> liquidLayer;
-    if (!liquid.spheres.empty()) {
-      {
-        ScopedPassTimer timed(timer, "sphere_impostors");
-        surface.emplace(pipeline.sphereImpostors.run(liquid.spheres, *background, width, height));
-      }
-      ScopedPassTimer timed(timer, "liquid_shade");
-      liquidLayer.emplace(pipeline.liquidShade.run(*surface, *background, scene.parameters.liquid, width, height));
+    std::optional<SurfaceLayers> splashes;
+    if (!liquid.splashes.empty()) {
+      ScopedPassTimer timed(timer, "splash_depth_layers");
+      splashes.emplace(pipeline.splashImpostors.run(liquid.splashes, *background, width, height));
     } else {
-      const std::string reason = "no liquid particles in view";
-      stats.skipped.push_back({"sphere_impostors", reason});
-      stats.skipped.push_back({"liquid_shade", reason});
+      skip("splash_depth_layers", "no splash particles in view");
+    }
+    std::optional<SurfaceLayers> aggregates;
+    if (!liquid.aggregates.empty()) {
+      {
+        ScopedPassTimer timed(timer, "aggregate_depth_layers");
+        aggregates.emplace(pipeline.aggregateImpostors.run(liquid.aggregates, *background, width, height));
+      }
+      if (liquidParameters.smoothing != "none") {
+        ScopedPassTimer timed(timer, "smoothing");
+        const DepthLayer front = pipeline.frontSmoothing.run(aggregates->front, radius, false, liquidParameters, width, height);
+        const DepthLayer back = pipeline.backSmoothing.run(aggregates->back, radius, true, liquidParameters, width, height);
+        aggregates.emplace(SurfaceLayers{front, back});
+      } else {
+        skip("smoothing", "liquid.smoothing is none");
+      }
+    } else {
+      skip("aggregate_depth_layers", "no aggregate particles in view");
+      skip("smoothing", "no aggregate particles in view");
+    }
+    std::optional<LiquidData> liquidLayer;
+    if (splashes || aggregates) {
+      ScopedPassTimer timed(timer, "refraction");
+      liquidLayer.emplace(pipeline.refraction.run(splashes, aggregates, *background, liquidParameters, radius, width, height));
+    } else {
+      skip("refraction", "no liquid particles in view");
     }
     std::optional<CompositeData> composite;
     {
@@ -125,14 +168,25 @@ RenderResult Renderer::renderParticles(const Scene& scene, const Particles& part
     const Clock::time_point readbackStart = Clock::now();
     result.layers.push_back(readLayer(composite->color, "composite", {"R", "G", "B", "A"}));
     if (liquidLayer) {
+      const RefractionStatistics rays = pipeline.refraction.statistics();
+      stats.liquid.liquidPixels = rays.liquidPixels;
+      stats.liquid.raysWithSecondBody = rays.raysWithSecondBody;
+      stats.liquid.totalInternalReflections = rays.totalInternalReflections;
+      for (int i = 0; i < 4; ++i) stats.liquid.orders[i] = rays.orders[i];
       result.layers.push_back(readLayer(liquidLayer->color, "liquid", {"R", "G", "B", "A"}));
-      result.layers.push_back(readLayer(surface->eyeDepth, "depth", {"Z"}));
-      result.layers.push_back(readLayer(surface->normal, "normal", {"X", "Y", "Z"}));
+      result.layers.push_back(readLayer(liquidLayer->splashColor, "liquid_splash", {"R", "G", "B", "A"}));
+      result.layers.push_back(readLayer(liquidLayer->surfaceClass, "liquid_class", {"Y"}));
+      result.layers.push_back(readLayer(liquidLayer->frontDepth, "depth", {"Z"}));
+      result.layers.push_back(readLayer(liquidLayer->frontNormal, "normal", {"X", "Y", "Z"}));
+      result.layers.push_back(readLayer(liquidLayer->thickness, "thickness", {"Y"}));
     } else {
       // The layers stay in the file so every frame of a sequence has the same channels.
       result.layers.push_back(filledLayer(width, height, "liquid", {"R", "G", "B", "A"}, 0.0f));
+      result.layers.push_back(filledLayer(width, height, "liquid_splash", {"R", "G", "B", "A"}, 0.0f));
+      result.layers.push_back(filledLayer(width, height, "liquid_class", {"Y"}, 0.0f));
       result.layers.push_back(filledLayer(width, height, "depth", {"Z"}, 1e10f));
       result.layers.push_back(filledLayer(width, height, "normal", {"X", "Y", "Z"}, 0.0f));
+      result.layers.push_back(filledLayer(width, height, "thickness", {"Y"}, 0.0f));
     }
     stats.readbackMilliseconds = millisecondsSince(readbackStart);
   });

@@ -49,7 +49,7 @@ TEST(GLResources, TwoHundredFramesKeepObjectsAndMemoryFlat) {
     // Particle counts vary from frame to frame, and every tenth frame is empty, as in a real sequence.
     const int count = frame % 10 == 0 ? 0 : 200 + int(random() % 800);
     const RenderResult result = renderer.renderParticles(scene, randomParticles(random, count), frame);
-    ASSERT_EQ(result.layers.size(), 4u);
+    ASSERT_EQ(result.layers.size(), 7u);
     if (frame == 20) {
       afterWarmUp = liveObjects();
       residentAfterWarmUp = residentKilobytes();

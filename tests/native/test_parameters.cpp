@@ -19,26 +19,26 @@ TEST(Parameters, TableListsEveryParameterWithItsDefault) {
 
 TEST(Parameters, SetValidatesTypeAndRange) {
   Parameters parameters;
-  setParameter(parameters, "liquid.ambient", 0.5);
-  EXPECT_FLOAT_EQ(parameters.liquid.ambient, 0.5f);
-  setParameter(parameters, "liquid.base_color", nlohmann::json::array({0.1, 0.2, 0.3}));
-  EXPECT_FLOAT_EQ(parameters.liquid.base_color.y, 0.2f);
-  EXPECT_THROW(setParameter(parameters, "liquid.ambient", 2.0), Error);
-  EXPECT_THROW(setParameter(parameters, "liquid.ambient", "high"), Error);
-  EXPECT_THROW(setParameter(parameters, "liquid.base_color", nlohmann::json::array({0.1, 0.2})), Error);
-  EXPECT_THROW(setParameter(parameters, "liquid.base_color", nlohmann::json::array({0.1, 0.2, 1.5})), Error);
+  setParameter(parameters, "liquid.ior", 1.5);
+  EXPECT_FLOAT_EQ(parameters.liquid.ior, 1.5f);
+  setParameter(parameters, "liquid.absorption_rgb", nlohmann::json::array({0.1, 0.2, 0.3}));
+  EXPECT_FLOAT_EQ(parameters.liquid.absorption_rgb.y, 0.2f);
+  EXPECT_THROW(setParameter(parameters, "liquid.ior", 5.0), Error);
+  EXPECT_THROW(setParameter(parameters, "liquid.ior", "high"), Error);
+  EXPECT_THROW(setParameter(parameters, "liquid.absorption_rgb", nlohmann::json::array({0.1, 0.2})), Error);
+  EXPECT_THROW(setParameter(parameters, "liquid.absorption_rgb", nlohmann::json::array({0.1, 0.2, -1.5})), Error);
   EXPECT_THROW(setParameter(parameters, "liquid.no_such_thing", 1), Error);
-  EXPECT_FLOAT_EQ(parameters.liquid.ambient, 0.5f) << "a rejected value must leave the old one";
+  EXPECT_FLOAT_EQ(parameters.liquid.ior, 1.5f) << "a rejected value must leave the old one";
 }
 
 TEST(Parameters, GroupErrorsNameFileAndKey) {
   Parameters parameters;
   try {
-    setParameterGroup(parameters, "liquid", {{"ambeint", 0.2}}, "scene.json");
+    setParameterGroup(parameters, "liquid", {{"absorbtion", 0.2}}, "scene.json");
     FAIL() << "a misspelt key must be an error";
   } catch (const Error& error) {
     EXPECT_NE(std::string(error.what()).find("scene.json"), std::string::npos) << error.what();
-    EXPECT_NE(std::string(error.what()).find("liquid.ambeint"), std::string::npos) << error.what();
+    EXPECT_NE(std::string(error.what()).find("liquid.absorbtion"), std::string::npos) << error.what();
   }
 }
 

@@ -148,7 +148,7 @@ INSTANTIATE_TEST_SUITE_P(
         BadScene{"TypoInSource", R"({"version": 1, "camera": {"width": 8, "height": 8, "fov_y_deg": 40)" + kLookAt + R"(}, "particles": [{"path": "p.ply", "raduis": 1}]})", "particles[0].raduis"},
         BadScene{"MissingBackgroundImage", sceneWith(kLookAt, R"(, "background": {"image": "bg.exr"})"), "background.image"},
         BadScene{"NegativeBackgroundColor", sceneWith(kLookAt, R"(, "background": {"color": [0, -1, 0]})"), "background.color"},
-        BadScene{"UnknownParameter", sceneWith(kLookAt, R"(, "liquid": {"base_colour": [1, 1, 1]})"), "liquid.base_colour"},
-        BadScene{"ParameterOutOfRange", sceneWith(kLookAt, R"(, "liquid": {"ambient": 7})"), "liquid.ambient"},
+        BadScene{"UnknownParameter", sceneWith(kLookAt, R"(, "liquid": {"absorption_colour": [1, 1, 1]})"), "liquid.absorption_colour"},
+        BadScene{"ParameterOutOfRange", sceneWith(kLookAt, R"(, "liquid": {"ior": 7})"), "liquid.ior"},
         BadScene{"NaNInMatrix", sceneWith(R"(, "world_from_camera": [1,0,0,0,0,1,0,0,0,0,1,0,0,0,0,"x"])"), "camera.world_from_camera"}),
     [](const testing::TestParamInfo<BadScene>& info) { return info.param.name; });

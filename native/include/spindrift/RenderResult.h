@@ -31,6 +31,21 @@ struct SkippedPass {
   std::string reason;
 };
 
+/// What the liquid pipeline found in a frame.
+struct LiquidFrameStats {
+  std::size_t splashParticles = 0;     ///< Drawn as spheres.
+  std::size_t aggregateParticles = 0;  ///< Drawn as ellipsoids.
+  std::size_t isotropicInterior = 0;   ///< Aggregates deep inside the body, drawn without anisotropy.
+  std::size_t culled = 0;              ///< Outside the view frustum.
+  std::size_t liquidPixels = 0;
+  std::size_t raysWithSecondBody = 0;  ///< Rays that went on into a second body (third and fourth refraction).
+  std::size_t totalInternalReflections = 0;
+  /// Rays with a second body, by order: splash>splash, splash>aggregate, aggregate>splash, aggregate>aggregate.
+  std::size_t orders[4] = {0, 0, 0, 0};
+  double neighbourMilliseconds = 0.0;
+  double anisotropyMilliseconds = 0.0;
+};
+
 /// What a frame cost and contained; `--stats` writes it as JSON.
 struct FrameStats {
   int frame = 0;
@@ -39,7 +54,7 @@ struct FrameStats {
   std::string glRenderer;
   std::string glVersion;
   ParticleCounts counts;                 ///< Everything the sources held, by kind.
-  std::size_t liquidParticlesDrawn = 0;  ///< Liquid particles left after frustum culling.
+  LiquidFrameStats liquid;
   double loadMilliseconds = 0.0;         ///< Reading particle files.
   double prepareMilliseconds = 0.0;      ///< CPU preparation: culling and packing.
   double readbackMilliseconds = 0.0;

@@ -3,7 +3,7 @@
 #include "gl/GlObjects.h"
 #include "gl/ShaderLibrary.h"
 #include "passes/BackgroundPass.h"
-#include "passes/LiquidShadePass.h"
+#include "passes/RefractionPass.h"
 
 namespace spindrift {
 

@@ -1,4 +1,5 @@
-// GL tests: they run on whatever EGL gives (Mesa's llvmpipe in CI) and fail, not skip, without OpenGL.
+// GL tests: they run on whatever EGL gives (Mesa's llvmpipe in CI) and fail, not skip, without OpenGL. A lone
+// particle is a splash, drawn as an exact sphere: its depth and normal layers must match the analytic sphere.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -46,7 +47,7 @@ Renderer& sharedRenderer() {
 
 }  // namespace
 
-TEST(GLSphereImpostors, DepthAndNormalMatchTheAnalyticSphere) {
+TEST(GLSplashSpheres, DepthAndNormalMatchTheAnalyticSphere) {
   const Scene scene = sphereScene();
   const glm::dvec3 centre(0.2, 0.0, 0.1);
   const double radius = 0.8;
@@ -84,7 +85,7 @@ TEST(GLSphereImpostors, DepthAndNormalMatchTheAnalyticSphere) {
   expectAllFinite(result);
 }
 
-TEST(GLSphereImpostors, NearestSphereWins) {
+TEST(GLSplashSpheres, NearestSphereWins) {
   const Scene scene = sphereScene();
   // A small sphere in front of a big one, and the same pair listed the other way round.
   for (bool smallFirst : {true, false}) {
@@ -99,7 +100,7 @@ TEST(GLSphereImpostors, NearestSphereWins) {
   }
 }
 
-TEST(GLSphereImpostors, BackgroundDepthHidesSpheresBehindSolids) {
+TEST(GLSplashSpheres, BackgroundDepthHidesSpheresBehindSolids) {
   TempDirectory directory;
   Scene scene = sphereScene();
   const int width = scene.camera.width, height = scene.camera.height;
@@ -139,7 +140,7 @@ TEST(GLSphereImpostors, BackgroundDepthHidesSpheresBehindSolids) {
   EXPECT_GT(visibleOnLeft, 50) << "the cap in front of the wall must show";
 }
 
-TEST(GLSphereImpostors, CompositeIsLiquidOverBackground) {
+TEST(GLSplashSpheres, CompositeIsLiquidOverBackground) {
   const Scene scene = sphereScene();
   const RenderResult result = sharedRenderer().renderParticles(scene, particlesAt({{{0, 0, 0}, 0.5f}}), 1);
   const ImageLayer& composite = *result.layer("composite");
@@ -155,20 +156,21 @@ TEST(GLSphereImpostors, CompositeIsLiquidOverBackground) {
   expectAllFinite(result);
 }
 
-TEST(GLSphereImpostors, EmptyFrameSkipsLiquidPassesAndKeepsLayers) {
+TEST(GLSplashSpheres, EmptyFrameSkipsLiquidPassesAndKeepsLayers) {
   const Scene scene = sphereScene();
   // One sphere behind the camera: loaded, culled, nothing drawn.
   const RenderResult result = sharedRenderer().renderParticles(scene, particlesAt({{{0, -10, 0}, 0.5f}}), 1);
-  EXPECT_EQ(result.stats.liquidParticlesDrawn, 0u);
-  ASSERT_EQ(result.stats.skipped.size(), 2u);
-  EXPECT_EQ(result.stats.skipped[0].name, "sphere_impostors");
+  EXPECT_EQ(result.stats.liquid.splashParticles + result.stats.liquid.aggregateParticles, 0u);
+  EXPECT_EQ(result.stats.liquid.culled, 1u);
+  ASSERT_FALSE(result.stats.skipped.empty());
+  EXPECT_EQ(result.stats.skipped[0].name, "splash_depth_layers");
   for (const char* name : {"composite", "liquid", "depth", "normal"}) EXPECT_NE(result.layer(name), nullptr) << name;
   for (float value : result.layer("depth")->pixels) ASSERT_EQ(value, 1e10f);
   for (const PassTiming& pass : result.stats.passes) EXPECT_GE(pass.gpuMilliseconds, 0.0) << pass.name;
   expectAllFinite(result);
 }
 
-TEST(GLSphereImpostors, ReportsTheGlRenderer) {
+TEST(GLSplashSpheres, ReportsTheGlRenderer) {
   EXPECT_FALSE(sharedRenderer().glRenderer().empty());
   EXPECT_NE(sharedRenderer().glVersion().find("4."), std::string::npos) << sharedRenderer().glVersion();
 }

@@ -1,0 +1,67 @@
+#include "passes/EllipsoidImpostorPass.h"
+
+namespace spindrift {
+
+EllipsoidImpostorPass::EllipsoidImpostorPass(const ShaderLibrary& shaders)
+    : program_(shaders.program({"ellipsoid_impostor.vert", "ellipsoid_impostor.frag"})),
+      emptyVertexArray_(createVertexArray()),
+      ellipsoidBuffer_(createBuffer()) {
+  front_.framebuffer = createFramebuffer();
+  back_.framebuffer = createFramebuffer();
+}
+
+SurfaceLayers EllipsoidImpostorPass::run(const std::vector<EllipsoidInstance>& ellipsoids,
+                                         const BackgroundData& background, int width, int height) {
+  // Grow-only storage: a sequence reallocates only when a frame has more particles than any before it.
+  const std::size_t bytes = ellipsoids.size() * sizeof(EllipsoidInstance);
+  if (bytes > ellipsoidBufferBytes_) {
+    ellipsoidBuffer_ = createBuffer();
+    glNamedBufferStorage(ellipsoidBuffer_.id(), GLsizeiptr(bytes), nullptr, GL_DYNAMIC_STORAGE_BIT);
+    ellipsoidBufferBytes_ = bytes;
+  }
+  if (bytes > 0) glNamedBufferSubData(ellipsoidBuffer_.id(), 0, GLsizeiptr(bytes), ellipsoids.data());
+  checkGlError("uploading liquid particles");
+  drawLayer(front_, false, GLsizei(ellipsoids.size()), background, width, height);
+  drawLayer(back_, true, GLsizei(ellipsoids.size()), background, width, height);
+  return {{front_.eyeDepth, front_.normal}, {back_.eyeDepth, back_.normal}};
+}
+
+void EllipsoidImpostorPass::drawLayer(Target& target, bool backFaces, GLsizei count,
+                                      const BackgroundData& background, int width, int height) {
+  ensureTexture(target.eyeDepth, GL_R32F, width, height);
+  ensureTexture(target.normal, GL_RGBA16F, width, height);
+  ensureTexture(target.depthBuffer, GL_DEPTH_COMPONENT32F, width, height);
+  const GLuint framebuffer = target.framebuffer.id();
+  glNamedFramebufferTexture(framebuffer, GL_COLOR_ATTACHMENT0, target.eyeDepth.id(), 0);
+  glNamedFramebufferTexture(framebuffer, GL_COLOR_ATTACHMENT1, target.normal.id(), 0);
+  glNamedFramebufferTexture(framebuffer, GL_DEPTH_ATTACHMENT, target.depthBuffer.id(), 0);
+  const GLenum attachments[] = {GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1};
+  glNamedFramebufferDrawBuffers(framebuffer, 2, attachments);
+
+  const float noSurface[4] = {1e10f, 0.0f, 0.0f, 0.0f};
+  const float noNormal[4] = {0.0f, 0.0f, 0.0f, 0.0f};
+  // The front layer keeps the nearest surface, the back layer the farthest: opposite tests, opposite clears.
+  const float clearDepth = backFaces ? 0.0f : 1.0f;
+  glClearNamedFramebufferfv(framebuffer, GL_COLOR, 0, noSurface);
+  glClearNamedFramebufferfv(framebuffer, GL_COLOR, 1, noNormal);
+  glClearNamedFramebufferfv(framebuffer, GL_DEPTH, 0, &clearDepth);
+  if (count == 0) return;
+
+  glBindFramebuffer(GL_FRAMEBUFFER, framebuffer);
+  glViewport(0, 0, width, height);
+  glEnable(GL_DEPTH_TEST);
+  glDepthFunc(backFaces ? GL_GREATER : GL_LESS);
+  glDepthMask(GL_TRUE);
+  glDisable(GL_BLEND);
+  glUseProgram(program_.id());
+  glUniform1i(uniformLocation(program_.id(), "backFaces"), backFaces ? 1 : 0);
+  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, ellipsoidBuffer_.id());
+  glBindTextureUnit(0, background.eyeDepth.id());
+  glBindVertexArray(emptyVertexArray_.id());
+  glDrawArraysInstanced(GL_TRIANGLE_STRIP, 0, 4, count);
+  glDisable(GL_DEPTH_TEST);
+  glDepthFunc(GL_LESS);
+  checkGlError(backFaces ? "drawing back faces of liquid particles" : "drawing front faces of liquid particles");
+}
+
+}  // namespace spindrift

@@ -1,0 +1,45 @@
+#pragma once
+
+#include <vector>
+
+#include "gl/GlObjects.h"
+#include "gl/ShaderLibrary.h"
+#include "passes/BackgroundPass.h"
+#include "passes/DepthSmoothingPass.h"
+#include "prep/LiquidPreparation.h"
+
+namespace spindrift {
+
+/// The front and back surfaces of one group of liquid particles (the splashes, or the aggregated body).
+struct SurfaceLayers {
+  DepthLayer front;  ///< Nearest front-facing surface.
+  DepthLayer back;   ///< Farthest back-facing surface.
+};
+
+/// Ray-casts ellipsoid impostors (Sigg et al. 2006) into a front and a back depth layer with exact per-pixel
+/// depth and analytic normals: the liquid paper's section 4.2. Spheres are ellipsoids with equal axes.
+class EllipsoidImpostorPass {
+ public:
+  explicit EllipsoidImpostorPass(const ShaderLibrary& shaders);
+  SurfaceLayers run(const std::vector<EllipsoidInstance>& ellipsoids, const BackgroundData& background, int width,
+                    int height);
+
+ private:
+  struct Target {
+    FramebufferObject framebuffer;
+    Texture2D eyeDepth;
+    Texture2D normal;
+    Texture2D depthBuffer;
+  };
+  void drawLayer(Target& target, bool backFaces, GLsizei count, const BackgroundData& background, int width,
+                 int height);
+
+  ProgramObject program_;
+  VertexArrayObject emptyVertexArray_;
+  BufferObject ellipsoidBuffer_;
+  std::size_t ellipsoidBufferBytes_ = 0;
+  Target front_;
+  Target back_;
+};
+
+}  // namespace spindrift

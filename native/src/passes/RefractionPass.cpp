@@ -1,0 +1,92 @@
+#include "passes/RefractionPass.h"
+
+#include "passes/FrameUniforms.h"
+
+namespace spindrift {
+
+RefractionPass::RefractionPass(const ShaderLibrary& shaders)
+    : program_(shaders.program({"fullscreen.vert", "refraction.frag"})),
+      emptyVertexArray_(createVertexArray()),
+      framebuffer_(createFramebuffer()),
+      counters_(createBuffer()) {
+  glNamedBufferStorage(counters_.id(), 8 * sizeof(std::uint32_t), nullptr,
+                       GL_DYNAMIC_STORAGE_BIT | GL_MAP_READ_BIT);
+  const float noSurface[4] = {1e10f, 0.0f, 0.0f, 0.0f};
+  uploadTexture(emptyLayer_, GL_RGBA32F, 1, 1, 4, noSurface, false);
+}
+
+LiquidData RefractionPass::run(const std::optional<SurfaceLayers>& splashes,
+                               const std::optional<SurfaceLayers>& aggregates, const BackgroundData& background,
+                               const LiquidParameters& parameters, float particleRadius, int width, int height) {
+  ensureTexture(color_, GL_RGBA32F, width, height);
+  ensureTexture(splashColor_, GL_RGBA32F, width, height);
+  ensureTexture(surfaceClass_, GL_R32F, width, height);
+  ensureTexture(thickness_, GL_R32F, width, height);
+  ensureTexture(frontDepth_, GL_R32F, width, height);
+  ensureTexture(frontNormal_, GL_RGBA16F, width, height);
+  const GLuint framebuffer = framebuffer_.id();
+  const Texture2D* outputs[] = {&color_, &splashColor_, &surfaceClass_, &thickness_, &frontDepth_, &frontNormal_};
+  GLenum attachments[6];
+  for (int i = 0; i < 6; ++i) {
+    attachments[i] = GL_COLOR_ATTACHMENT0 + i;
+    glNamedFramebufferTexture(framebuffer, attachments[i], outputs[i]->id(), 0);
+  }
+  glNamedFramebufferDrawBuffers(framebuffer, 6, attachments);
+
+  const std::uint32_t zeros[8] = {};
+  glNamedBufferSubData(counters_.id(), 0, sizeof zeros, zeros);
+  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, counters_.id());
+
+  glBindFramebuffer(GL_FRAMEBUFFER, framebuffer);
+  glViewport(0, 0, width, height);
+  glDisable(GL_DEPTH_TEST);
+  glDisable(GL_BLEND);
+  const GLuint program = program_.id();
+  glUseProgram(program);
+  auto layerTexture = [&](const std::optional<SurfaceLayers>& layers, bool back, bool normal) {
+    if (!layers) return emptyLayer_.id();
+    const DepthLayer& layer = back ? layers->back : layers->front;
+    return normal ? layer.normal.id() : layer.eyeDepth.id();
+  };
+  glBindTextureUnit(0, layerTexture(splashes, false, false));
+  glBindTextureUnit(1, layerTexture(splashes, true, false));
+  glBindTextureUnit(2, layerTexture(aggregates, false, false));
+  glBindTextureUnit(3, layerTexture(aggregates, true, false));
+  glBindTextureUnit(4, layerTexture(splashes, false, true));
+  glBindTextureUnit(5, layerTexture(splashes, true, true));
+  glBindTextureUnit(6, layerTexture(aggregates, false, true));
+  glBindTextureUnit(7, layerTexture(aggregates, true, true));
+  glBindTextureUnit(8, background.color.id());
+  glBindTextureUnit(9, background.eyeDepth.id());
+  glBindTextureUnit(10, background.environment ? background.environment->id() : 0);
+
+  const glm::vec3 absorption = parameters.absorption * parameters.absorption_rgb;
+  glUniform1i(uniformLocation(program, "hasSplash"), splashes ? 1 : 0);
+  glUniform1i(uniformLocation(program, "hasAggregate"), aggregates ? 1 : 0);
+  glUniform1i(uniformLocation(program, "hasEnvironment"), background.environment ? 1 : 0);
+  glUniform3fv(uniformLocation(program, "fallbackColor"), 1, &background.fallbackColor.x);
+  glUniform1f(uniformLocation(program, "indexOfRefraction"), parameters.ior);
+  glUniform3fv(uniformLocation(program, "absorptionPerUnitLength"), 1, &absorption.x);
+  glUniform1i(uniformLocation(program, "maxRefractions"), parameters.max_refractions);
+  glUniform1f(uniformLocation(program, "stepPixels"), parameters.trace_step_pixels);
+  glUniform1i(uniformLocation(program, "maxSteps"), parameters.trace_max_steps);
+  // A step never shorter than a tenth of a particle radius, so rays along the view axis still advance.
+  glUniform1f(uniformLocation(program, "minimumStep"), 0.1f * particleRadius);
+  drawFullscreenTriangle(emptyVertexArray_.id());
+  checkGlError("refracting through the liquid");
+  return {color_, splashColor_, surfaceClass_, thickness_, frontDepth_, frontNormal_};
+}
+
+RefractionStatistics RefractionPass::statistics() const {
+  std::uint32_t counters[8] = {};
+  glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);  // The shader's atomic writes must land before the read.
+  glGetNamedBufferSubData(counters_.id(), 0, sizeof counters, counters);
+  RefractionStatistics statistics;
+  for (int i = 0; i < 4; ++i) statistics.orders[i] = counters[i];
+  statistics.raysWithSecondBody = counters[4];
+  statistics.totalInternalReflections = counters[5];
+  statistics.liquidPixels = counters[6];
+  return statistics;
+}
+
+}  // namespace spindrift

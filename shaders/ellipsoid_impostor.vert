@@ -1,0 +1,47 @@
+#version 450 core
+// Draws each liquid particle's ellipsoid as a camera-facing quad that covers its bounding sphere's
+// silhouette; the fragment shader ray-casts the exact ellipsoid (Sigg et al. 2006). One instance per
+// particle, four vertices as a triangle strip.
+#include "lib/frame.glsl"
+
+struct Ellipsoid {
+  vec4 centreAndBoundingRadius;  // world centre, radius of a containing sphere
+  vec4 inverseAxesRows[3];       // rows of the world-space inverse axes matrix
+};
+
+layout(std430, binding = 0) readonly buffer Ellipsoids {
+  Ellipsoid ellipsoids[];
+};
+
+flat out vec3 vCameraCentre;
+flat out mat3 vInverseAxesCamera;  // maps camera-space offsets from the centre to the unit sphere
+
+void main() {
+  Ellipsoid ellipsoid = ellipsoids[gl_InstanceID];
+  vec3 centre = (frame.cameraFromWorld * vec4(ellipsoid.centreAndBoundingRadius.xyz, 1.0)).xyz;
+  float radius = ellipsoid.centreAndBoundingRadius.w;
+  mat3 inverseAxesWorld = transpose(mat3(ellipsoid.inverseAxesRows[0].xyz, ellipsoid.inverseAxesRows[1].xyz,
+                                         ellipsoid.inverseAxesRows[2].xyz));
+  // x_camera = R x_world + t, so the camera-space inverse is the world inverse followed by R^T.
+  vInverseAxesCamera = inverseAxesWorld * transpose(mat3(frame.cameraFromWorld));
+  vCameraCentre = centre;
+
+  float distanceToCentre = length(centre);
+  // The CPU culls spheres that contain the camera or lie behind it; this guards the square root anyway.
+  if (distanceToCentre <= radius * 1.0001 || centre.z >= 0.0) {
+    gl_Position = vec4(2.0, 2.0, 2.0, 1.0);
+    return;
+  }
+  vec3 direction = centre / distanceToCentre;
+  vec3 helper = abs(direction.y) < 0.99 ? vec3(0.0, 1.0, 0.0) : vec3(1.0, 0.0, 0.0);
+  vec3 right = normalize(cross(helper, direction));
+  vec3 up = cross(direction, right);
+  // The quad lies in the plane perpendicular to the view direction through the bounding sphere's nearest
+  // point, kept in front of the near plane. The silhouette cone has half-angle asin(r / d), so at distance D
+  // its circle has radius D r / sqrt(d^2 - r^2); the square around it gets a 1% margin.
+  float planeDistance = max(distanceToCentre - radius, 1.01 * getNearClip() / max(-direction.z, 1e-3));
+  float halfSize = planeDistance * radius / sqrt((distanceToCentre - radius) * (distanceToCentre + radius));
+  vec2 corner = vec2(gl_VertexID & 1, gl_VertexID >> 1) * 2.0 - 1.0;
+  vec3 position = direction * planeDistance + (right * corner.x + up * corner.y) * halfSize * 1.01;
+  gl_Position = frame.clipFromCamera * vec4(position, 1.0);
+}

@@ -1,0 +1,285 @@
+#version 450 core
+// The liquid's colour: up to four refractions through the splash and aggregate depth layers, found by
+// screen-space marching with secant refinement, Schlick Fresnel reflections, total internal reflection and
+// Beer-Lambert absorption along the path in liquid (liquid paper, sections 4.4 and 4.5, equations 6-9).
+#include "lib/frame.glsl"
+#include "lib/environment.glsl"
+#include "lib/optics.glsl"
+#include "lib/screen_trace.glsl"
+
+layout(binding = 0) uniform sampler2D splashFrontDepth;
+layout(binding = 1) uniform sampler2D splashBackDepth;
+layout(binding = 2) uniform sampler2D aggregateFrontDepth;
+layout(binding = 3) uniform sampler2D aggregateBackDepth;
+layout(binding = 4) uniform sampler2D splashFrontNormal;
+layout(binding = 5) uniform sampler2D splashBackNormal;
+layout(binding = 6) uniform sampler2D aggregateFrontNormal;
+layout(binding = 7) uniform sampler2D aggregateBackNormal;
+layout(binding = 8) uniform sampler2D backgroundColor;
+layout(binding = 9) uniform sampler2D backgroundEyeDepth;
+layout(binding = 10) uniform sampler2D environmentMap;
+
+// Counts of rays by what they met, for the frame's stats (see RefractionPass::Statistics).
+layout(std430, binding = 1) buffer RayCounters {
+  uint rayCounters[8];  // 0-3: paths splash>splash, splash>aggregate, aggregate>splash, aggregate>aggregate;
+                        // 4: rays with a second body; 5: total internal reflections; 6: liquid pixels; 7: unused
+};
+
+uniform bool hasSplash;
+uniform bool hasAggregate;
+uniform bool hasEnvironment;
+uniform vec3 fallbackColor;
+uniform float indexOfRefraction;
+uniform vec3 absorptionPerUnitLength;  // a * c_a of equation 9, per RGB channel
+uniform int maxRefractions;            // 1, 2 or 4
+
+layout(location = 0) out vec4 outLiquid;       // premultiplied RGBA over transparent
+layout(location = 1) out vec4 outSplash;       // the same, where the first surface is a splash
+layout(location = 2) out float outClass;       // 0 background, 1 splash, 2 aggregate
+layout(location = 3) out float outThickness;   // path length in liquid
+layout(location = 4) out float outFrontDepth;  // eye depth of the first surface; 1e10 where none
+layout(location = 5) out vec4 outFrontNormal;  // world normal of the first surface, coverage
+
+const int kSplash = 0;
+const int kAggregate = 1;
+
+float frontDepth(int body, ivec2 pixel) {
+  return body == kSplash ? texelFetch(splashFrontDepth, pixel, 0).r : texelFetch(aggregateFrontDepth, pixel, 0).r;
+}
+float backDepth(int body, ivec2 pixel) {
+  return body == kSplash ? texelFetch(splashBackDepth, pixel, 0).r : texelFetch(aggregateBackDepth, pixel, 0).r;
+}
+// Outward camera-space normal of a body's front or back surface; zero where the layer has none.
+vec3 surfaceNormal(int body, bool back, ivec2 pixel) {
+  vec4 normal = body == kSplash ? (back ? texelFetch(splashBackNormal, pixel, 0) : texelFetch(splashFrontNormal, pixel, 0))
+                                : (back ? texelFetch(aggregateBackNormal, pixel, 0) : texelFetch(aggregateFrontNormal, pixel, 0));
+  return normal.w > 0.0 ? normalize(mat3(frame.cameraFromWorld) * normal.xyz) : vec3(0.0);
+}
+bool bodyPresent(int body) { return body == kSplash ? hasSplash : hasAggregate; }
+
+// How far inside a body the eye depth z is at a pixel: positive inside, negative outside; `back` says which
+// boundary is nearer. The background's solids cut the body: nothing lies inside past them.
+float insideDistance(int body, ivec2 pixel, float z, out bool back) {
+  float front = frontDepth(body, pixel);
+  float rear = min(backDepth(body, pixel), texelFetch(backgroundEyeDepth, pixel, 0).r);
+  if (front >= kNoSurfaceDepth * 0.5) return -1e30;
+  back = rear - z < z - front;
+  return min(z - front, rear - z);
+}
+
+struct Crossing {
+  bool found;
+  float t;
+  int body;
+  bool back;  // crossed the body's back boundary
+  ivec2 pixel;
+};
+
+// Regula falsi between an outside and an inside (or inside and outside) parameter of the same body.
+Crossing refineCrossing(vec3 origin, vec3 direction, int body, float tA, float fA, float tB, float fB) {
+  Crossing crossing;
+  crossing.found = true;
+  crossing.body = body;
+  for (int i = 0; i < 6; ++i) {
+    float t = (abs(fB - fA) > 1e-20) ? tB - fB * (tB - tA) / (fB - fA) : 0.5 * (tA + tB);
+    t = clamp(t, min(tA, tB), max(tA, tB));
+    vec2 fragCoord = fragCoordFromCamera(origin + t * direction);
+    if (!onScreen(fragCoord)) break;
+    bool back;
+    float f = insideDistance(body, ivec2(fragCoord), rayEyeDepth(origin, direction, t), back);
+    if (f < -1e29) f = -pixelSizeAt(rayEyeDepth(origin, direction, t));
+    if (sign(f) == sign(fA)) { tA = t; fA = f; } else { tB = t; fB = f; }
+  }
+  // Report the point on the boundary side just past the crossing and the boundary it is nearest.
+  crossing.t = 0.5 * (tA + tB);
+  vec2 fragCoord = clamp(fragCoordFromCamera(origin + crossing.t * direction), vec2(0.0), frame.viewportSize.xy - 1.0);
+  crossing.pixel = ivec2(fragCoord);
+  insideDistance(body, crossing.pixel, rayEyeDepth(origin, direction, crossing.t), crossing.back);
+  return crossing;
+}
+
+// Marches from inside `body` to where the ray leaves it.
+Crossing findExit(vec3 origin, vec3 direction, int body) {
+  Crossing none;
+  none.found = false;
+  float t = 0.0;
+  float previousT = 0.0, previousF = 1e-6;
+  for (int step = 0; step < maxSteps; ++step) {
+    t += marchStep(rayEyeDepth(origin, direction, t));
+    vec3 position = origin + t * direction;
+    vec2 fragCoord = fragCoordFromCamera(position);
+    float z = -position.z;
+    if (z < getNearClip() || !onScreen(fragCoord)) break;
+    bool back;
+    float f = insideDistance(body, ivec2(fragCoord), z, back);
+    if (f < 0.0) {
+      if (f < -1e29) f = -pixelSizeAt(z);
+      return refineCrossing(origin, direction, body, previousT, previousF, t, f);
+    }
+    previousT = t;
+    previousF = f;
+  }
+  // Left the screen or ran out of steps inside: the liquid ends where the march did.
+  none.t = t;
+  return none;
+}
+
+// Marches from outside every body to the first body the ray enters, or until a solid stops it.
+Crossing findEntry(vec3 origin, vec3 direction) {
+  Crossing none;
+  none.found = false;
+  float t = 0.0;
+  float previousT = 0.0;
+  vec2 previousF = vec2(-1e-6);
+  for (int step = 0; step < maxSteps; ++step) {
+    t += marchStep(rayEyeDepth(origin, direction, t));
+    vec3 position = origin + t * direction;
+    vec2 fragCoord = fragCoordFromCamera(position);
+    float z = -position.z;
+    if (z < getNearClip() || !onScreen(fragCoord)) break;
+    ivec2 pixel = ivec2(fragCoord);
+    if (z >= texelFetch(backgroundEyeDepth, pixel, 0).r) break;
+    vec2 f = vec2(-1e30);
+    bool back;
+    if (hasSplash) f.x = insideDistance(kSplash, pixel, z, back);
+    if (hasAggregate) f.y = insideDistance(kAggregate, pixel, z, back);
+    if (f.x >= 0.0 || f.y >= 0.0) {
+      int body = f.x >= f.y ? kSplash : kAggregate;
+      float fBody = body == kSplash ? f.x : f.y;
+      float fBefore = body == kSplash ? previousF.x : previousF.y;
+      if (fBefore < -1e29) fBefore = -pixelSizeAt(z);
+      return refineCrossing(origin, direction, body, previousT, fBefore, t, fBody);
+    }
+    previousT = t;
+    previousF = f;
+  }
+  return none;
+}
+
+// b(.) of equation 6: the colour seen from `origin` along `direction` outside the liquid. The ray is marched
+// against the background's depth; a ray that leaves the screen or meets nothing sees the environment (or the
+// background colour), and a ray towards the sky sees the background image where the direction's vanishing
+// point lies on the screen and the background there is infinitely far.
+vec3 colourAlong(vec3 origin, vec3 direction) {
+  float t = 0.0;
+  float previousT = 0.0, previousF = -1.0;
+  for (int step = 0; step < maxSteps; ++step) {
+    t += marchStep(rayEyeDepth(origin, direction, t));
+    vec3 position = origin + t * direction;
+    vec2 fragCoord = fragCoordFromCamera(position);
+    float z = -position.z;
+    if (z < getNearClip() || !onScreen(fragCoord)) break;
+    float f = z - texelFetch(backgroundEyeDepth, ivec2(fragCoord), 0).r;
+    if (f >= 0.0) {
+      // Secant refinement of the hit on the background's surface.
+      float tA = previousT, fA = previousF, tB = t, fB = f;
+      for (int i = 0; i < 4; ++i) {
+        float tM = clamp(tB - fB * (tB - tA) / (fB - fA), tA, tB);
+        vec2 c = fragCoordFromCamera(origin + tM * direction);
+        if (!onScreen(c)) break;
+        float fM = rayEyeDepth(origin, direction, tM) - texelFetch(backgroundEyeDepth, ivec2(c), 0).r;
+        if (fM >= 0.0) { tB = tM; fB = fM; } else { tA = tM; fA = fM; }
+      }
+      vec2 hit = clamp(fragCoordFromCamera(origin + tB * direction), vec2(0.0), frame.viewportSize.xy - 1.0);
+      return texelFetch(backgroundColor, ivec2(hit), 0).rgb;
+    }
+    previousT = t;
+    previousF = max(f, -1e30);
+  }
+  if (direction.z < 0.0) {
+    vec2 vanishing = fragCoordFromCamera(direction * getFarClip());
+    if (onScreen(vanishing) && texelFetch(backgroundEyeDepth, ivec2(vanishing), 0).r >= kNoSurfaceDepth * 0.5)
+      return texelFetch(backgroundColor, ivec2(vanishing), 0).rgb;
+  }
+  vec3 worldDirection = mat3(frame.worldFromCamera) * direction;
+  return hasEnvironment ? texture(environmentMap, equirectangularUvFromDirection(worldDirection)).rgb : fallbackColor;
+}
+
+void main() {
+  ivec2 pixel = ivec2(gl_FragCoord.xy);
+  vec3 viewDirection = normalize(cameraRayFromFragCoord(gl_FragCoord.xy));
+  float splashDepth = hasSplash ? texelFetch(splashFrontDepth, pixel, 0).r : kNoSurfaceDepth;
+  float aggregateDepth = hasAggregate ? texelFetch(aggregateFrontDepth, pixel, 0).r : kNoSurfaceDepth;
+  float firstDepth = min(splashDepth, aggregateDepth);
+  outLiquid = vec4(0.0);
+  outSplash = vec4(0.0);
+  outClass = 0.0;
+  outThickness = 0.0;
+  outFrontDepth = kNoSurfaceDepth;
+  outFrontNormal = vec4(0.0);
+  if (firstDepth >= kNoSurfaceDepth * 0.5) return;
+
+  int body = splashDepth <= aggregateDepth ? kSplash : kAggregate;
+  int firstBody = body;
+  vec3 position = viewDirection * (firstDepth / -viewDirection.z);
+  vec3 normal = surfaceNormal(body, false, pixel);
+  if (dot(normal, normal) == 0.0) normal = -viewDirection;
+  outFrontDepth = firstDepth;
+  outFrontNormal = vec4(mat3(frame.worldFromCamera) * normal, 1.0);
+  atomicAdd(rayCounters[6], 1u);
+
+  // Equations 6-8 unrolled into a running sum: colour += throughput * F_k * b(r_k), throughput *= 1 - F_k, and
+  // Beer-Lambert (equation 9) multiplies the throughput by exp(-a c_a l) for every segment in liquid.
+  vec3 colour = vec3(0.0);
+  vec3 throughput = vec3(1.0);
+  vec3 direction = viewDirection;
+  float pathInLiquid = 0.0;
+  int refractions = 0;
+  bool inside = false;
+  int secondBody = -1;
+  for (int interface = 0; interface < 4; ++interface) {
+    // The normal faces the side the ray comes from.
+    vec3 facing = dot(normal, direction) < 0.0 ? normal : -normal;
+    float cosine = -dot(facing, direction);
+    float indexRatio = inside ? indexOfRefraction : 1.0 / indexOfRefraction;
+    vec3 refracted = refract(direction, facing, indexRatio);
+    bool totalInternalReflection = dot(refracted, refracted) == 0.0;
+    vec3 reflected = reflect(direction, facing);
+    if (totalInternalReflection) {
+      // All light is reflected back into the liquid; the reflected ray's colour is looked up directly and
+      // attenuated by the path so far, which ends the path.
+      atomicAdd(rayCounters[5], 1u);
+      colour += throughput * colourAlong(position, reflected);
+      throughput = vec3(0.0);
+      break;
+    }
+    // Schlick's cosine is taken on the rarer (air) side, which is the refracted side when leaving.
+    float fresnel = schlickFresnel(inside ? -dot(refracted, facing) : cosine, indexOfRefraction);
+    colour += throughput * fresnel * colourAlong(position, reflected);
+    throughput *= 1.0 - fresnel;
+    direction = refracted;
+    ++refractions;
+    inside = !inside;
+    if (inside) {
+      Crossing exit = findExit(position, direction, body);
+      float length = exit.t;  // Where the liquid ends, or where a march that never left it stopped.
+      pathInLiquid += length;
+      throughput *= exp(-absorptionPerUnitLength * length);
+      if (!exit.found || refractions >= maxRefractions) {
+        // One refraction, or a march that left the screen: the light behind comes straight through.
+        position += length * direction;
+        break;
+      }
+      position += exit.t * direction;
+      normal = surfaceNormal(body, exit.back, exit.pixel);
+      if (dot(normal, normal) == 0.0) normal = direction;
+    } else {
+      if (refractions >= maxRefractions) break;
+      Crossing entry = findEntry(position, direction);
+      if (!entry.found) break;
+      secondBody = entry.body;
+      atomicAdd(rayCounters[4], 1u);
+      position += entry.t * direction;
+      body = entry.body;
+      normal = surfaceNormal(body, entry.back, entry.pixel);
+      if (dot(normal, normal) == 0.0) normal = -direction;
+    }
+  }
+  if (dot(throughput, throughput) > 0.0) colour += throughput * colourAlong(position, direction);
+  if (secondBody >= 0) atomicAdd(rayCounters[firstBody * 2 + secondBody], 1u);
+
+  outLiquid = vec4(colour, 1.0);
+  outSplash = firstBody == kSplash ? outLiquid : vec4(0.0);
+  outClass = firstBody == kSplash ? 1.0 : 2.0;
+  outThickness = pathInLiquid;
+}

@@ -1,0 +1,58 @@
+#pragma once
+
+#include <cmath>
+#include <string>
+
+#include <gtest/gtest.h>
+
+#include "spindrift/Renderer.h"
+
+// Shared pieces of the liquid GL tests: one renderer per test binary (contexts are slow on llvmpipe), scenes
+// built in code, and the check that every channel of every layer is finite.
+namespace liquid_test {
+
+inline spindrift::Renderer& renderer() {
+  static spindrift::Renderer instance;
+  return instance;
+}
+
+inline spindrift::Particles particlesOf(const std::vector<glm::vec3>& positions, float radius) {
+  spindrift::Particles particles;
+  for (const glm::vec3& position : positions)
+    particles.append(position, radius, spindrift::ParticleKind::Liquid, 0.0f, glm::vec3(0.0f));
+  return particles;
+}
+
+// A regular block of particles, spacing `spacing`, filling [low, high].
+inline std::vector<glm::vec3> block(const glm::vec3& low, const glm::vec3& high, float spacing) {
+  std::vector<glm::vec3> positions;
+  for (float z = low.z; z <= high.z + 1e-6f; z += spacing)
+    for (float y = low.y; y <= high.y + 1e-6f; y += spacing)
+      for (float x = low.x; x <= high.x + 1e-6f; x += spacing) positions.emplace_back(x, y, z);
+  return positions;
+}
+
+inline std::size_t nonFiniteValues(const spindrift::RenderResult& result, std::string* where = nullptr) {
+  std::size_t bad = 0;
+  for (const spindrift::ImageLayer& layer : result.layers)
+    for (float value : layer.pixels)
+      if (!std::isfinite(value)) {
+        if (where && bad == 0) *where = layer.name;
+        ++bad;
+      }
+  return bad;
+}
+
+inline void expectAllChannelsFinite(const spindrift::RenderResult& result) {
+  std::string where;
+  const std::size_t bad = nonFiniteValues(result, &where);
+  EXPECT_EQ(bad, 0u) << "non-finite values, first in layer " << where;
+  for (const char* layer : {"composite", "liquid", "liquid_splash", "liquid_class", "depth", "normal", "thickness"})
+    EXPECT_NE(result.layer(layer), nullptr) << layer;
+}
+
+inline float at(const spindrift::ImageLayer& layer, int width, int column, int row, int channel) {
+  return layer.pixels[(std::size_t(row) * width + column) * layer.channelCount() + channel];
+}
+
+}  // namespace liquid_test
