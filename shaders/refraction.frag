@@ -49,20 +49,57 @@ float frontDepth(int body, ivec2 pixel) {
 float backDepth(int body, ivec2 pixel) {
   return body == kSplash ? texelFetch(splashBackDepth, pixel, 0).r : texelFetch(aggregateBackDepth, pixel, 0).r;
 }
-// Outward camera-space normal of a body's front or back surface; zero where the layer has none.
-vec3 surfaceNormal(int body, bool back, ivec2 pixel) {
-  vec4 normal = body == kSplash ? (back ? texelFetch(splashBackNormal, pixel, 0) : texelFetch(splashFrontNormal, pixel, 0))
-                                : (back ? texelFetch(aggregateBackNormal, pixel, 0) : texelFetch(aggregateFrontNormal, pixel, 0));
+vec4 normalTexel(int body, bool back, ivec2 pixel) {
+  return body == kSplash ? (back ? texelFetch(splashBackNormal, pixel, 0) : texelFetch(splashFrontNormal, pixel, 0))
+                         : (back ? texelFetch(aggregateBackNormal, pixel, 0) : texelFetch(aggregateFrontNormal, pixel, 0));
+}
+
+// Bilinear weights of the four texels around a window position, and the first of them.
+void bilinearFootprint(vec2 fragCoord, out ivec2 base, out vec2 weight) {
+  vec2 texel = clamp(fragCoord - 0.5, vec2(0.0), frame.viewportSize.xy - 1.001);
+  base = ivec2(floor(texel));
+  weight = texel - vec2(base);
+}
+
+// A layer's depth between texel centres. Where one of the four texels has no surface (a silhouette) the
+// nearest texel is taken instead, so depth is never blended with "nothing here".
+float layerDepth(int body, bool back, vec2 fragCoord) {
+  ivec2 base;
+  vec2 weight;
+  bilinearFootprint(fragCoord, base, weight);
+  vec4 depths = back ? vec4(backDepth(body, base), backDepth(body, base + ivec2(1, 0)), backDepth(body, base + ivec2(0, 1)),
+                            backDepth(body, base + ivec2(1, 1)))
+                     : vec4(frontDepth(body, base), frontDepth(body, base + ivec2(1, 0)), frontDepth(body, base + ivec2(0, 1)),
+                            frontDepth(body, base + ivec2(1, 1)));
+  if (any(greaterThanEqual(depths, vec4(kNoSurfaceDepth * 0.5))))
+    return back ? backDepth(body, ivec2(fragCoord)) : frontDepth(body, ivec2(fragCoord));
+  return mix(mix(depths.x, depths.y, weight.x), mix(depths.z, depths.w, weight.x), weight.y);
+}
+
+// Outward camera-space normal of a body's front or back surface, interpolated like layerDepth; zero where the
+// layer has none.
+vec3 surfaceNormal(int body, bool back, vec2 fragCoord) {
+  ivec2 base;
+  vec2 weight;
+  bilinearFootprint(fragCoord, base, weight);
+  vec4 n00 = normalTexel(body, back, base), n10 = normalTexel(body, back, base + ivec2(1, 0));
+  vec4 n01 = normalTexel(body, back, base + ivec2(0, 1)), n11 = normalTexel(body, back, base + ivec2(1, 1));
+  vec4 normal = (n00.w * n10.w * n01.w * n11.w > 0.0)
+                    ? mix(mix(n00, n10, weight.x), mix(n01, n11, weight.x), weight.y)
+                    : normalTexel(body, back, ivec2(fragCoord));
   return normal.w > 0.0 ? normalize(mat3(frame.cameraFromWorld) * normal.xyz) : vec3(0.0);
 }
 bool bodyPresent(int body) { return body == kSplash ? hasSplash : hasAggregate; }
 
-// How far inside a body the eye depth z is at a pixel: positive inside, negative outside; `back` says which
-// boundary is nearer. The background's solids cut the body: nothing lies inside past them.
-float insideDistance(int body, ivec2 pixel, float z, out bool back) {
-  float front = frontDepth(body, pixel);
-  float rear = min(backDepth(body, pixel), texelFetch(backgroundEyeDepth, pixel, 0).r);
+// How far inside a body the eye depth z is at a window position: positive inside, negative outside; `back`
+// says which boundary is nearer. The background's solids cut the body: nothing lies inside past them.
+// `interpolated` selects bilinear depth (for refinement) over the nearest texel (for marching).
+float insideDistance(int body, vec2 fragCoord, float z, bool interpolated, out bool back) {
+  ivec2 pixel = ivec2(fragCoord);
+  float front = interpolated ? layerDepth(body, false, fragCoord) : frontDepth(body, pixel);
   if (front >= kNoSurfaceDepth * 0.5) return -1e30;
+  float rear = min(interpolated ? layerDepth(body, true, fragCoord) : backDepth(body, pixel),
+                   texelFetch(backgroundEyeDepth, pixel, 0).r);
   back = rear - z < z - front;
   return min(z - front, rear - z);
 }
@@ -72,29 +109,41 @@ struct Crossing {
   float t;
   int body;
   bool back;  // crossed the body's back boundary
-  ivec2 pixel;
+  vec2 fragCoord;
 };
 
-// Regula falsi between an outside and an inside (or inside and outside) parameter of the same body.
+// The secant method, kept bracketed (the Illinois variant of regula falsi), between parameters on either side
+// of a body's boundary; f is insideDistance, positive inside.
 Crossing refineCrossing(vec3 origin, vec3 direction, int body, float tA, float fA, float tB, float fB) {
   Crossing crossing;
   crossing.found = true;
   crossing.body = body;
-  for (int i = 0; i < 6; ++i) {
-    float t = (abs(fB - fA) > 1e-20) ? tB - fB * (tB - tA) / (fB - fA) : 0.5 * (tA + tB);
+  float t = tB;
+  int retained = 0;
+  for (int i = 0; i < 8; ++i) {
+    t = (abs(fB - fA) > 1e-30) ? tB - fB * (tB - tA) / (fB - fA) : 0.5 * (tA + tB);
     t = clamp(t, min(tA, tB), max(tA, tB));
     vec2 fragCoord = fragCoordFromCamera(origin + t * direction);
     if (!onScreen(fragCoord)) break;
     bool back;
-    float f = insideDistance(body, ivec2(fragCoord), rayEyeDepth(origin, direction, t), back);
-    if (f < -1e29) f = -pixelSizeAt(rayEyeDepth(origin, direction, t));
-    if (sign(f) == sign(fA)) { tA = t; fA = f; } else { tB = t; fB = f; }
+    float z = rayEyeDepth(origin, direction, t);
+    float f = insideDistance(body, fragCoord, z, true, back);
+    if (f < -1e29) f = -pixelSizeAt(z);
+    if (sign(f) == sign(fB)) {
+      tB = t;
+      fB = f;
+      if (retained == -1) fA *= 0.5;  // A stayed twice: halve its weight so the bracket closes from both ends.
+      retained = -1;
+    } else {
+      tA = t;
+      fA = f;
+      if (retained == 1) fB *= 0.5;
+      retained = 1;
+    }
   }
-  // Report the point on the boundary side just past the crossing and the boundary it is nearest.
-  crossing.t = 0.5 * (tA + tB);
-  vec2 fragCoord = clamp(fragCoordFromCamera(origin + crossing.t * direction), vec2(0.0), frame.viewportSize.xy - 1.0);
-  crossing.pixel = ivec2(fragCoord);
-  insideDistance(body, crossing.pixel, rayEyeDepth(origin, direction, crossing.t), crossing.back);
+  crossing.t = t;
+  crossing.fragCoord = clamp(fragCoordFromCamera(origin + t * direction), vec2(0.0), frame.viewportSize.xy - 1.0);
+  insideDistance(body, crossing.fragCoord, rayEyeDepth(origin, direction, t), true, crossing.back);
   return crossing;
 }
 
@@ -111,7 +160,7 @@ Crossing findExit(vec3 origin, vec3 direction, int body) {
     float z = -position.z;
     if (z < getNearClip() || !onScreen(fragCoord)) break;
     bool back;
-    float f = insideDistance(body, ivec2(fragCoord), z, back);
+    float f = insideDistance(body, fragCoord, z, false, back);
     if (f < 0.0) {
       if (f < -1e29) f = -pixelSizeAt(z);
       return refineCrossing(origin, direction, body, previousT, previousF, t, f);
@@ -141,8 +190,8 @@ Crossing findEntry(vec3 origin, vec3 direction) {
     if (z >= texelFetch(backgroundEyeDepth, pixel, 0).r) break;
     vec2 f = vec2(-1e30);
     bool back;
-    if (hasSplash) f.x = insideDistance(kSplash, pixel, z, back);
-    if (hasAggregate) f.y = insideDistance(kAggregate, pixel, z, back);
+    if (hasSplash) f.x = insideDistance(kSplash, fragCoord, z, false, back);
+    if (hasAggregate) f.y = insideDistance(kAggregate, fragCoord, z, false, back);
     if (f.x >= 0.0 || f.y >= 0.0) {
       int body = f.x >= f.y ? kSplash : kAggregate;
       float fBody = body == kSplash ? f.x : f.y;
@@ -212,7 +261,7 @@ void main() {
   int body = splashDepth <= aggregateDepth ? kSplash : kAggregate;
   int firstBody = body;
   vec3 position = viewDirection * (firstDepth / -viewDirection.z);
-  vec3 normal = surfaceNormal(body, false, pixel);
+  vec3 normal = surfaceNormal(body, false, gl_FragCoord.xy);
   if (dot(normal, normal) == 0.0) normal = -viewDirection;
   outFrontDepth = firstDepth;
   outFrontNormal = vec4(mat3(frame.worldFromCamera) * normal, 1.0);
@@ -227,7 +276,7 @@ void main() {
   int refractions = 0;
   bool inside = false;
   int secondBody = -1;
-  for (int interface = 0; interface < 4; ++interface) {
+  for (int crossing = 0; crossing < 4; ++crossing) {
     // The normal faces the side the ray comes from.
     vec3 facing = dot(normal, direction) < 0.0 ? normal : -normal;
     float cosine = -dot(facing, direction);
@@ -261,7 +310,7 @@ void main() {
         break;
       }
       position += exit.t * direction;
-      normal = surfaceNormal(body, exit.back, exit.pixel);
+      normal = surfaceNormal(body, exit.back, exit.fragCoord);
       if (dot(normal, normal) == 0.0) normal = direction;
     } else {
       if (refractions >= maxRefractions) break;
@@ -271,7 +320,7 @@ void main() {
       atomicAdd(rayCounters[4], 1u);
       position += entry.t * direction;
       body = entry.body;
-      normal = surfaceNormal(body, entry.back, entry.pixel);
+      normal = surfaceNormal(body, entry.back, entry.fragCoord);
       if (dot(normal, normal) == 0.0) normal = -direction;
     }
   }

@@ -25,6 +25,7 @@ struct RenderOptions {
   std::string frames;
   std::vector<std::string> assignments;
   bool quiet = false;
+  bool intermediate = false;
 };
 
 void applyAssignments(Scene& scene, const std::vector<std::string>& assignments) {
@@ -56,6 +57,7 @@ int runRender(const RenderOptions& options) {
         throw Error(*path + ": several frames need #### in the output name");
 
   Renderer renderer;
+  renderer.setIntermediateLayers(options.intermediate);
   if (!options.quiet) std::fprintf(stderr, "spindrift: rendering on %s\n", renderer.glRenderer().c_str());
   cli::Progress progress(int(frames.size()), options.quiet);
   nlohmann::json allStats = nlohmann::json::array();
@@ -115,6 +117,8 @@ int main(int argc, char** argv) {
                                                        "(default: the scene's `frame`, else 1)");
   renderCommand->add_option("--set", render.assignments, "Override a parameter: key=value (value is JSON)");
   renderCommand->add_flag("-q,--quiet", render.quiet, "No progress output");
+  renderCommand->add_flag("--intermediate", render.intermediate,
+                          "Also write the depth layers before and after smoothing into the EXR");
 
   bool markdown = false;
   CLI::App* paramsCommand = app.add_subcommand("params", "List every parameter with its default (JSON)");

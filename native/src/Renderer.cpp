@@ -56,6 +56,7 @@ struct Renderer::Impl {
   GlThread glThread;
   std::unique_ptr<FramePipeline> pipeline;  // Lives on glThread; reset there before the thread ends.
   BackgroundCache backgroundCache;
+  bool intermediateLayers = false;
 
   ~Impl() {
     glThread.run([this] { pipeline.reset(); });
@@ -67,6 +68,8 @@ Renderer::Renderer() : impl_(std::make_unique<Impl>()) {
 }
 
 Renderer::~Renderer() = default;
+
+void Renderer::setIntermediateLayers(bool enabled) { impl_->intermediateLayers = enabled; }
 
 std::string Renderer::glRenderer() const { return impl_->glThread.renderer(); }
 std::string Renderer::glVersion() const { return impl_->glThread.version(); }
@@ -126,10 +129,21 @@ RenderResult Renderer::renderParticles(const Scene& scene, const Particles& part
       ScopedPassTimer timed(timer, "background");
       background.emplace(pipeline.background.run(backgroundImages, width, height));
     }
+    std::vector<ImageLayer> intermediate;
+    auto keep = [&](const SurfaceLayers& layers, const std::string& name) {
+      if (!impl_->intermediateLayers) return;
+      intermediate.push_back(readLayer(layers.front.eyeDepth, name + "_front_depth", {"Z"}));
+      intermediate.push_back(readLayer(layers.back.eyeDepth, name + "_back_depth", {"Z"}));
+      intermediate.push_back(readLayer(layers.front.normal, name + "_front_normal", {"X", "Y", "Z"}));
+      intermediate.push_back(readLayer(layers.back.normal, name + "_back_normal", {"X", "Y", "Z"}));
+    };
     std::optional<SurfaceLayers> splashes;
     if (!liquid.splashes.empty()) {
-      ScopedPassTimer timed(timer, "splash_depth_layers");
-      splashes.emplace(pipeline.splashImpostors.run(liquid.splashes, *background, width, height));
+      {
+        ScopedPassTimer timed(timer, "splash_depth_layers");
+        splashes.emplace(pipeline.splashImpostors.run(liquid.splashes, *background, width, height));
+      }
+      keep(*splashes, "splash");
     } else {
       skip("splash_depth_layers", "no splash particles in view");
     }
@@ -139,11 +153,13 @@ RenderResult Renderer::renderParticles(const Scene& scene, const Particles& part
         ScopedPassTimer timed(timer, "aggregate_depth_layers");
         aggregates.emplace(pipeline.aggregateImpostors.run(liquid.aggregates, *background, width, height));
       }
+      keep(*aggregates, "aggregate");
       if (liquidParameters.smoothing != "none") {
         ScopedPassTimer timed(timer, "smoothing");
         const DepthLayer front = pipeline.frontSmoothing.run(aggregates->front, radius, false, liquidParameters, width, height);
         const DepthLayer back = pipeline.backSmoothing.run(aggregates->back, radius, true, liquidParameters, width, height);
         aggregates.emplace(SurfaceLayers{front, back});
+        keep(*aggregates, "aggregate_smoothed");
       } else {
         skip("smoothing", "liquid.smoothing is none");
       }
@@ -188,6 +204,7 @@ RenderResult Renderer::renderParticles(const Scene& scene, const Particles& part
       result.layers.push_back(filledLayer(width, height, "normal", {"X", "Y", "Z"}, 0.0f));
       result.layers.push_back(filledLayer(width, height, "thickness", {"Y"}, 0.0f));
     }
+    for (ImageLayer& layer : intermediate) result.layers.push_back(std::move(layer));
     stats.readbackMilliseconds = millisecondsSince(readbackStart);
   });
   stats.totalMilliseconds = millisecondsSince(start);

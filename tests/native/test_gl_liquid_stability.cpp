@@ -4,6 +4,8 @@
 
 #include <random>
 
+#include <glm/trigonometric.hpp>
+
 #include "LiquidTestScenes.h"
 
 using namespace spindrift;
@@ -44,7 +46,7 @@ TEST(GLLiquidStability, CoplanarCluster) {
   const RenderResult result =
       renderCase(sceneLookingAt({0, -3, 1}, {0, 0, 0}), block({-0.5f, -0.5f, 0}, {0.5f, 0.5f, 0}, 0.045f), 0.05f);
   expectAllChannelsFinite(result);
-  EXPECT_GT(coveredPixels(result), 500u);
+  EXPECT_GT(coveredPixels(result), 300u);
 }
 
 TEST(GLLiquidStability, SingleNeighbourPair) {
@@ -93,14 +95,17 @@ TEST(GLLiquidStability, CameraInsideTheLiquid) {
   expectAllChannelsFinite(result);
 }
 
-// Radii from a fifth of a pixel to 200 pixels on screen.
+// Radii from a fifth of a pixel to 200 pixels on screen (a narrow field of view, so a sphere 200 pixels wide
+// on a 72-pixel-high image still lies well in front of the camera).
 TEST(GLLiquidStability, ProjectedRadiiFromAFifthOfAPixelTo200Pixels) {
-  const Scene scene = sceneLookingAt({0, -10, 0}, {0, 0, 0});
-  const float worldPerPixel = 2.0f * std::tan(glm::radians(20.0f)) * 10.0f / 72.0f;
+  Scene scene = sceneLookingAt({0, -10, 0}, {0, 0, 0});
+  scene.camera.fovYDegrees = 4.0f;
+  const float worldPerPixel = 2.0f * std::tan(glm::radians(2.0f)) * 10.0f / 72.0f;
   for (float pixels : {0.2f, 1.0f, 10.0f, 200.0f}) {
     const RenderResult result = renderCase(scene, {{0, 0, 0}}, pixels * worldPerPixel);
     expectAllChannelsFinite(result);
     if (pixels >= 1.0f) EXPECT_GT(coveredPixels(result), 0u) << pixels << " px";
+    if (pixels >= 200.0f) EXPECT_EQ(coveredPixels(result), 96u * 72u) << "the sphere fills the frame";
   }
 }
 

@@ -24,6 +24,10 @@ class Renderer {
   /// Renders already loaded particles (world space); `counts` describes them for the stats.
   RenderResult renderParticles(const Scene& scene, const Particles& particles, int frame);
 
+  /// Also return the intermediate textures (the four depth layers before and after smoothing) as layers
+  /// named like "aggregate_front_depth_smoothed", for documentation and debugging. Off by default.
+  void setIntermediateLayers(bool enabled);
+
   /// GL_RENDERER and GL_VERSION of the renderer's context, e.g. "llvmpipe (LLVM 15.0.6, 256 bits)".
   std::string glRenderer() const;
   std::string glVersion() const;
