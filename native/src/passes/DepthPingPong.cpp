@@ -1,0 +1,47 @@
+#include "passes/DepthPingPong.h"
+
+#include "passes/FrameUniforms.h"
+
+namespace spindrift {
+
+DepthPingPong::DepthPingPong() : framebuffer_(createFramebuffer()), emptyVertexArray_(createVertexArray()) {}
+
+void DepthPingPong::resize(int width, int height) {
+  for (Texture2D& target : targets_)
+    ensureTexture(target, GL_R32F, width, height);
+}
+
+Texture2D& DepthPingPong::targetOtherThan(const Texture2D& source) {
+  return source.id() == targets_[0].id() ? targets_[1] : targets_[0];
+}
+
+const Texture2D& DepthPingPong::draw(const Texture2D& source) {
+  // The target is never the source, so a filter never reads the texture it writes.
+  Texture2D& target = targetOtherThan(source);
+  glNamedFramebufferTexture(framebuffer_.id(), GL_COLOR_ATTACHMENT0, target.id(), 0);
+  glBindFramebuffer(GL_FRAMEBUFFER, framebuffer_.id());
+  glViewport(0, 0, target.width, target.height);
+  glDisable(GL_DEPTH_TEST);
+  glDisable(GL_BLEND);
+  glBindTextureUnit(0, source.id());
+  drawFullscreenTriangle(emptyVertexArray_.id());
+  checkGlError("filtering a depth layer");
+  return target;
+}
+
+const Texture2D& DepthPingPong::drawRepeatedly(const Texture2D& source, int count) {
+  const Texture2D* current = &source;
+  for (int iteration = 0; iteration < count; ++iteration)
+    current = &draw(*current);
+  return *current;
+}
+
+const Texture2D& DepthPingPong::copy(const Texture2D& source) {
+  Texture2D& target = targetOtherThan(source);
+  glCopyImageSubData(source.id(), GL_TEXTURE_2D, 0, 0, 0, 0, target.id(), GL_TEXTURE_2D, 0, 0, 0, 0,
+                     target.width, target.height, 1);
+  checkGlError("copying a depth layer");
+  return target;
+}
+
+}  // namespace spindrift

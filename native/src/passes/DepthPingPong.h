@@ -1,0 +1,40 @@
+#pragma once
+
+#include <array>
+
+#include "gl/GlObjects.h"
+
+namespace spindrift {
+
+/// The eye depth a smoothing filter produces: R32F, kNoSurfaceDepth where the layer is empty.
+struct SmoothedDepth {
+  const Texture2D& eyeDepth;
+};
+
+/// Two R32F eye-depth render targets that the iterative smoothing filters alternate between, and the
+/// fullscreen draw into one of them. One instance serves every filter of a DepthSmoothingPass, since only one
+/// filter runs per layer.
+class DepthPingPong {
+ public:
+  DepthPingPong();
+
+  /// Makes both targets width × height (reallocated only when the size changes).
+  void resize(int width, int height);
+  /// Draws the current program's fullscreen triangle (shaders/fullscreen.vert) with `source` at texture
+  /// unit 0 into the target that is not `source`, and returns that target.
+  const Texture2D& draw(const Texture2D& source);
+  /// Draws `count` times, each reading the previous result, starting from `source`; returns the last result
+  /// (`source` itself when `count` is 0).
+  const Texture2D& drawRepeatedly(const Texture2D& source, int count);
+  /// Copies `source` into a target and returns it.
+  const Texture2D& copy(const Texture2D& source);
+
+ private:
+  Texture2D& targetOtherThan(const Texture2D& source);
+
+  std::array<Texture2D, 2> targets_;
+  FramebufferObject framebuffer_;
+  VertexArrayObject emptyVertexArray_;
+};
+
+}  // namespace spindrift

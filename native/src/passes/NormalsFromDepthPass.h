@@ -1,0 +1,30 @@
+#pragma once
+
+#include "gl/GlObjects.h"
+#include "gl/ShaderLibrary.h"
+
+namespace spindrift {
+
+/// Normals recomputed from a smoothed depth layer.
+struct RecomputedNormals {
+  const Texture2D& normal;  ///< RGBA16F: world-space outward normal in xyz, coverage (1 or 0) in w.
+};
+
+/// Recomputes a depth layer's outward world normals from its smoothed depth (the liquid paper recomputes them
+/// after plane fitting, whose fitted normals do not describe the smoothed surface).
+class NormalsFromDepthPass {
+ public:
+  explicit NormalsFromDepthPass(const ShaderLibrary& shaders);
+  /// `originalNormal` serves pixels whose depth has no neighbour along an axis. `backLayer` turns the normals
+  /// away from the camera.
+  RecomputedNormals run(const Texture2D& smoothedEyeDepth, const Texture2D& originalNormal, bool backLayer,
+                        int width, int height);
+
+ private:
+  ProgramObject program_;
+  VertexArrayObject emptyVertexArray_;
+  FramebufferObject framebuffer_;
+  Texture2D normal_;
+};
+
+}  // namespace spindrift

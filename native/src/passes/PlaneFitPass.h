@@ -1,0 +1,25 @@
+#pragma once
+
+#include "gl/GlObjects.h"
+#include "gl/ShaderLibrary.h"
+#include "passes/DepthPingPong.h"
+#include "spindrift/Parameters.h"
+
+namespace spindrift {
+
+/// The liquid paper's depth smoothing (section 4.3): liquid.smoothing_iterations rounds of local plane
+/// fitting in a liquid.plane_fit_window window with view-dependent weights, each round reading the previous
+/// round's depth and the layer's original normals. Unlike filters, it leaves silhouettes where they are.
+class PlaneFitPass {
+ public:
+  explicit PlaneFitPass(const ShaderLibrary& shaders);
+  /// `originalNormal` holds the layer's world normals before smoothing. With no iterations the result is
+  /// `eyeDepth` itself.
+  SmoothedDepth run(const Texture2D& eyeDepth, const Texture2D& originalNormal, float particleRadius,
+                    const LiquidParameters& parameters, DepthPingPong& targets);
+
+ private:
+  ProgramObject program_;
+};
+
+}  // namespace spindrift

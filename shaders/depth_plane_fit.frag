@@ -1,0 +1,59 @@
+#version 450 core
+// One iteration of iterative local plane fitting (liquid paper 4.3, eqs. 1-5). Each pixel with a surface fits
+// a plane to the camera-space positions of the neighbours in its s × s window that have a surface, weighted by
+// their eye-depth difference (eq. 2), with the weighted mean of the original normals as the plane's normal
+// (eq. 3) through the weighted mean position (eq. 4), and moves to where its view ray meets that plane (eq. 5).
+#include "lib/frame.glsl"
+#include "lib/depth_layer.glsl"
+
+layout(binding = 0) uniform sampler2D currentEyeDepth;  // this iteration's depth: z in eq. 2, p_j
+layout(binding = 1) uniform sampler2D originalNormal;   // world normals before smoothing: ñ_j in eq. 3
+
+uniform int halfWindow;  // (s - 1) / 2
+uniform float sigma;     // world units: liquid.plane_fit_sigma × r
+
+layout(location = 0) out float outEyeDepth;
+
+// Below this |n·v| the fitted plane is within about half a degree of containing the view ray, and the
+// intersection of eq. 5 runs off towards infinity: the pixel keeps its depth instead.
+const float kMinimumRayPlaneCosine = 1e-2;
+// A normal sum shorter than this fraction of the weight sum means the neighbours' normals cancel out (e.g. the
+// two sides of a thin sheet): there is no plane to fit.
+const float kMinimumNormalAgreement = 1e-4;
+
+void main() {
+  ivec2 pixel = ivec2(gl_FragCoord.xy);
+  float centreDepth = texelFetch(currentEyeDepth, pixel, 0).r;
+  outEyeDepth = kNoSurfaceDepth;
+  if (!hasSurface(centreDepth)) return;  // smoothing never creates a surface
+  outEyeDepth = centreDepth;
+
+  mat3 cameraFromWorld = mat3(frame.cameraFromWorld);
+  vec3 centrePosition = cameraPositionAtPixel(pixel, centreDepth);
+  vec3 normalSum = vec3(0.0);
+  vec3 offsetSum = vec3(0.0);  // Σ w_ij (p_j - p_i): eq. 4 relative to p_i, which keeps float precision
+  float weightSum = 0.0;
+  for (int dy = -halfWindow; dy <= halfWindow; ++dy)
+    for (int dx = -halfWindow; dx <= halfWindow; ++dx) {
+      ivec2 neighbour = pixel + ivec2(dx, dy);
+      float depth = layerDepthAt(currentEyeDepth, neighbour);
+      if (!hasSurface(depth)) continue;
+      float depthDifference = (depth - centreDepth) / sigma;
+      float weight = exp(-depthDifference * depthDifference);
+      normalSum += weight * (cameraFromWorld * texelFetch(originalNormal, neighbour, 0).xyz);
+      offsetSum += weight * (cameraPositionAtPixel(neighbour, depth) - centrePosition);
+      weightSum += weight;
+    }
+
+  // The centre pixel always counts with weight 1, so weightSum >= 1 unless the input held NaN; every test is
+  // written so that NaN fails it and leaves the depth as it was.
+  float normalLength = length(normalSum);
+  if (!(weightSum >= 1.0) || !(normalLength > kMinimumNormalAgreement * weightSum)) return;
+  vec3 planeNormal = normalSum / normalLength;
+  vec3 ray = cameraRayFromFragCoord(vec2(pixel) + 0.5);  // z = -1: its parameter along the ray is eye depth
+  float rayDotNormal = dot(planeNormal, ray);
+  if (!(abs(rayDotNormal) > kMinimumRayPlaneCosine * length(ray))) return;
+  // Eq. 5 with d_i = n_i·p̄_i, written as the step from p_i = z_i·ray to the plane along the ray.
+  float smoothedDepth = centreDepth + dot(planeNormal, offsetSum / weightSum) / rayDotNormal;
+  if (hasSurface(smoothedDepth) && !isinf(smoothedDepth)) outEyeDepth = smoothedDepth;
+}
