@@ -109,6 +109,9 @@ struct BadScene {
   const char* expectedInMessage;
 };
 
+// Test listings show the case's name, not the bytes of the struct.
+void PrintTo(const BadScene& scene, std::ostream* out) { *out << scene.name; }
+
 class SceneFileErrors : public testing::TestWithParam<BadScene> {};
 
 TEST_P(SceneFileErrors, NameTheKey) {
