@@ -16,7 +16,9 @@ namespace {
 // Lengths are in units of a small particle radius, so that nothing passes only because r happens to be 1.
 constexpr float kRadius = 0.05f;
 
-Camera testCamera() { return Camera::lookAt(64, 64, 60.0f, {0, -10, 0}, {0, 0, 0}, {0, 0, 1}); }
+Camera testCamera() {
+  return Camera::lookAt(64, 64, 60.0f, {0, -10, 0}, {0, 0, 0}, {0, 0, 1});
+}
 
 LiquidParameters layers(const char* mode) {
   LiquidParameters parameters;
@@ -74,7 +76,8 @@ void expectWellFormed(const LiquidPreparation& preparation) {
 }
 
 // The instance whose centre is nearest `position` (centres are the particles' with the default smoothing 0).
-const EllipsoidInstance* instanceAt(const std::vector<EllipsoidInstance>& instances, const glm::vec3& position) {
+const EllipsoidInstance* instanceAt(const std::vector<EllipsoidInstance>& instances,
+                                    const glm::vec3& position) {
   for (const EllipsoidInstance& instance : instances)
     if (glm::length(glm::vec3(instance.centreAndBoundingRadius) - position) < 1e-6f) return &instance;
   return nullptr;
@@ -83,13 +86,15 @@ const EllipsoidInstance* instanceAt(const std::vector<EllipsoidInstance>& instan
 void expectSphere(const EllipsoidInstance& instance, float radius) {
   EXPECT_NEAR(instance.centreAndBoundingRadius.w, radius, 1e-6f);
   for (int k = 0; k < 3; ++k)
-    for (int c = 0; c < 3; ++c) EXPECT_NEAR(instance.inverseAxesRows[k][c], k == c ? 1.0f / radius : 0.0f, 1e-3f);
+    for (int c = 0; c < 3; ++c)
+      EXPECT_NEAR(instance.inverseAxesRows[k][c], k == c ? 1.0f / radius : 0.0f, 1e-3f);
 }
 
 TEST(LiquidPreparation, ColinearCluster) {
   const glm::vec3 direction = glm::normalize(glm::vec3(1, 2, 3));
   Particles particles;
-  for (int i = -30; i <= 30; ++i) addLiquid(particles, direction * (float(i) * 0.1f * kRadius));
+  for (int i = -30; i <= 30; ++i)
+    addLiquid(particles, direction * (float(i) * 0.1f * kRadius));
   const LiquidPreparation preparation = prepareLiquid(particles, testCamera(), layers("merged"));
   expectWellFormed(preparation);
   const EllipsoidInstance* middle = instanceAt(preparation.aggregates, glm::vec3(0.0f));
@@ -135,17 +140,20 @@ TEST(LiquidPreparation, SingleNeighbour) {
   expectWellFormed(split);
   ASSERT_EQ(split.splashes.size(), 2u);
   EXPECT_TRUE(split.aggregates.empty());
-  for (const EllipsoidInstance& splash : split.splashes) expectSphere(splash, kRadius);
+  for (const EllipsoidInstance& splash : split.splashes)
+    expectSphere(splash, kRadius);
 
   // Too few neighbours for a covariance: Yu and Turk's isotropic k_n r.
   const LiquidPreparation merged = prepareLiquid(particles, testCamera(), layers("merged"));
   ASSERT_EQ(merged.aggregates.size(), 2u);
-  for (const EllipsoidInstance& aggregate : merged.aggregates) expectSphere(aggregate, 0.5f * kRadius);
+  for (const EllipsoidInstance& aggregate : merged.aggregates)
+    expectSphere(aggregate, 0.5f * kRadius);
 }
 
 TEST(LiquidPreparation, CoincidentParticles) {
   Particles particles;
-  for (int i = 0; i < 40; ++i) addLiquid(particles, {0.1f, 0.2f, 0.3f});
+  for (int i = 0; i < 40; ++i)
+    addLiquid(particles, {0.1f, 0.2f, 0.3f});
   for (const char* mode : {"split", "merged"}) {
     const LiquidPreparation preparation = prepareLiquid(particles, testCamera(), layers(mode));
     expectWellFormed(preparation);
@@ -183,7 +191,8 @@ TEST(LiquidPreparation, InteriorOfABlockIsAggregateAndIsotropic) {
   std::size_t spheresOfRadiusR = 0;
   for (const EllipsoidInstance& aggregate : preparation.aggregates) {
     const Axes axes = axesOf(aggregate);
-    spheresOfRadiusR += std::abs(axes.semiAxes.x - kRadius) < 1e-6f && std::abs(axes.semiAxes.y - kRadius) < 1e-6f &&
+    spheresOfRadiusR += std::abs(axes.semiAxes.x - kRadius) < 1e-6f &&
+                        std::abs(axes.semiAxes.y - kRadius) < 1e-6f &&
                         std::abs(axes.semiAxes.z - kRadius) < 1e-6f;
   }
   EXPECT_EQ(spheresOfRadiusR, preparation.isotropicInterior);
@@ -212,7 +221,8 @@ TEST(LiquidPreparation, BoundedByMaxEllipsoidScale) {
     // Stretched Gaussian blobs, from a few radii to needles and pancakes.
     const glm::vec3 stretch = glm::vec3(uniform(random), uniform(random), uniform(random)) * 4.0f + 0.01f;
     for (int i = 0; i < count; ++i)
-      addLiquid(particles, glm::vec3(gaussian(random), gaussian(random), gaussian(random)) * stretch * kRadius);
+      addLiquid(particles,
+                glm::vec3(gaussian(random), gaussian(random), gaussian(random)) * stretch * kRadius);
     for (const char* mode : {"split", "merged"}) {
       const LiquidPreparation preparation = prepareLiquid(particles, testCamera(), layers(mode));
       expectWellFormed(preparation);
@@ -226,8 +236,8 @@ TEST(LiquidPreparation, BoundedByMaxEllipsoidScale) {
           for (int other = 0; other < k; ++other)
             EXPECT_NEAR(glm::dot(axes.directions[k], axes.directions[other]), 0.0f, 1e-4f);
         }
-        EXPECT_NEAR(aggregate.centreAndBoundingRadius.w, std::max({axes.semiAxes.x, axes.semiAxes.y, axes.semiAxes.z}),
-                    1e-5f * kRadius);
+        EXPECT_NEAR(aggregate.centreAndBoundingRadius.w,
+                    std::max({axes.semiAxes.x, axes.semiAxes.y, axes.semiAxes.z}), 1e-5f * kRadius);
       }
     }
   }
@@ -244,8 +254,8 @@ TEST(LiquidPreparation, InverseAxesMapTheEllipsoidToTheUnitSphere) {
   std::normal_distribution<float> gaussian;
   for (int sample = 0; sample < 100; ++sample) {
     const glm::vec3 unit = glm::normalize(glm::vec3(gaussian(random), gaussian(random), gaussian(random)));
-    const glm::vec3 onEllipsoid =
-        centre + unit.x * semiAxes.x * axes[0] + unit.y * semiAxes.y * axes[1] + unit.z * semiAxes.z * axes[2];
+    const glm::vec3 onEllipsoid = centre + unit.x * semiAxes.x * axes[0] + unit.y * semiAxes.y * axes[1] +
+                                  unit.z * semiAxes.z * axes[2];
     const glm::vec3 offset = onEllipsoid - centre;
     const glm::vec3 mapped(glm::dot(glm::vec3(instance.inverseAxesRows[0]), offset),
                            glm::dot(glm::vec3(instance.inverseAxesRows[1]), offset),
@@ -258,12 +268,12 @@ TEST(LiquidPreparation, ParticlesBehindTheCameraAndStraddlingTheNearPlane) {
   Camera camera = Camera::lookAt(64, 64, 60.0f, {0, 0, 0}, {0, 1, 0}, {0, 0, 1});
   camera.nearClip = 0.1f;
   Particles particles;
-  addLiquid(particles, {0, -5, 0});                    // Behind the camera.
+  addLiquid(particles, {0, -5, 0});                     // Behind the camera.
   addLiquid(particles, {0, 0.1f + 0.5f * kRadius, 0});  // Straddles the near plane.
   addLiquid(particles, {0, 0.1f - 0.5f * kRadius, 0});  // Its centre is in front of the near plane.
-  addLiquid(particles, {0, 5, 0});                     // In view.
-  addLiquid(particles, {50, 5, 0});                    // Beside the frustum.
-  addLiquid(particles, {0, 2000, 0});                  // Beyond the far plane.
+  addLiquid(particles, {0, 5, 0});                      // In view.
+  addLiquid(particles, {50, 5, 0});                     // Beside the frustum.
+  addLiquid(particles, {0, 2000, 0});                   // Beyond the far plane.
   const LiquidPreparation preparation = prepareLiquid(particles, camera, layers("merged"));
   expectWellFormed(preparation);
   EXPECT_EQ(preparation.aggregates.size(), 3u);
@@ -271,8 +281,8 @@ TEST(LiquidPreparation, ParticlesBehindTheCameraAndStraddlingTheNearPlane) {
 }
 
 TEST(LiquidPreparation, OffScreenNeighboursShapeVisibleParticles) {
-  // A block straddling the right edge of the view: a visible particle at the edge has neighbours on both sides,
-  // so the particles at the edge are interior, not a surface.
+  // A block straddling the right edge of the view: a visible particle at the edge has neighbours on both
+  // sides, so the particles at the edge are interior, not a surface.
   const Camera camera = testCamera();
   const float edgeX = 10.0f * std::tan(glm::radians(30.0f));
   Particles particles;
@@ -311,7 +321,8 @@ TEST(LiquidPreparation, EmptyInput) {
 TEST(LiquidPreparation, MergedLayersPutEverythingInAggregates) {
   Particles particles;
   addBlock(particles, {0, 0, 0}, 12, 0.9f, 0.1f);
-  for (int i = 0; i < 10; ++i) addLiquid(particles, {float(i) * 4.0f * kRadius, 0, 30.0f * kRadius});
+  for (int i = 0; i < 10; ++i)
+    addLiquid(particles, {float(i) * 4.0f * kRadius, 0, 30.0f * kRadius});
   const LiquidPreparation split = prepareLiquid(particles, testCamera(), layers("split"));
   const LiquidPreparation merged = prepareLiquid(particles, testCamera(), layers("merged"));
   expectWellFormed(split);

@@ -3,10 +3,10 @@
 #include <algorithm>
 #include <cmath>
 
-#include <glm/geometric.hpp>
 #include <openvdb/math/Mat3.h>
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
+#include <glm/geometric.hpp>
 
 namespace spindrift {
 namespace {
@@ -14,7 +14,8 @@ namespace {
 // The interior test (see docs/liquid.md, "Particle preparation"). A particle whose neighbours' weighted mean
 // lies within 0.1 R of it, whose covariance is within 25% of isotropic and fills at least half of a full
 // neighbourhood's spread has neighbours on every side for at least R: its ellipsoid would be a near-sphere
-// of about r hidden behind the surface particles, so it is drawn as that sphere without an eigen-decomposition.
+// of about r hidden behind the surface particles, so it is drawn as that sphere without an
+// eigen-decomposition.
 constexpr float kInteriorMaxOffset = 0.1f;
 constexpr float kInteriorMaxAnisotropy = 0.25f;
 constexpr float kInteriorMinSpread = 0.5f * kRestCovariance;
@@ -35,50 +36,81 @@ bool isInterior(const glm::vec3& meanOffset, const float covariance[3][3]) {
   return true;
 }
 
+// The hot loop of the preparation. It is branch-free (particles outside R get weight 0) and its sums are
+// declared reductions, so the compiler vectorises it without -ffast-math (-fopenmp-simd, no OpenMP runtime).
 NeighbourMoments accumulateMoments(const ParticleCloud& cloud, std::uint32_t particle, float inverseRadius,
                                    const IndexRange* ranges, int rangeCount) {
   const float px = cloud.x[particle], py = cloud.y[particle], pz = cloud.z[particle];
-  NeighbourMoments sums;
+  const float* xs = cloud.x.data();
+  const float* ys = cloud.y.data();
+  const float* zs = cloud.z.data();
+  float weightSum = 0, mx = 0, my = 0, mz = 0, xx = 0, xy = 0, xz = 0, yy = 0, yz = 0, zz = 0, kernelSum = 0;
   int count = 0;
   for (int r = 0; r < rangeCount; ++r) {
-    for (std::uint32_t j = ranges[r].begin; j < ranges[r].end; ++j) {
-      const float qx = (cloud.x[j] - px) * inverseRadius;
-      const float qy = (cloud.y[j] - py) * inverseRadius;
-      const float qz = (cloud.z[j] - pz) * inverseRadius;
+    // Contiguous loads need a pointer and a signed count: a 32-bit unsigned index may wrap, which makes the
+    // vectoriser gather each element.
+    const float* rangeX = xs + ranges[r].begin;
+    const float* rangeY = ys + ranges[r].begin;
+    const float* rangeZ = zs + ranges[r].begin;
+    const int length = int(ranges[r].end - ranges[r].begin);
+#pragma omp simd reduction(+ : weightSum, mx, my, mz, xx, xy, xz, yy, yz, zz, kernelSum, count)
+    for (int j = 0; j < length; ++j) {
+      const float qx = (rangeX[j] - px) * inverseRadius;
+      const float qy = (rangeY[j] - py) * inverseRadius;
+      const float qz = (rangeZ[j] - pz) * inverseRadius;
       const float q2 = qx * qx + qy * qy + qz * qz;
-      if (q2 >= 1.0f) continue;
-      const float weight = 1.0f - q2 * std::sqrt(q2);
-      sums.weightSum += weight;
-      sums.weightedOffset += weight * glm::vec3(qx, qy, qz);
-      sums.xx += weight * qx * qx;
-      sums.xy += weight * qx * qy;
-      sums.xz += weight * qx * qz;
-      sums.yy += weight * qy * qy;
-      sums.yz += weight * qy * qz;
-      sums.zz += weight * qz * qz;
-      const float falloff = 1.0f - q2;
-      sums.isotropicKernelSum += falloff * falloff * falloff;
-      ++count;
+      const bool inside = q2 < 1.0f;
+      const float weight = inside ? 1.0f - q2 * std::sqrt(q2) : 0.0f;
+      const float falloff = inside ? 1.0f - q2 : 0.0f;
+      weightSum += weight;
+      mx += weight * qx;
+      my += weight * qy;
+      mz += weight * qz;
+      xx += weight * qx * qx;
+      xy += weight * qx * qy;
+      xz += weight * qx * qz;
+      yy += weight * qy * qy;
+      yz += weight * qy * qz;
+      zz += weight * qz * qz;
+      kernelSum += falloff * falloff * falloff;
+      count += inside;
     }
   }
+  NeighbourMoments sums;
+  sums.weightSum = weightSum;
+  sums.weightedOffset = glm::vec3(mx, my, mz);
+  sums.xx = xx, sums.xy = xy, sums.xz = xz, sums.yy = yy, sums.yz = yz, sums.zz = zz;
+  sums.isotropicKernelSum = kernelSum;
   sums.neighbourCount = std::max(count - 1, 0);
   return sums;
 }
 
-// sum_j P(|G (x_j - x_i)|) for the anisotropic kernel G = diag(1 / kernel semi-axes) R^T.
+// sum_j P(|G (x_j - x_i)|) for the anisotropic kernel G = diag(1 / kernel semi-axes) R^T; vectorised like
+// accumulateMoments. The kernel's support lies inside the searched neighbourhood, so no distance test is
+// needed.
 float anisotropicKernelSum(const ParticleCloud& cloud, std::uint32_t particle, const ParticleShape& shape,
-                           float squaredSearchRadius, const IndexRange* ranges, int rangeCount) {
-  const glm::vec3 position(cloud.x[particle], cloud.y[particle], cloud.z[particle]);
-  const glm::vec3 rows[3] = {shape.axes[0] / shape.kernelSemiAxes[0], shape.axes[1] / shape.kernelSemiAxes[1],
-                             shape.axes[2] / shape.kernelSemiAxes[2]};
+                           const IndexRange* ranges, int rangeCount) {
+  const float px = cloud.x[particle], py = cloud.y[particle], pz = cloud.z[particle];
+  const glm::vec3 a = shape.axes[0] / shape.kernelSemiAxes[0];
+  const glm::vec3 b = shape.axes[1] / shape.kernelSemiAxes[1];
+  const glm::vec3 c = shape.axes[2] / shape.kernelSemiAxes[2];
+  const float* xs = cloud.x.data();
+  const float* ys = cloud.y.data();
+  const float* zs = cloud.z.data();
   float sum = 0.0f;
   for (int r = 0; r < rangeCount; ++r) {
-    for (std::uint32_t j = ranges[r].begin; j < ranges[r].end; ++j) {
-      const glm::vec3 offset = glm::vec3(cloud.x[j], cloud.y[j], cloud.z[j]) - position;
-      if (glm::dot(offset, offset) >= squaredSearchRadius) continue;
-      const glm::vec3 mapped(glm::dot(rows[0], offset), glm::dot(rows[1], offset), glm::dot(rows[2], offset));
-      const float falloff = 1.0f - glm::dot(mapped, mapped);
-      if (falloff > 0.0f) sum += falloff * falloff * falloff;
+    const float* rangeX = xs + ranges[r].begin;
+    const float* rangeY = ys + ranges[r].begin;
+    const float* rangeZ = zs + ranges[r].begin;
+    const int length = int(ranges[r].end - ranges[r].begin);
+#pragma omp simd reduction(+ : sum)
+    for (int j = 0; j < length; ++j) {
+      const float dx = rangeX[j] - px, dy = rangeY[j] - py, dz = rangeZ[j] - pz;
+      const float u = a.x * dx + a.y * dy + a.z * dz;
+      const float v = b.x * dx + b.y * dy + b.z * dz;
+      const float w = c.x * dx + c.y * dy + c.z * dz;
+      const float falloff = std::max(0.0f, 1.0f - (u * u + v * v + w * w));
+      sum += falloff * falloff * falloff;
     }
   }
   return sum;
@@ -98,7 +130,8 @@ AnisotropySettings AnisotropySettings::fromParameters(const LiquidParameters& pa
   return settings;
 }
 
-ParticleShape shapeFromMoments(const NeighbourMoments& moments, float radius, const AnisotropySettings& settings) {
+ParticleShape shapeFromMoments(const NeighbourMoments& moments, float radius,
+                               const AnisotropySettings& settings) {
   const float neighbourhood = settings.neighbourRadius * radius;
   ParticleShape shape;
   shape.semiAxes = glm::vec3(settings.isotropicScale * radius);
@@ -125,7 +158,8 @@ ParticleShape shapeFromMoments(const NeighbourMoments& moments, float radius, co
   openvdb::math::Vec3d eigenvalues;
   const bool converged = openvdb::math::diagonalizeSymmetricMatrix(matrix, eigenvectors, eigenvalues);
   double largest = 0.0;
-  for (int k = 0; k < 3; ++k) largest = std::max(largest, eigenvalues[k]);
+  for (int k = 0; k < 3; ++k)
+    largest = std::max(largest, eigenvalues[k]);
   if (!converged || !(largest > kDegenerateCovariance) || !std::isfinite(largest)) return shape;
 
   // Yu and Turk's clamp: no eigenvalue below the largest / k_r. Semi-axes are the clamped eigenvalues
@@ -146,11 +180,13 @@ ParticleShape shapeFromMoments(const NeighbourMoments& moments, float radius, co
   return shape;
 }
 
-EllipsoidInstance ellipsoidInstance(const glm::vec3& centre, const glm::vec3 axes[3], const glm::vec3& semiAxes) {
+EllipsoidInstance ellipsoidInstance(const glm::vec3& centre, const glm::vec3 axes[3],
+                                    const glm::vec3& semiAxes) {
   EllipsoidInstance instance;
   const float boundingRadius = std::max(semiAxes.x, std::max(semiAxes.y, semiAxes.z));
   instance.centreAndBoundingRadius = glm::vec4(centre, boundingRadius);
-  for (int k = 0; k < 3; ++k) instance.inverseAxesRows[k] = glm::vec4(axes[k] / semiAxes[k], 0.0f);
+  for (int k = 0; k < 3; ++k)
+    instance.inverseAxesRows[k] = glm::vec4(axes[k] / semiAxes[k], 0.0f);
   return instance;
 }
 
@@ -167,35 +203,36 @@ ParticleShapes shapeParticles(const NeighbourGrid& grid, const AnisotropySetting
   shapes.densities.assign(cloud.size(), 0.0f);
   const float radiusCubed = settings.neighbourRadius * settings.neighbourRadius * settings.neighbourRadius;
 
-  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, grid.cellCount(), 8),
-                    [&](const tbb::blocked_range<std::size_t>& cells) {
-    IndexRange ranges[9];
-    for (std::size_t cell = cells.begin(); cell != cells.end(); ++cell) {
-      const IndexRange members = grid.cellParticles(cell);
-      int rangeCount = -1;  // Looked up on the first visible particle of the cell.
-      for (std::uint32_t i = members.begin; i < members.end; ++i) {
-        if (!cloud.visible[i]) continue;
-        if (rangeCount < 0) rangeCount = grid.neighbourRanges(cell, ranges);
-        const float radius = cloud.radius[i];
-        const float neighbourhood = settings.neighbourRadius * radius;
-        const NeighbourMoments moments = accumulateMoments(cloud, i, 1.0f / neighbourhood, ranges, rangeCount);
-        const ParticleShape shape = shapeFromMoments(moments, radius, settings);
-        const glm::vec3 centre = glm::vec3(cloud.x[i], cloud.y[i], cloud.z[i]) + shape.centreOffset;
-        shapes.kinds[i] = shape.kind;
-        shapes.instances[i] = ellipsoidInstance(centre, shape.axes, shape.semiAxes);
-        if (!settings.needDensity) continue;
-        // Unit-free density: the kernel's normalisation over its support volume, times r^3.
-        if (shape.kind == ShapeKind::Anisotropic) {
-          const glm::vec3 support = shape.kernelSemiAxes / radius;
-          const float sum =
-              anisotropicKernelSum(cloud, i, shape, neighbourhood * neighbourhood, ranges, rangeCount);
-          shapes.densities[i] = kKernelNormalisation * sum / (support.x * support.y * support.z);
-        } else {
-          shapes.densities[i] = kKernelNormalisation * moments.isotropicKernelSum / radiusCubed;
+  tbb::parallel_for(
+      tbb::blocked_range<std::size_t>(0, grid.cellCount(), 8),
+      [&](const tbb::blocked_range<std::size_t>& cells) {
+        IndexRange ranges[9];
+        for (std::size_t cell = cells.begin(); cell != cells.end(); ++cell) {
+          const IndexRange members = grid.cellParticles(cell);
+          int rangeCount = -1;  // Looked up on the first visible particle of the cell.
+          for (std::uint32_t i = members.begin; i < members.end; ++i) {
+            if (!cloud.visible[i]) continue;
+            if (rangeCount < 0) rangeCount = grid.neighbourRanges(cell, ranges);
+            const float radius = cloud.radius[i];
+            const float neighbourhood = settings.neighbourRadius * radius;
+            const NeighbourMoments moments =
+                accumulateMoments(cloud, i, 1.0f / neighbourhood, ranges, rangeCount);
+            const ParticleShape shape = shapeFromMoments(moments, radius, settings);
+            const glm::vec3 centre = glm::vec3(cloud.x[i], cloud.y[i], cloud.z[i]) + shape.centreOffset;
+            shapes.kinds[i] = shape.kind;
+            shapes.instances[i] = ellipsoidInstance(centre, shape.axes, shape.semiAxes);
+            if (!settings.needDensity) continue;
+            // Unit-free density: the kernel's normalisation over its support volume, times r^3.
+            if (shape.kind == ShapeKind::Anisotropic) {
+              const glm::vec3 support = shape.kernelSemiAxes / radius;
+              const float sum = anisotropicKernelSum(cloud, i, shape, ranges, rangeCount);
+              shapes.densities[i] = kKernelNormalisation * sum / (support.x * support.y * support.z);
+            } else {
+              shapes.densities[i] = kKernelNormalisation * moments.isotropicKernelSum / radiusCubed;
+            }
+          }
         }
-      }
-    }
-  });
+      });
   return shapes;
 }
 

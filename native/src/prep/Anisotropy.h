@@ -27,11 +27,11 @@ struct AnisotropySettings {
 /// Weighted sums over a particle's neighbours within R (the particle itself included), with offsets
 /// q = (x_j - x_i) / R and Yu and Turk's weight w = 1 - |q|^3.
 struct NeighbourMoments {
-  float weightSum = 0.0f;                       ///< sum w
-  glm::vec3 weightedOffset{0.0f};               ///< sum w q
+  float weightSum = 0.0f;                                ///< sum w
+  glm::vec3 weightedOffset{0.0f};                        ///< sum w q
   float xx = 0, xy = 0, xz = 0, yy = 0, yz = 0, zz = 0;  ///< sum w q q^T
-  float isotropicKernelSum = 0.0f;              ///< sum P(|q|), for the density with the ball of radius R
-  int neighbourCount = 0;                       ///< Not counting the particle itself.
+  float isotropicKernelSum = 0.0f;  ///< sum P(|q|), for the density with the ball of radius R
+  int neighbourCount = 0;           ///< Not counting the particle itself.
 };
 
 enum class ShapeKind : std::uint8_t {
@@ -46,7 +46,7 @@ struct ParticleShape {
   ShapeKind kind = ShapeKind::UnderSampled;
   glm::vec3 centreOffset{0.0f};  ///< From the particle to the drawn centre (lambda times the weighted mean).
   glm::vec3 axes[3] = {{1, 0, 0}, {0, 1, 0}, {0, 0, 1}};  ///< Unit principal directions.
-  glm::vec3 semiAxes{1.0f};                                ///< Drawn semi-axes, world units.
+  glm::vec3 semiAxes{1.0f};                               ///< Drawn semi-axes, world units.
   glm::vec3 kernelSemiAxes{1.0f};  ///< Semi-axes of the density kernel's support, world units.
 };
 
@@ -58,12 +58,14 @@ constexpr float kKernelNormalisation = 315.0f / (64.0f * 3.14159265358979f);
 /// = (1/3) (3 R^5 / 40) / (R^3 / 6) = 0.15 R^2. A particle with this covariance gets semi-axes of r.
 constexpr float kRestCovariance = 0.15f;
 
-ParticleShape shapeFromMoments(const NeighbourMoments& moments, float radius, const AnisotropySettings& settings);
+ParticleShape shapeFromMoments(const NeighbourMoments& moments, float radius,
+                               const AnisotropySettings& settings);
 
 /// The ellipsoid instance of a shape: the inverse of the axes matrix (rotation times diag(semi-axes)) is
 /// diag(1 / semi-axes) times the transposed rotation, so its rows are the principal directions divided by
 /// their semi-axes.
-EllipsoidInstance ellipsoidInstance(const glm::vec3& centre, const glm::vec3 axes[3], const glm::vec3& semiAxes);
+EllipsoidInstance ellipsoidInstance(const glm::vec3& centre, const glm::vec3 axes[3],
+                                    const glm::vec3& semiAxes);
 EllipsoidInstance sphereInstance(const glm::vec3& centre, float radius);
 
 /// The shapes and densities of the visible particles of a grid, indexed like grid.particles().

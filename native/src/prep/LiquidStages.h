@@ -27,7 +27,7 @@ constexpr std::size_t kMinInteriorForRestDensity = 64;
 
 /// Splits the shaped particles into splashes (density below liquid.splash_density_threshold times the rest
 /// density; spheres of radius r at the particle) and aggregates, filling those fields of `preparation`.
-void classifyAndPack(const NeighbourGrid& grid, const ParticleShapes& shapes, const LiquidParameters& parameters,
-                     LiquidPreparation& preparation);
+void classifyAndPack(const NeighbourGrid& grid, const ParticleShapes& shapes,
+                     const LiquidParameters& parameters, LiquidPreparation& preparation);
 
 }  // namespace spindrift

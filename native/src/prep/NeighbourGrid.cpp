@@ -16,15 +16,20 @@ namespace {
 // Sorts particle indices by key with an LSD radix sort over the bits the keys use (two or three byte passes
 // for a typical frame): linear time, and the single-threaded passes cost less than a comparison sort on two
 // cores.
-std::vector<std::uint32_t> indicesSortedByKey(const std::vector<std::uint64_t>& keys, std::uint64_t maximumKey) {
+std::vector<std::uint32_t> indicesSortedByKey(const std::vector<std::uint64_t>& keys,
+                                              std::uint64_t maximumKey) {
   const std::size_t count = keys.size();
   std::vector<std::uint32_t> order(count), scratch(count);
-  for (std::size_t i = 0; i < count; ++i) order[i] = std::uint32_t(i);
+  for (std::size_t i = 0; i < count; ++i)
+    order[i] = std::uint32_t(i);
   for (int shift = 0; shift < 64 && (maximumKey >> shift) != 0; shift += 8) {
     std::array<std::size_t, 257> offsets{};
-    for (std::uint32_t index : order) ++offsets[((keys[index] >> shift) & 0xffu) + 1];
-    for (int digit = 0; digit < 256; ++digit) offsets[digit + 1] += offsets[digit];
-    for (std::uint32_t index : order) scratch[offsets[(keys[index] >> shift) & 0xffu]++] = index;
+    for (std::uint32_t index : order)
+      ++offsets[((keys[index] >> shift) & 0xffu) + 1];
+    for (int digit = 0; digit < 256; ++digit)
+      offsets[digit + 1] += offsets[digit];
+    for (std::uint32_t index : order)
+      scratch[offsets[(keys[index] >> shift) & 0xffu]++] = index;
     order.swap(scratch);
   }
   return order;
@@ -79,28 +84,30 @@ NeighbourGrid::NeighbourGrid(ParticleCloud particles, float minimumCellSize) : c
 
   std::vector<std::uint64_t> keys(count);
   const float inverseCellSize = 1.0f / cellSize_;
-  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, count), [&](const tbb::blocked_range<std::size_t>& block) {
-    for (std::size_t i = block.begin(); i != block.end(); ++i) {
-      const auto cellIndex = [&](float value, int axis) {
-        return std::uint64_t((value - lower[axis]) * inverseCellSize) + 1;
-      };
-      keys[i] = (cellIndex(particles.x[i], 0) * cellsY_ + cellIndex(particles.y[i], 1)) * cellsZ_ +
-                cellIndex(particles.z[i], 2);
-    }
-  });
+  tbb::parallel_for(
+      tbb::blocked_range<std::size_t>(0, count), [&](const tbb::blocked_range<std::size_t>& block) {
+        for (std::size_t i = block.begin(); i != block.end(); ++i) {
+          const auto cellIndex = [&](float value, int axis) {
+            return std::uint64_t((value - lower[axis]) * inverseCellSize) + 1;
+          };
+          keys[i] = (cellIndex(particles.x[i], 0) * cellsY_ + cellIndex(particles.y[i], 1)) * cellsZ_ +
+                    cellIndex(particles.z[i], 2);
+        }
+      });
   const std::vector<std::uint32_t> order = indicesSortedByKey(keys, cells[0] * cellsY_ * cellsZ_);
 
   particles_.resize(count);
-  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, count), [&](const tbb::blocked_range<std::size_t>& block) {
-    for (std::size_t i = block.begin(); i != block.end(); ++i) {
-      const std::uint32_t source = order[i];
-      particles_.x[i] = particles.x[source];
-      particles_.y[i] = particles.y[source];
-      particles_.z[i] = particles.z[source];
-      particles_.radius[i] = particles.radius[source];
-      particles_.visible[i] = particles.visible[source];
-    }
-  });
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, count),
+                    [&](const tbb::blocked_range<std::size_t>& block) {
+                      for (std::size_t i = block.begin(); i != block.end(); ++i) {
+                        const std::uint32_t source = order[i];
+                        particles_.x[i] = particles.x[source];
+                        particles_.y[i] = particles.y[source];
+                        particles_.z[i] = particles.z[source];
+                        particles_.radius[i] = particles.radius[source];
+                        particles_.visible[i] = particles.visible[source];
+                      }
+                    });
 
   cellBegin_.clear();
   for (std::size_t i = 0; i < count; ++i) {
@@ -120,7 +127,8 @@ int NeighbourGrid::neighbourRanges(std::size_t cell, IndexRange ranges[9]) const
   int found = 0;
   for (int dx = -1; dx <= 1; ++dx) {
     for (int dy = -1; dy <= 1; ++dy) {
-      const std::uint64_t neighbourColumn = column + std::uint64_t(std::int64_t(dx) * std::int64_t(cellsY_) + dy);
+      const std::uint64_t neighbourColumn =
+          column + std::uint64_t(std::int64_t(dx) * std::int64_t(cellsY_) + dy);
       const std::uint64_t lowKey = neighbourColumn * cellsZ_ + iz - 1;
       const std::uint64_t highKey = lowKey + 2;
       const auto first = std::lower_bound(cellKeys_.begin(), cellKeys_.end(), lowKey);

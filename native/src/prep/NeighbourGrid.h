@@ -34,9 +34,7 @@ class NeighbourGrid {
   const ParticleCloud& particles() const { return particles_; }
   float cellSize() const { return cellSize_; }
   std::size_t cellCount() const { return cellKeys_.size(); }
-  IndexRange cellParticles(std::size_t cell) const {
-    return {cellBegin_[cell], cellBegin_[cell + 1]};
-  }
+  IndexRange cellParticles(std::size_t cell) const { return {cellBegin_[cell], cellBegin_[cell + 1]}; }
   /// The non-empty particle ranges of the 3x3 columns of three cells centred on `cell`; returns how many
   /// (at most 9) were written to `ranges`.
   int neighbourRanges(std::size_t cell, IndexRange ranges[9]) const;
@@ -48,8 +46,8 @@ class NeighbourGrid {
   // of the bounding box so that the neighbours of an occupied cell never wrap around.
   std::uint64_t cellsY_ = 1;
   std::uint64_t cellsZ_ = 1;
-  std::vector<std::uint64_t> cellKeys_;     // Occupied cells, ascending.
-  std::vector<std::uint32_t> cellBegin_;    // First particle of each occupied cell; one extra entry at the end.
+  std::vector<std::uint64_t> cellKeys_;   // Occupied cells, ascending.
+  std::vector<std::uint32_t> cellBegin_;  // First particle of each occupied cell; one extra entry at the end.
 };
 
 }  // namespace spindrift

@@ -21,7 +21,8 @@ ViewFrustum::ViewFrustum(const Camera& camera)
 bool ViewFrustum::reachedBySphere(const glm::vec3& cameraCentre, float radius) const {
   const float eyeDepth = -cameraCentre.z;
   bool reached = eyeDepth + radius >= nearClip_ && eyeDepth - radius <= farClip_;
-  for (const glm::vec3& plane : sidePlanes_) reached = reached && glm::dot(plane, cameraCentre) >= -radius;
+  for (const glm::vec3& plane : sidePlanes_)
+    reached = reached && glm::dot(plane, cameraCentre) >= -radius;
   return reached;
 }
 

@@ -13,9 +13,12 @@ VisibleSpheres visibleSpheres(const Particles& particles, ParticleKind kind, con
     if (particles.kinds[i] != kind) continue;
     const float radius = particles.radii[i];
     const glm::vec3 centre = frustum.cameraFromWorld(particles.positions[i]);
-    const bool visible = frustum.reachedBySphere(centre, radius) && glm::dot(centre, centre) > radius * radius;
-    if (visible) result.spheres.emplace_back(particles.positions[i], radius);
-    else ++result.culled;
+    const bool visible =
+        frustum.reachedBySphere(centre, radius) && glm::dot(centre, centre) > radius * radius;
+    if (visible)
+      result.spheres.emplace_back(particles.positions[i], radius);
+    else
+      ++result.culled;
   }
   return result;
 }
