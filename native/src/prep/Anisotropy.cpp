@@ -1,0 +1,239 @@
+#include "prep/Anisotropy.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include <openvdb/math/Mat3.h>
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+#include <glm/geometric.hpp>
+
+namespace spindrift {
+namespace {
+
+// The interior test (see docs/liquid.md, "Particle preparation"). A particle whose neighbours' weighted mean
+// lies within 0.1 R of it, whose covariance is within 25% of isotropic and fills at least half of a full
+// neighbourhood's spread has neighbours on every side for at least R: its ellipsoid would be a near-sphere
+// of about r hidden behind the surface particles, so it is drawn as that sphere without an
+// eigen-decomposition.
+constexpr float kInteriorMaxOffset = 0.1f;
+constexpr float kInteriorMaxAnisotropy = 0.25f;
+constexpr float kInteriorMinSpread = 0.5f * kRestCovariance;
+// Below this largest eigenvalue (in R^2) the neighbours all but coincide and have no principal directions.
+constexpr float kDegenerateCovariance = 1e-6f;
+
+bool isInterior(const glm::vec3& meanOffset, const float covariance[3][3]) {
+  if (glm::dot(meanOffset, meanOffset) > kInteriorMaxOffset * kInteriorMaxOffset) return false;
+  const float average = (covariance[0][0] + covariance[1][1] + covariance[2][2]) / 3.0f;
+  if (!(average >= kInteriorMinSpread)) return false;
+  // Gershgorin: every eigenvalue lies within one of these discs, so all lie within 25% of the average.
+  for (int row = 0; row < 3; ++row) {
+    float discRadius = std::abs(covariance[row][row] - average);
+    for (int column = 0; column < 3; ++column)
+      if (column != row) discRadius += std::abs(covariance[row][column]);
+    if (discRadius > kInteriorMaxAnisotropy * average) return false;
+  }
+  return true;
+}
+
+// The hot loop of the preparation. It is branch-free (particles outside R get weight 0) and its sums are
+// declared reductions, so the compiler vectorises it without -ffast-math (-fopenmp-simd, no OpenMP runtime).
+NeighbourMoments accumulateMoments(const ParticleCloud& cloud, std::uint32_t particle, float inverseRadius,
+                                   const IndexRange* ranges, int rangeCount) {
+  const float px = cloud.x[particle], py = cloud.y[particle], pz = cloud.z[particle];
+  const float* xs = cloud.x.data();
+  const float* ys = cloud.y.data();
+  const float* zs = cloud.z.data();
+  float weightSum = 0, mx = 0, my = 0, mz = 0, xx = 0, xy = 0, xz = 0, yy = 0, yz = 0, zz = 0, kernelSum = 0;
+  int count = 0;
+  for (int r = 0; r < rangeCount; ++r) {
+    // Contiguous loads need a pointer and a signed count: a 32-bit unsigned index may wrap, which makes the
+    // vectoriser gather each element.
+    const float* rangeX = xs + ranges[r].begin;
+    const float* rangeY = ys + ranges[r].begin;
+    const float* rangeZ = zs + ranges[r].begin;
+    const int length = int(ranges[r].end - ranges[r].begin);
+#pragma omp simd reduction(+ : weightSum, mx, my, mz, xx, xy, xz, yy, yz, zz, kernelSum, count)
+    for (int j = 0; j < length; ++j) {
+      const float qx = (rangeX[j] - px) * inverseRadius;
+      const float qy = (rangeY[j] - py) * inverseRadius;
+      const float qz = (rangeZ[j] - pz) * inverseRadius;
+      const float q2 = qx * qx + qy * qy + qz * qz;
+      const bool inside = q2 < 1.0f;
+      const float weight = inside ? 1.0f - q2 * std::sqrt(q2) : 0.0f;
+      const float falloff = inside ? 1.0f - q2 : 0.0f;
+      weightSum += weight;
+      mx += weight * qx;
+      my += weight * qy;
+      mz += weight * qz;
+      xx += weight * qx * qx;
+      xy += weight * qx * qy;
+      xz += weight * qx * qz;
+      yy += weight * qy * qy;
+      yz += weight * qy * qz;
+      zz += weight * qz * qz;
+      kernelSum += falloff * falloff * falloff;
+      count += inside;
+    }
+  }
+  NeighbourMoments sums;
+  sums.weightSum = weightSum;
+  sums.weightedOffset = glm::vec3(mx, my, mz);
+  sums.xx = xx, sums.xy = xy, sums.xz = xz, sums.yy = yy, sums.yz = yz, sums.zz = zz;
+  sums.isotropicKernelSum = kernelSum;
+  sums.neighbourCount = std::max(count - 1, 0);
+  return sums;
+}
+
+// sum_j P(|G (x_j - x_i)|) for the anisotropic kernel G = diag(1 / kernel semi-axes) R^T; vectorised like
+// accumulateMoments. The kernel's support lies inside the searched neighbourhood, so no distance test is
+// needed.
+float anisotropicKernelSum(const ParticleCloud& cloud, std::uint32_t particle, const ParticleShape& shape,
+                           const IndexRange* ranges, int rangeCount) {
+  const float px = cloud.x[particle], py = cloud.y[particle], pz = cloud.z[particle];
+  const glm::vec3 a = shape.axes[0] / shape.kernelSemiAxes[0];
+  const glm::vec3 b = shape.axes[1] / shape.kernelSemiAxes[1];
+  const glm::vec3 c = shape.axes[2] / shape.kernelSemiAxes[2];
+  const float* xs = cloud.x.data();
+  const float* ys = cloud.y.data();
+  const float* zs = cloud.z.data();
+  float sum = 0.0f;
+  for (int r = 0; r < rangeCount; ++r) {
+    const float* rangeX = xs + ranges[r].begin;
+    const float* rangeY = ys + ranges[r].begin;
+    const float* rangeZ = zs + ranges[r].begin;
+    const int length = int(ranges[r].end - ranges[r].begin);
+#pragma omp simd reduction(+ : sum)
+    for (int j = 0; j < length; ++j) {
+      const float dx = rangeX[j] - px, dy = rangeY[j] - py, dz = rangeZ[j] - pz;
+      const float u = a.x * dx + a.y * dy + a.z * dz;
+      const float v = b.x * dx + b.y * dy + b.z * dz;
+      const float w = c.x * dx + c.y * dy + c.z * dz;
+      const float falloff = std::max(0.0f, 1.0f - (u * u + v * v + w * w));
+      sum += falloff * falloff * falloff;
+    }
+  }
+  return sum;
+}
+
+}  // namespace
+
+AnisotropySettings AnisotropySettings::fromParameters(const LiquidParameters& parameters) {
+  AnisotropySettings settings;
+  settings.neighbourRadius = parameters.neighbour_radius;
+  settings.maxRatio = parameters.anisotropy_max_ratio;
+  settings.minNeighbours = parameters.anisotropy_min_neighbours;
+  settings.isotropicScale = parameters.anisotropy_isotropic_scale;
+  settings.smoothing = parameters.anisotropy_smoothing;
+  settings.maxEllipsoidScale = parameters.max_ellipsoid_scale;
+  settings.needDensity = parameters.layers != "merged";
+  return settings;
+}
+
+ParticleShape shapeFromMoments(const NeighbourMoments& moments, float radius,
+                               const AnisotropySettings& settings) {
+  const float neighbourhood = settings.neighbourRadius * radius;
+  ParticleShape shape;
+  shape.semiAxes = glm::vec3(settings.isotropicScale * radius);
+  shape.kernelSemiAxes = glm::vec3(neighbourhood);
+  // The particle's own weight (1) keeps weightSum positive.
+  const glm::vec3 meanOffset = moments.weightedOffset / moments.weightSum;
+  shape.centreOffset = settings.smoothing * neighbourhood * meanOffset;
+  if (moments.neighbourCount < settings.minNeighbours) return shape;
+
+  const float inverseWeight = 1.0f / moments.weightSum;
+  const glm::vec3& m = meanOffset;
+  const float xx = moments.xx * inverseWeight - m.x * m.x, xy = moments.xy * inverseWeight - m.x * m.y;
+  const float xz = moments.xz * inverseWeight - m.x * m.z, yy = moments.yy * inverseWeight - m.y * m.y;
+  const float yz = moments.yz * inverseWeight - m.y * m.z, zz = moments.zz * inverseWeight - m.z * m.z;
+  const float covariance[3][3] = {{xx, xy, xz}, {xy, yy, yz}, {xz, yz, zz}};
+  if (isInterior(meanOffset, covariance)) {
+    shape.kind = ShapeKind::Interior;
+    shape.semiAxes = glm::vec3(radius);
+    return shape;
+  }
+
+  const openvdb::math::Mat3d matrix(xx, xy, xz, xy, yy, yz, xz, yz, zz);
+  openvdb::math::Mat3d eigenvectors;
+  openvdb::math::Vec3d eigenvalues;
+  const bool converged = openvdb::math::diagonalizeSymmetricMatrix(matrix, eigenvectors, eigenvalues);
+  double largest = 0.0;
+  for (int k = 0; k < 3; ++k)
+    largest = std::max(largest, eigenvalues[k]);
+  if (!converged || !(largest > kDegenerateCovariance) || !std::isfinite(largest)) return shape;
+
+  // Yu and Turk's clamp: no eigenvalue below the largest / k_r. Semi-axes are the clamped eigenvalues
+  // relative to the rest covariance (the unit-free k_s), so an isotropic neighbourhood at rest gets r.
+  glm::vec3 relative;
+  for (int k = 0; k < 3; ++k) {
+    relative[k] = float(std::max(eigenvalues[k], largest / settings.maxRatio) / kRestCovariance);
+    shape.axes[k] = glm::normalize(glm::vec3(eigenvectors(0, k), eigenvectors(1, k), eigenvectors(2, k)));
+  }
+  const float longest = float(largest / kRestCovariance);
+  // The liquid paper bounds the drawn ellipsoid by maxEllipsoidScale r; k_n r bounds it from below, as it
+  // bounds a particle with too few neighbours. The ratio of the axes is kept.
+  const float drawnLongest = std::clamp(longest, settings.isotropicScale, settings.maxEllipsoidScale);
+  shape.semiAxes = relative * (drawnLongest / longest * radius);
+  // The density kernel has the same axes, shrunk if needed to fit the neighbourhood that was searched.
+  shape.kernelSemiAxes = relative * (neighbourhood / std::max(1.0f, longest));
+  shape.kind = ShapeKind::Anisotropic;
+  return shape;
+}
+
+EllipsoidInstance ellipsoidInstance(const glm::vec3& centre, const glm::vec3 axes[3],
+                                    const glm::vec3& semiAxes) {
+  EllipsoidInstance instance;
+  const float boundingRadius = std::max(semiAxes.x, std::max(semiAxes.y, semiAxes.z));
+  instance.centreAndBoundingRadius = glm::vec4(centre, boundingRadius);
+  for (int k = 0; k < 3; ++k)
+    instance.inverseAxesRows[k] = glm::vec4(axes[k] / semiAxes[k], 0.0f);
+  return instance;
+}
+
+EllipsoidInstance sphereInstance(const glm::vec3& centre, float radius) {
+  static const glm::vec3 identity[3] = {{1, 0, 0}, {0, 1, 0}, {0, 0, 1}};
+  return ellipsoidInstance(centre, identity, glm::vec3(radius));
+}
+
+ParticleShapes shapeParticles(const NeighbourGrid& grid, const AnisotropySettings& settings) {
+  const ParticleCloud& cloud = grid.particles();
+  ParticleShapes shapes;
+  shapes.instances.resize(cloud.size());
+  shapes.kinds.assign(cloud.size(), ShapeKind::Hidden);
+  shapes.densities.assign(cloud.size(), 0.0f);
+  const float radiusCubed = settings.neighbourRadius * settings.neighbourRadius * settings.neighbourRadius;
+
+  tbb::parallel_for(
+      tbb::blocked_range<std::size_t>(0, grid.cellCount(), 8),
+      [&](const tbb::blocked_range<std::size_t>& cells) {
+        IndexRange ranges[9];
+        for (std::size_t cell = cells.begin(); cell != cells.end(); ++cell) {
+          const IndexRange members = grid.cellParticles(cell);
+          int rangeCount = -1;  // Looked up on the first visible particle of the cell.
+          for (std::uint32_t i = members.begin; i < members.end; ++i) {
+            if (!cloud.visible[i]) continue;
+            if (rangeCount < 0) rangeCount = grid.neighbourRanges(cell, ranges);
+            const float radius = cloud.radius[i];
+            const float neighbourhood = settings.neighbourRadius * radius;
+            const NeighbourMoments moments =
+                accumulateMoments(cloud, i, 1.0f / neighbourhood, ranges, rangeCount);
+            const ParticleShape shape = shapeFromMoments(moments, radius, settings);
+            const glm::vec3 centre = glm::vec3(cloud.x[i], cloud.y[i], cloud.z[i]) + shape.centreOffset;
+            shapes.kinds[i] = shape.kind;
+            shapes.instances[i] = ellipsoidInstance(centre, shape.axes, shape.semiAxes);
+            if (!settings.needDensity) continue;
+            // Unit-free density: the kernel's normalisation over its support volume, times r^3.
+            if (shape.kind == ShapeKind::Anisotropic) {
+              const glm::vec3 support = shape.kernelSemiAxes / radius;
+              const float sum = anisotropicKernelSum(cloud, i, shape, ranges, rangeCount);
+              shapes.densities[i] = kKernelNormalisation * sum / (support.x * support.y * support.z);
+            } else {
+              shapes.densities[i] = kKernelNormalisation * moments.isotropicKernelSum / radiusCubed;
+            }
+          }
+        }
+      });
+  return shapes;
+}
+
+}  // namespace spindrift

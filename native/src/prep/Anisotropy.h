@@ -1,0 +1,83 @@
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include <glm/vec3.hpp>
+
+#include "prep/LiquidPreparation.h"
+#include "prep/NeighbourGrid.h"
+#include "spindrift/Parameters.h"
+
+namespace spindrift {
+
+/// Yu and Turk's (2013) anisotropy constants, every length in particle radii so that they hold at any scale.
+struct AnisotropySettings {
+  float neighbourRadius = 2.5f;  ///< The neighbourhood radius R, in particle radii.
+  float maxRatio = 4.0f;         ///< k_r.
+  int minNeighbours = 25;        ///< N_epsilon.
+  float isotropicScale = 0.5f;   ///< k_n, in particle radii.
+  float smoothing = 0.0f;        ///< lambda.
+  float maxEllipsoidScale = 1.2f;
+  bool needDensity = true;  ///< False when every particle is an aggregate (liquid.layers = merged).
+
+  static AnisotropySettings fromParameters(const LiquidParameters& parameters);
+};
+
+/// Weighted sums over a particle's neighbours within R (the particle itself included), with offsets
+/// q = (x_j - x_i) / R and Yu and Turk's weight w = 1 - |q|^3.
+struct NeighbourMoments {
+  float weightSum = 0.0f;                                ///< sum w
+  glm::vec3 weightedOffset{0.0f};                        ///< sum w q
+  float xx = 0, xy = 0, xz = 0, yy = 0, yz = 0, zz = 0;  ///< sum w q q^T
+  float isotropicKernelSum = 0.0f;  ///< sum P(|q|), for the density with the ball of radius R
+  int neighbourCount = 0;           ///< Not counting the particle itself.
+};
+
+enum class ShapeKind : std::uint8_t {
+  Hidden,        ///< Outside the frustum: only a neighbour, not shaped.
+  UnderSampled,  ///< Fewer than N_epsilon neighbours (or a degenerate covariance): a sphere of k_n r.
+  Interior,      ///< Deep inside the body: a sphere of radius r, no eigen-decomposition.
+  Anisotropic,   ///< An ellipsoid from the covariance's principal axes.
+};
+
+/// A particle's drawn shape, and the kernel its density is measured with (same axes, larger semi-axes).
+struct ParticleShape {
+  ShapeKind kind = ShapeKind::UnderSampled;
+  glm::vec3 centreOffset{0.0f};  ///< From the particle to the drawn centre (lambda times the weighted mean).
+  glm::vec3 axes[3] = {{1, 0, 0}, {0, 1, 0}, {0, 0, 1}};  ///< Unit principal directions.
+  glm::vec3 semiAxes{1.0f};                               ///< Drawn semi-axes, world units.
+  glm::vec3 kernelSemiAxes{1.0f};  ///< Semi-axes of the density kernel's support, world units.
+};
+
+/// The normalised kernel profile P(q) = (1 - q^2)^3 on the unit ball, and its normalisation 315 / (64 pi).
+constexpr float kKernelNormalisation = 315.0f / (64.0f * 3.14159265358979f);
+
+/// Each eigenvalue of the weighted covariance, in units of R^2, of a particle inside a body of uniform
+/// density: integral of w(d) x^2 over the ball divided by the integral of w(d), with w(d) = 1 - (d/R)^3,
+/// = (1/3) (3 R^5 / 40) / (R^3 / 6) = 0.15 R^2. A particle with this covariance gets semi-axes of r.
+constexpr float kRestCovariance = 0.15f;
+
+ParticleShape shapeFromMoments(const NeighbourMoments& moments, float radius,
+                               const AnisotropySettings& settings);
+
+/// The ellipsoid instance of a shape: the inverse of the axes matrix (rotation times diag(semi-axes)) is
+/// diag(1 / semi-axes) times the transposed rotation, so its rows are the principal directions divided by
+/// their semi-axes.
+EllipsoidInstance ellipsoidInstance(const glm::vec3& centre, const glm::vec3 axes[3],
+                                    const glm::vec3& semiAxes);
+EllipsoidInstance sphereInstance(const glm::vec3& centre, float radius);
+
+/// The shapes and densities of the visible particles of a grid, indexed like grid.particles().
+struct ParticleShapes {
+  std::vector<EllipsoidInstance> instances;
+  std::vector<ShapeKind> kinds;
+  /// Yu and Turk's density sum_j W(x_j - x_i, G_i) times r^3: neighbours per cubed particle radius, so
+  /// unit-free. Zero when the settings do not need densities.
+  std::vector<float> densities;
+};
+
+/// Shapes every visible particle of the grid from its neighbours (TBB-parallel over cells).
+ParticleShapes shapeParticles(const NeighbourGrid& grid, const AnisotropySettings& settings);
+
+}  // namespace spindrift

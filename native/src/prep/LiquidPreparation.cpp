@@ -1,0 +1,160 @@
+#include "prep/LiquidPreparation.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+
+#include "prep/LiquidStages.h"
+#include "prep/ViewFrustum.h"
+
+namespace spindrift {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+double millisecondsBetween(Clock::time_point start, Clock::time_point end) {
+  return std::chrono::duration<double, std::milli>(end - start).count();
+}
+
+enum CandidateRole : std::uint8_t { kNotCandidate = 0, kNeighbourOnly = 1, kVisible = 2 };
+
+// Particles are packed in blocks so that splashes and aggregates can be written in parallel, each block at an
+// offset found by a prefix sum of the blocks' counts.
+constexpr std::size_t kPackBlockSize = 16384;
+
+}  // namespace
+
+LiquidCandidates selectLiquidCandidates(const Particles& particles, const Camera& camera,
+                                        const LiquidParameters& parameters) {
+  const ViewFrustum frustum(camera);
+  const std::size_t count = particles.size();
+  std::vector<std::uint8_t> roles(count, kNotCandidate);
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, count),
+                    [&](const tbb::blocked_range<std::size_t>& block) {
+                      for (std::size_t i = block.begin(); i != block.end(); ++i) {
+                        const float radius = particles.radii[i];
+                        const glm::vec3& position = particles.positions[i];
+                        if (particles.kinds[i] != ParticleKind::Liquid || !(radius > 0.0f) ||
+                            !std::isfinite(radius) || !std::isfinite(position.x + position.y + position.z))
+                          continue;
+                        // A drawn instance reaches at most max_ellipsoid_scale r from its centre, which
+                        // smoothing moves by at most lambda R from the particle; its neighbours lie within R
+                        // more.
+                        const float neighbourhood = parameters.neighbour_radius * radius;
+                        const float drawnReach = std::max(1.0f, parameters.max_ellipsoid_scale) * radius +
+                                                 parameters.anisotropy_smoothing * neighbourhood;
+                        const glm::vec3 centre = frustum.cameraFromWorld(position);
+                        if (frustum.reachedBySphere(centre, drawnReach))
+                          roles[i] = kVisible;
+                        else if (frustum.reachedBySphere(centre, drawnReach + neighbourhood))
+                          roles[i] = kNeighbourOnly;
+                      }
+                    });
+
+  LiquidCandidates candidates;
+  std::size_t liquid = 0, selected = 0;
+  for (std::size_t i = 0; i < count; ++i) {
+    liquid += particles.kinds[i] == ParticleKind::Liquid;
+    selected += roles[i] != kNotCandidate;
+  }
+  ParticleCloud& cloud = candidates.cloud;
+  cloud.resize(selected);
+  std::size_t next = 0, visible = 0;
+  float largestRadius = 0.0f;
+  for (std::size_t i = 0; i < count; ++i) {
+    if (roles[i] == kNotCandidate) continue;
+    cloud.x[next] = particles.positions[i].x;
+    cloud.y[next] = particles.positions[i].y;
+    cloud.z[next] = particles.positions[i].z;
+    cloud.radius[next] = particles.radii[i];
+    cloud.visible[next] = roles[i] == kVisible;
+    visible += roles[i] == kVisible;
+    largestRadius = std::max(largestRadius, particles.radii[i]);
+    ++next;
+  }
+  candidates.culled = liquid - visible;
+  candidates.cellSize = selected > 0 ? parameters.neighbour_radius * largestRadius : 1.0f;
+  return candidates;
+}
+
+float restDensity(const ParticleShapes& shapes) {
+  std::vector<float> interior;
+  for (std::size_t i = 0; i < shapes.kinds.size(); ++i)
+    if (shapes.kinds[i] == ShapeKind::Interior) interior.push_back(shapes.densities[i]);
+  if (interior.size() < kMinInteriorForRestDensity) return 1.0f;
+  const auto middle = interior.begin() + std::ptrdiff_t(interior.size() / 2);
+  std::nth_element(interior.begin(), middle, interior.end());
+  return *middle;
+}
+
+void classifyAndPack(const NeighbourGrid& grid, const ParticleShapes& shapes,
+                     const LiquidParameters& parameters, LiquidPreparation& preparation) {
+  const ParticleCloud& cloud = grid.particles();
+  const bool split = parameters.layers != "merged";
+  const float splashBelow = split ? parameters.splash_density_threshold * restDensity(shapes) : 0.0f;
+  const auto isSplash = [&](std::size_t i) {
+    return split && shapes.kinds[i] != ShapeKind::Interior && shapes.densities[i] < splashBelow;
+  };
+
+  const std::size_t blockCount = (cloud.size() + kPackBlockSize - 1) / kPackBlockSize;
+  std::vector<std::size_t> splashOffsets(blockCount + 1, 0), aggregateOffsets(blockCount + 1, 0);
+  const auto blockRange = [&](std::size_t block) {
+    return std::make_pair(block * kPackBlockSize, std::min(cloud.size(), (block + 1) * kPackBlockSize));
+  };
+  tbb::parallel_for(std::size_t(0), blockCount, [&](std::size_t block) {
+    const auto [begin, end] = blockRange(block);
+    for (std::size_t i = begin; i < end; ++i) {
+      if (shapes.kinds[i] == ShapeKind::Hidden) continue;
+      ++(isSplash(i) ? splashOffsets : aggregateOffsets)[block + 1];
+    }
+  });
+  for (std::size_t block = 0; block < blockCount; ++block) {
+    splashOffsets[block + 1] += splashOffsets[block];
+    aggregateOffsets[block + 1] += aggregateOffsets[block];
+  }
+
+  preparation.splashes.resize(splashOffsets.back());
+  preparation.aggregates.resize(aggregateOffsets.back());
+  std::vector<std::size_t> interiorPerBlock(blockCount, 0);
+  tbb::parallel_for(std::size_t(0), blockCount, [&](std::size_t block) {
+    const auto [begin, end] = blockRange(block);
+    std::size_t nextSplash = splashOffsets[block], nextAggregate = aggregateOffsets[block];
+    for (std::size_t i = begin; i < end; ++i) {
+      if (shapes.kinds[i] == ShapeKind::Hidden) continue;
+      if (isSplash(i)) {
+        preparation.splashes[nextSplash++] =
+            sphereInstance(glm::vec3(cloud.x[i], cloud.y[i], cloud.z[i]), cloud.radius[i]);
+      } else {
+        preparation.aggregates[nextAggregate++] = shapes.instances[i];
+        interiorPerBlock[block] += shapes.kinds[i] == ShapeKind::Interior;
+      }
+    }
+  });
+  preparation.isotropicInterior = 0;
+  for (std::size_t interior : interiorPerBlock)
+    preparation.isotropicInterior += interior;
+}
+
+LiquidPreparation prepareLiquid(const Particles& particles, const Camera& camera,
+                                const LiquidParameters& parameters) {
+  const Clock::time_point start = Clock::now();
+  LiquidPreparation preparation;
+  LiquidCandidates candidates = selectLiquidCandidates(particles, camera, parameters);
+  preparation.culled = candidates.culled;
+  const NeighbourGrid grid(std::move(candidates.cloud), candidates.cellSize);
+  const Clock::time_point gridBuilt = Clock::now();
+
+  const ParticleShapes shapes = shapeParticles(grid, AnisotropySettings::fromParameters(parameters));
+  classifyAndPack(grid, shapes, parameters, preparation);
+  const Clock::time_point end = Clock::now();
+
+  preparation.neighbourMilliseconds = millisecondsBetween(start, gridBuilt);
+  preparation.anisotropyMilliseconds = millisecondsBetween(gridBuilt, end);
+  preparation.totalMilliseconds = millisecondsBetween(start, end);
+  return preparation;
+}
+
+}  // namespace spindrift

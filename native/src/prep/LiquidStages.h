@@ -1,0 +1,33 @@
+#pragma once
+
+#include <cstddef>
+
+#include "prep/Anisotropy.h"
+#include "prep/LiquidPreparation.h"
+#include "prep/NeighbourGrid.h"
+
+// The stages of prepareLiquid, exposed for the benchmark and the tests: select → grid → shape → classify.
+namespace spindrift {
+
+/// The liquid particles that are drawn (visible) or that can be a drawn particle's neighbour (within the
+/// neighbourhood radius of the frustum), and the grid cell size their neighbourhoods need.
+struct LiquidCandidates {
+  ParticleCloud cloud;
+  std::size_t culled = 0;
+  float cellSize = 1.0f;
+};
+
+LiquidCandidates selectLiquidCandidates(const Particles& particles, const Camera& camera,
+                                        const LiquidParameters& parameters);
+
+/// The density an interior particle has in this frame: the median over the visible interior particles, or,
+/// when fewer than kMinInteriorForRestDensity are visible, the density of particles one radius apart (1).
+float restDensity(const ParticleShapes& shapes);
+constexpr std::size_t kMinInteriorForRestDensity = 64;
+
+/// Splits the shaped particles into splashes (density below liquid.splash_density_threshold times the rest
+/// density; spheres of radius r at the particle) and aggregates, filling those fields of `preparation`.
+void classifyAndPack(const NeighbourGrid& grid, const ParticleShapes& shapes,
+                     const LiquidParameters& parameters, LiquidPreparation& preparation);
+
+}  // namespace spindrift

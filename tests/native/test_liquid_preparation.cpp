@@ -1,0 +1,337 @@
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <random>
+
+#include <glm/geometric.hpp>
+#include <glm/trigonometric.hpp>
+
+#include "prep/Anisotropy.h"
+#include "prep/LiquidPreparation.h"
+
+namespace spindrift {
+namespace {
+
+// Lengths are in units of a small particle radius, so that nothing passes only because r happens to be 1.
+constexpr float kRadius = 0.05f;
+
+Camera testCamera() {
+  return Camera::lookAt(64, 64, 60.0f, {0, -10, 0}, {0, 0, 0}, {0, 0, 1});
+}
+
+LiquidParameters layers(const char* mode) {
+  LiquidParameters parameters;
+  parameters.layers = mode;
+  return parameters;
+}
+
+void addLiquid(Particles& particles, const glm::vec3& position, float radius = kRadius) {
+  particles.append(position, radius, ParticleKind::Liquid, 0.0f, {});
+}
+
+// A cube of `side`^3 particles centred on `centre`, `spacing` radii apart, jittered by up to `jitter` radii.
+void addBlock(Particles& particles, const glm::vec3& centre, int side, float spacing, float jitter = 0.0f,
+              unsigned seed = 1) {
+  std::mt19937 random(seed);
+  std::uniform_real_distribution<float> offset(-jitter, jitter);
+  const float half = 0.5f * float(side - 1);
+  for (int i = 0; i < side; ++i)
+    for (int j = 0; j < side; ++j)
+      for (int k = 0; k < side; ++k) {
+        const glm::vec3 lattice = glm::vec3(float(i) - half, float(j) - half, float(k) - half) * spacing;
+        const glm::vec3 jittered = lattice + glm::vec3(offset(random), offset(random), offset(random));
+        addLiquid(particles, centre + jittered * kRadius);
+      }
+}
+
+// The principal semi-axes of an instance (1 / length of each row of the inverse axes matrix) and directions.
+struct Axes {
+  glm::vec3 semiAxes;
+  glm::vec3 directions[3];
+};
+Axes axesOf(const EllipsoidInstance& instance) {
+  Axes axes;
+  for (int k = 0; k < 3; ++k) {
+    const glm::vec3 row(instance.inverseAxesRows[k]);
+    axes.semiAxes[k] = 1.0f / glm::length(row);
+    axes.directions[k] = row * axes.semiAxes[k];
+  }
+  return axes;
+}
+
+bool allFinite(const std::vector<EllipsoidInstance>& instances) {
+  for (const EllipsoidInstance& instance : instances) {
+    const float* values = &instance.centreAndBoundingRadius.x;
+    for (int v = 0; v < 16; ++v)
+      if (!std::isfinite(values[v])) return false;
+  }
+  return true;
+}
+
+void expectWellFormed(const LiquidPreparation& preparation) {
+  EXPECT_TRUE(allFinite(preparation.splashes));
+  EXPECT_TRUE(allFinite(preparation.aggregates));
+  EXPECT_TRUE(std::isfinite(preparation.totalMilliseconds));
+}
+
+// The instance whose centre is nearest `position` (centres are the particles' with the default smoothing 0).
+const EllipsoidInstance* instanceAt(const std::vector<EllipsoidInstance>& instances,
+                                    const glm::vec3& position) {
+  for (const EllipsoidInstance& instance : instances)
+    if (glm::length(glm::vec3(instance.centreAndBoundingRadius) - position) < 1e-6f) return &instance;
+  return nullptr;
+}
+
+void expectSphere(const EllipsoidInstance& instance, float radius) {
+  EXPECT_NEAR(instance.centreAndBoundingRadius.w, radius, 1e-6f);
+  for (int k = 0; k < 3; ++k)
+    for (int c = 0; c < 3; ++c)
+      EXPECT_NEAR(instance.inverseAxesRows[k][c], k == c ? 1.0f / radius : 0.0f, 1e-3f);
+}
+
+TEST(LiquidPreparation, ColinearCluster) {
+  const glm::vec3 direction = glm::normalize(glm::vec3(1, 2, 3));
+  Particles particles;
+  for (int i = -30; i <= 30; ++i)
+    addLiquid(particles, direction * (float(i) * 0.1f * kRadius));
+  const LiquidPreparation preparation = prepareLiquid(particles, testCamera(), layers("merged"));
+  expectWellFormed(preparation);
+  const EllipsoidInstance* middle = instanceAt(preparation.aggregates, glm::vec3(0.0f));
+  ASSERT_NE(middle, nullptr);
+  const Axes axes = axesOf(*middle);
+  const int longest = int(std::max_element(&axes.semiAxes[0], &axes.semiAxes[0] + 3) - &axes.semiAxes[0]);
+  EXPECT_GT(std::abs(glm::dot(axes.directions[longest], direction)), 0.999f);
+  // A line's spread along it exceeds the rest spread: bounded by 1.2 r, and the others clamped by k_r = 4.
+  EXPECT_NEAR(axes.semiAxes[longest], 1.2f * kRadius, 1e-4f);
+  for (int k = 0; k < 3; ++k)
+    if (k != longest) EXPECT_NEAR(axes.semiAxes[k], 0.3f * kRadius, 1e-4f);
+}
+
+TEST(LiquidPreparation, CoplanarCluster) {
+  const glm::vec3 normal = glm::normalize(glm::vec3(0.3f, -1.0f, 0.5f));
+  const glm::vec3 tangent = glm::normalize(glm::cross(normal, glm::vec3(0, 0, 1)));
+  const glm::vec3 bitangent = glm::cross(normal, tangent);
+  Particles particles;
+  for (int i = -15; i <= 15; ++i)
+    for (int j = -15; j <= 15; ++j)
+      addLiquid(particles, (float(i) * tangent + float(j) * bitangent) * (0.4f * kRadius));
+  const LiquidPreparation preparation = prepareLiquid(particles, testCamera(), layers("split"));
+  expectWellFormed(preparation);
+  // A sheet denser than the rest density is aggregated liquid, flattened along its normal.
+  const EllipsoidInstance* middle = instanceAt(preparation.aggregates, glm::vec3(0.0f));
+  ASSERT_NE(middle, nullptr);
+  const Axes axes = axesOf(*middle);
+  const int shortest = int(std::min_element(&axes.semiAxes[0], &axes.semiAxes[0] + 3) - &axes.semiAxes[0]);
+  EXPECT_GT(std::abs(glm::dot(axes.directions[shortest], normal)), 0.999f);
+  for (int k = 0; k < 3; ++k) {
+    if (k == shortest) continue;
+    // In the plane: the weighted spread of a disc, 0.179 R^2 per axis, over the rest spread 0.15 R^2.
+    EXPECT_NEAR(axes.semiAxes[k] / kRadius, 0.179f / 0.15f, 0.03f);
+    EXPECT_NEAR(axes.semiAxes[shortest] * 4.0f, axes.semiAxes[k], 1e-4f);
+  }
+}
+
+TEST(LiquidPreparation, SingleNeighbour) {
+  Particles particles;
+  addLiquid(particles, {0, 0, 0});
+  addLiquid(particles, {kRadius, 0, 0});
+  const LiquidPreparation split = prepareLiquid(particles, testCamera(), layers("split"));
+  expectWellFormed(split);
+  ASSERT_EQ(split.splashes.size(), 2u);
+  EXPECT_TRUE(split.aggregates.empty());
+  for (const EllipsoidInstance& splash : split.splashes)
+    expectSphere(splash, kRadius);
+
+  // Too few neighbours for a covariance: Yu and Turk's isotropic k_n r.
+  const LiquidPreparation merged = prepareLiquid(particles, testCamera(), layers("merged"));
+  ASSERT_EQ(merged.aggregates.size(), 2u);
+  for (const EllipsoidInstance& aggregate : merged.aggregates)
+    expectSphere(aggregate, 0.5f * kRadius);
+}
+
+TEST(LiquidPreparation, CoincidentParticles) {
+  Particles particles;
+  for (int i = 0; i < 40; ++i)
+    addLiquid(particles, {0.1f, 0.2f, 0.3f});
+  for (const char* mode : {"split", "merged"}) {
+    const LiquidPreparation preparation = prepareLiquid(particles, testCamera(), layers(mode));
+    expectWellFormed(preparation);
+    EXPECT_EQ(preparation.splashes.size() + preparation.aggregates.size(), 40u);
+    for (const auto* instances : {&preparation.splashes, &preparation.aggregates})
+      for (const EllipsoidInstance& instance : *instances) {
+        EXPECT_GT(instance.centreAndBoundingRadius.w, 0.0f);
+        EXPECT_LE(instance.centreAndBoundingRadius.w, 1.2f * kRadius);
+      }
+  }
+}
+
+TEST(LiquidPreparation, IsolatedParticleIsASplash) {
+  Particles particles;
+  addBlock(particles, {0, 0, 0}, 16, 0.9f);
+  const glm::vec3 isolated(20.0f * kRadius, 0.0f, 0.0f);
+  addLiquid(particles, isolated);
+  const LiquidPreparation preparation = prepareLiquid(particles, testCamera(), layers("split"));
+  expectWellFormed(preparation);
+  const EllipsoidInstance* splash = instanceAt(preparation.splashes, isolated);
+  ASSERT_NE(splash, nullptr);
+  expectSphere(*splash, kRadius);
+  // Only the isolated particle and the block's corners (an eighth of a neighbourhood) are below 0.2.
+  EXPECT_LE(preparation.splashes.size(), 9u);
+  EXPECT_EQ(instanceAt(preparation.splashes, glm::vec3(0.45f * kRadius)), nullptr);
+}
+
+TEST(LiquidPreparation, InteriorOfABlockIsAggregateAndIsotropic) {
+  Particles particles;
+  addBlock(particles, {0, 0, 0}, 20, 0.9f, 0.1f);
+  const LiquidPreparation preparation = prepareLiquid(particles, testCamera(), layers("split"));
+  expectWellFormed(preparation);
+  // Particles at least a neighbourhood (2.5 r, about 3 spacings) inside: 14^3 of 20^3.
+  EXPECT_GE(preparation.isotropicInterior, std::size_t(14 * 14 * 14 * 0.9));
+  std::size_t spheresOfRadiusR = 0;
+  for (const EllipsoidInstance& aggregate : preparation.aggregates) {
+    const Axes axes = axesOf(aggregate);
+    spheresOfRadiusR += std::abs(axes.semiAxes.x - kRadius) < 1e-6f &&
+                        std::abs(axes.semiAxes.y - kRadius) < 1e-6f &&
+                        std::abs(axes.semiAxes.z - kRadius) < 1e-6f;
+  }
+  EXPECT_EQ(spheresOfRadiusR, preparation.isotropicInterior);
+  // A face particle is flattened along the face's normal (here +y, towards the camera).
+  const glm::vec3 faceCentre(0.45f * kRadius, -9.5f * 0.9f * kRadius, 0.45f * kRadius);
+  const EllipsoidInstance* face = nullptr;
+  float nearest = 1e9f;
+  for (const EllipsoidInstance& aggregate : preparation.aggregates) {
+    const float distance = glm::length(glm::vec3(aggregate.centreAndBoundingRadius) - faceCentre);
+    if (distance < nearest) nearest = distance, face = &aggregate;
+  }
+  ASSERT_NE(face, nullptr);
+  const Axes axes = axesOf(*face);
+  const int shortest = int(std::min_element(&axes.semiAxes[0], &axes.semiAxes[0] + 3) - &axes.semiAxes[0]);
+  EXPECT_GT(std::abs(axes.directions[shortest].y), 0.9f);
+  EXPECT_LT(axes.semiAxes[shortest], 0.7f * kRadius);
+}
+
+TEST(LiquidPreparation, BoundedByMaxEllipsoidScale) {
+  std::mt19937 random(7);
+  std::normal_distribution<float> gaussian;
+  std::uniform_real_distribution<float> uniform(0.0f, 1.0f);
+  for (int cluster = 0; cluster < 20; ++cluster) {
+    Particles particles;
+    const int count = 5 + int(uniform(random) * 400.0f);
+    // Stretched Gaussian blobs, from a few radii to needles and pancakes.
+    const glm::vec3 stretch = glm::vec3(uniform(random), uniform(random), uniform(random)) * 4.0f + 0.01f;
+    for (int i = 0; i < count; ++i)
+      addLiquid(particles,
+                glm::vec3(gaussian(random), gaussian(random), gaussian(random)) * stretch * kRadius);
+    for (const char* mode : {"split", "merged"}) {
+      const LiquidPreparation preparation = prepareLiquid(particles, testCamera(), layers(mode));
+      expectWellFormed(preparation);
+      ASSERT_EQ(preparation.splashes.size() + preparation.aggregates.size(), std::size_t(count));
+      for (const EllipsoidInstance& aggregate : preparation.aggregates) {
+        const Axes axes = axesOf(aggregate);
+        for (int k = 0; k < 3; ++k) {
+          EXPECT_LE(axes.semiAxes[k], 1.2f * kRadius * 1.0001f);
+          // The longest is at least k_n r = 0.5 r, and k_r = 4 bounds the ratio.
+          EXPECT_GE(axes.semiAxes[k], 0.5f * kRadius / 4.0f * 0.9999f);
+          for (int other = 0; other < k; ++other)
+            EXPECT_NEAR(glm::dot(axes.directions[k], axes.directions[other]), 0.0f, 1e-4f);
+        }
+        EXPECT_NEAR(aggregate.centreAndBoundingRadius.w,
+                    std::max({axes.semiAxes.x, axes.semiAxes.y, axes.semiAxes.z}), 1e-5f * kRadius);
+      }
+    }
+  }
+}
+
+TEST(LiquidPreparation, InverseAxesMapTheEllipsoidToTheUnitSphere) {
+  const glm::vec3 axes[3] = {glm::normalize(glm::vec3(1, 1, 0)), glm::normalize(glm::vec3(-1, 1, 1)),
+                             glm::normalize(glm::vec3(1, -1, 2))};
+  const glm::vec3 semiAxes(0.06f, 0.02f, 0.035f);
+  const glm::vec3 centre(1, 2, 3);
+  const EllipsoidInstance instance = ellipsoidInstance(centre, axes, semiAxes);
+  EXPECT_FLOAT_EQ(instance.centreAndBoundingRadius.w, 0.06f);
+  std::mt19937 random(3);
+  std::normal_distribution<float> gaussian;
+  for (int sample = 0; sample < 100; ++sample) {
+    const glm::vec3 unit = glm::normalize(glm::vec3(gaussian(random), gaussian(random), gaussian(random)));
+    const glm::vec3 onEllipsoid = centre + unit.x * semiAxes.x * axes[0] + unit.y * semiAxes.y * axes[1] +
+                                  unit.z * semiAxes.z * axes[2];
+    const glm::vec3 offset = onEllipsoid - centre;
+    const glm::vec3 mapped(glm::dot(glm::vec3(instance.inverseAxesRows[0]), offset),
+                           glm::dot(glm::vec3(instance.inverseAxesRows[1]), offset),
+                           glm::dot(glm::vec3(instance.inverseAxesRows[2]), offset));
+    EXPECT_NEAR(glm::length(mapped), 1.0f, 1e-4f);
+  }
+}
+
+TEST(LiquidPreparation, ParticlesBehindTheCameraAndStraddlingTheNearPlane) {
+  Camera camera = Camera::lookAt(64, 64, 60.0f, {0, 0, 0}, {0, 1, 0}, {0, 0, 1});
+  camera.nearClip = 0.1f;
+  Particles particles;
+  addLiquid(particles, {0, -5, 0});                     // Behind the camera.
+  addLiquid(particles, {0, 0.1f + 0.5f * kRadius, 0});  // Straddles the near plane.
+  addLiquid(particles, {0, 0.1f - 0.5f * kRadius, 0});  // Its centre is in front of the near plane.
+  addLiquid(particles, {0, 5, 0});                      // In view.
+  addLiquid(particles, {50, 5, 0});                     // Beside the frustum.
+  addLiquid(particles, {0, 2000, 0});                   // Beyond the far plane.
+  const LiquidPreparation preparation = prepareLiquid(particles, camera, layers("merged"));
+  expectWellFormed(preparation);
+  EXPECT_EQ(preparation.aggregates.size(), 3u);
+  EXPECT_EQ(preparation.culled, 3u);
+}
+
+TEST(LiquidPreparation, OffScreenNeighboursShapeVisibleParticles) {
+  // A block straddling the right edge of the view: a visible particle at the edge has neighbours on both
+  // sides, so the particles at the edge are interior, not a surface.
+  const Camera camera = testCamera();
+  const float edgeX = 10.0f * std::tan(glm::radians(30.0f));
+  Particles particles;
+  addBlock(particles, {edgeX, 0, 0}, 20, 0.9f);
+  const LiquidPreparation preparation = prepareLiquid(particles, camera, layers("split"));
+  expectWellFormed(preparation);
+  EXPECT_GT(preparation.culled, 0u);
+  std::size_t nearTheEdge = 0, anisotropicNearTheEdge = 0;
+  for (const EllipsoidInstance& aggregate : preparation.aggregates) {
+    const glm::vec3 centre(aggregate.centreAndBoundingRadius);
+    const bool deepInY = std::abs(centre.y) < 5.0f * kRadius && std::abs(centre.z) < 5.0f * kRadius;
+    if (!deepInY || centre.x < edgeX - 4.0f * kRadius) continue;
+    ++nearTheEdge;
+    anisotropicNearTheEdge += aggregate.centreAndBoundingRadius.w != kRadius;
+  }
+  EXPECT_GT(nearTheEdge, 100u);
+  EXPECT_EQ(anisotropicNearTheEdge, 0u);
+}
+
+TEST(LiquidPreparation, EmptyInput) {
+  for (const char* mode : {"split", "merged"}) {
+    const LiquidPreparation none = prepareLiquid(Particles{}, testCamera(), layers(mode));
+    EXPECT_TRUE(none.splashes.empty());
+    EXPECT_TRUE(none.aggregates.empty());
+    EXPECT_EQ(none.culled, 0u);
+    EXPECT_EQ(none.isotropicInterior, 0u);
+    Particles foamOnly;
+    foamOnly.append({0, 0, 0}, kRadius, ParticleKind::Foam, 1.0f, {});
+    const LiquidPreparation foam = prepareLiquid(foamOnly, testCamera(), layers(mode));
+    EXPECT_TRUE(foam.splashes.empty());
+    EXPECT_TRUE(foam.aggregates.empty());
+    EXPECT_EQ(foam.culled, 0u);
+  }
+}
+
+TEST(LiquidPreparation, MergedLayersPutEverythingInAggregates) {
+  Particles particles;
+  addBlock(particles, {0, 0, 0}, 12, 0.9f, 0.1f);
+  for (int i = 0; i < 10; ++i)
+    addLiquid(particles, {float(i) * 4.0f * kRadius, 0, 30.0f * kRadius});
+  const LiquidPreparation split = prepareLiquid(particles, testCamera(), layers("split"));
+  const LiquidPreparation merged = prepareLiquid(particles, testCamera(), layers("merged"));
+  expectWellFormed(split);
+  expectWellFormed(merged);
+  EXPECT_GE(split.splashes.size(), 10u);
+  EXPECT_TRUE(merged.splashes.empty());
+  EXPECT_EQ(merged.aggregates.size(), particles.size());
+  EXPECT_EQ(merged.isotropicInterior, split.isotropicInterior);
+}
+
+}  // namespace
+}  // namespace spindrift
