@@ -112,23 +112,34 @@ struct Crossing {
   vec2 fragCoord;
 };
 
-// The secant method, kept bracketed (the Illinois variant of regula falsi), between parameters on either side
-// of a body's boundary; f is insideDistance, positive inside.
-Crossing refineCrossing(vec3 origin, vec3 direction, int body, float tA, float fA, float tB, float fB) {
-  Crossing crossing;
-  crossing.found = true;
-  crossing.body = body;
+// A depth difference along the ray whose sign change marks the crossing being searched for.
+const int kInsideBody = 0;      // f = distance inside the body (positive inside): leaving it
+const int kBehindFront = 1;     // f = z - front depth of the body: passing behind its front surface
+const int kBehindSolid = 2;     // f = z - background depth: meeting a solid
+
+float crossingFunction(int kind, int body, vec3 origin, vec3 direction, float t, bool interpolated) {
+  vec3 position = origin + t * direction;
+  vec2 fragCoord = clamp(fragCoordFromCamera(position), vec2(0.0), frame.viewportSize.xy - 1.0);
+  float z = -position.z;
+  if (kind == kBehindSolid) return z - texelFetch(backgroundEyeDepth, ivec2(fragCoord), 0).r;
+  if (kind == kBehindFront) {
+    float front = interpolated ? layerDepth(body, false, fragCoord) : frontDepth(body, ivec2(fragCoord));
+    return front >= kNoSurfaceDepth * 0.5 ? -pixelSizeAt(z) : z - front;
+  }
+  bool back;
+  float f = insideDistance(body, fragCoord, z, interpolated, back);
+  return f < -1e29 ? -pixelSizeAt(z) : f;
+}
+
+// The secant method, kept bracketed (the Illinois variant of regula falsi), between two parameters whose
+// crossing function differs in sign.
+float refineCrossing(int kind, int body, vec3 origin, vec3 direction, float tA, float fA, float tB, float fB) {
   float t = tB;
   int retained = 0;
-  for (int i = 0; i < 8; ++i) {
+  for (int i = 0; i < 10; ++i) {
     t = (abs(fB - fA) > 1e-30) ? tB - fB * (tB - tA) / (fB - fA) : 0.5 * (tA + tB);
     t = clamp(t, min(tA, tB), max(tA, tB));
-    vec2 fragCoord = fragCoordFromCamera(origin + t * direction);
-    if (!onScreen(fragCoord)) break;
-    bool back;
-    float z = rayEyeDepth(origin, direction, t);
-    float f = insideDistance(body, fragCoord, z, true, back);
-    if (f < -1e29) f = -pixelSizeAt(z);
+    float f = crossingFunction(kind, body, origin, direction, t, true);
     if (sign(f) == sign(fB)) {
       tB = t;
       fB = f;
@@ -141,6 +152,13 @@ Crossing refineCrossing(vec3 origin, vec3 direction, int body, float tA, float f
       retained = 1;
     }
   }
+  return t;
+}
+
+Crossing crossingAt(int body, vec3 origin, vec3 direction, float t) {
+  Crossing crossing;
+  crossing.found = true;
+  crossing.body = body;
   crossing.t = t;
   crossing.fragCoord = clamp(fragCoordFromCamera(origin + t * direction), vec2(0.0), frame.viewportSize.xy - 1.0);
   insideDistance(body, crossing.fragCoord, rayEyeDepth(origin, direction, t), true, crossing.back);
@@ -149,55 +167,44 @@ Crossing refineCrossing(vec3 origin, vec3 direction, int body, float tA, float f
 
 // Marches from inside `body` to where the ray leaves it.
 Crossing findExit(vec3 origin, vec3 direction, int body) {
-  Crossing none;
-  none.found = false;
-  float t = 0.0;
+  ScreenRay ray = screenRay(origin, direction);
   float previousT = 0.0, previousF = 1e-6;
-  for (int step = 0; step < maxSteps; ++step) {
-    t += marchStep(rayEyeDepth(origin, direction, t));
-    vec3 position = origin + t * direction;
-    vec2 fragCoord = fragCoordFromCamera(position);
-    float z = -position.z;
-    if (z < getNearClip() || !onScreen(fragCoord)) break;
-    bool back;
-    float f = insideDistance(body, fragCoord, z, false, back);
-    if (f < 0.0) {
-      if (f < -1e29) f = -pixelSizeAt(z);
-      return refineCrossing(origin, direction, body, previousT, previousF, t, f);
-    }
+  float t = 0.0;
+  for (int k = 1; k <= ray.samples; ++k) {
+    t = screenRaySampleT(ray, k);
+    float f = crossingFunction(kInsideBody, body, origin, direction, t, false);
+    if (f < 0.0) return crossingAt(body, origin, direction, refineCrossing(kInsideBody, body, origin, direction, previousT, previousF, t, f));
     previousT = t;
     previousF = f;
   }
-  // Left the screen or ran out of steps inside: the liquid ends where the march did.
+  // The ray left the screen inside the liquid: the liquid ends where the view does.
+  Crossing none;
+  none.found = false;
   none.t = t;
   return none;
 }
 
-// Marches from outside every body to the first body the ray enters, or until a solid stops it.
+// Marches from outside every body to where the ray passes behind a body's front surface while in front of its
+// back surface, or until a solid stops it.
 Crossing findEntry(vec3 origin, vec3 direction) {
   Crossing none;
   none.found = false;
-  float t = 0.0;
+  ScreenRay ray = screenRay(origin, direction);
   float previousT = 0.0;
   vec2 previousF = vec2(-1e-6);
-  for (int step = 0; step < maxSteps; ++step) {
-    t += marchStep(rayEyeDepth(origin, direction, t));
-    vec3 position = origin + t * direction;
-    vec2 fragCoord = fragCoordFromCamera(position);
-    float z = -position.z;
-    if (z < getNearClip() || !onScreen(fragCoord)) break;
-    ivec2 pixel = ivec2(fragCoord);
-    if (z >= texelFetch(backgroundEyeDepth, pixel, 0).r) break;
-    vec2 f = vec2(-1e30);
-    bool back;
-    if (hasSplash) f.x = insideDistance(kSplash, fragCoord, z, false, back);
-    if (hasAggregate) f.y = insideDistance(kAggregate, fragCoord, z, false, back);
-    if (f.x >= 0.0 || f.y >= 0.0) {
-      int body = f.x >= f.y ? kSplash : kAggregate;
-      float fBody = body == kSplash ? f.x : f.y;
-      float fBefore = body == kSplash ? previousF.x : previousF.y;
-      if (fBefore < -1e29) fBefore = -pixelSizeAt(z);
-      return refineCrossing(origin, direction, body, previousT, fBefore, t, fBody);
+  for (int k = 1; k <= ray.samples; ++k) {
+    float t = screenRaySampleT(ray, k);
+    if (crossingFunction(kBehindSolid, 0, origin, direction, t, false) >= 0.0) break;
+    vec2 f = vec2(hasSplash ? crossingFunction(kBehindFront, kSplash, origin, direction, t, false) : -1.0,
+                  hasAggregate ? crossingFunction(kBehindFront, kAggregate, origin, direction, t, false) : -1.0);
+    for (int body = 0; body < 2; ++body) {
+      if (f[body] >= 0.0 && previousF[body] < 0.0) {
+        float tEntry = refineCrossing(kBehindFront, body, origin, direction, previousT, previousF[body], t, f[body]);
+        vec3 position = origin + tEntry * direction;
+        vec2 fragCoord = clamp(fragCoordFromCamera(position), vec2(0.0), frame.viewportSize.xy - 1.0);
+        // Behind the front but also in front of the back: inside, so this is an entry.
+        if (-position.z <= layerDepth(body, true, fragCoord)) return crossingAt(body, origin, direction, tEntry);
+      }
     }
     previousT = t;
     previousF = f;
@@ -205,35 +212,23 @@ Crossing findEntry(vec3 origin, vec3 direction) {
   return none;
 }
 
-// b(.) of equation 6: the colour seen from `origin` along `direction` outside the liquid. The ray is marched
-// against the background's depth; a ray that leaves the screen or meets nothing sees the environment (or the
-// background colour), and a ray towards the sky sees the background image where the direction's vanishing
-// point lies on the screen and the background there is infinitely far.
+// b(.) of equation 6: the colour seen from `origin` along `direction` outside the liquid: the background image
+// where the ray meets a solid of its depth; a ray towards the sky sees the background image at the direction's
+// vanishing point when that pixel is infinitely far; a ray that leaves the screen sees the environment (or the
+// background colour).
 vec3 colourAlong(vec3 origin, vec3 direction) {
-  float t = 0.0;
+  ScreenRay ray = screenRay(origin, direction);
   float previousT = 0.0, previousF = -1.0;
-  for (int step = 0; step < maxSteps; ++step) {
-    t += marchStep(rayEyeDepth(origin, direction, t));
-    vec3 position = origin + t * direction;
-    vec2 fragCoord = fragCoordFromCamera(position);
-    float z = -position.z;
-    if (z < getNearClip() || !onScreen(fragCoord)) break;
-    float f = z - texelFetch(backgroundEyeDepth, ivec2(fragCoord), 0).r;
+  for (int k = 1; k <= ray.samples; ++k) {
+    float t = screenRaySampleT(ray, k);
+    float f = crossingFunction(kBehindSolid, 0, origin, direction, t, false);
     if (f >= 0.0) {
-      // Secant refinement of the hit on the background's surface.
-      float tA = previousT, fA = previousF, tB = t, fB = f;
-      for (int i = 0; i < 4; ++i) {
-        float tM = clamp(tB - fB * (tB - tA) / (fB - fA), tA, tB);
-        vec2 c = fragCoordFromCamera(origin + tM * direction);
-        if (!onScreen(c)) break;
-        float fM = rayEyeDepth(origin, direction, tM) - texelFetch(backgroundEyeDepth, ivec2(c), 0).r;
-        if (fM >= 0.0) { tB = tM; fB = fM; } else { tA = tM; fA = fM; }
-      }
-      vec2 hit = clamp(fragCoordFromCamera(origin + tB * direction), vec2(0.0), frame.viewportSize.xy - 1.0);
+      float tHit = refineCrossing(kBehindSolid, 0, origin, direction, previousT, previousF, t, f);
+      vec2 hit = clamp(fragCoordFromCamera(origin + tHit * direction), vec2(0.0), frame.viewportSize.xy - 1.0);
       return texelFetch(backgroundColor, ivec2(hit), 0).rgb;
     }
     previousT = t;
-    previousF = max(f, -1e30);
+    previousF = f;
   }
   if (direction.z < 0.0) {
     vec2 vanishing = fragCoordFromCamera(direction * getFarClip());

@@ -170,7 +170,7 @@ RenderResult Renderer::renderParticles(const Scene& scene, const Particles& part
     std::optional<LiquidData> liquidLayer;
     if (splashes || aggregates) {
       ScopedPassTimer timed(timer, "refraction");
-      liquidLayer.emplace(pipeline.refraction.run(splashes, aggregates, *background, liquidParameters, radius, width, height));
+      liquidLayer.emplace(pipeline.refraction.run(splashes, aggregates, *background, liquidParameters, width, height));
     } else {
       skip("refraction", "no liquid particles in view");
     }

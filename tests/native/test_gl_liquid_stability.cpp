@@ -59,7 +59,7 @@ TEST(GLLiquidStability, CoincidentParticles) {
   const std::vector<glm::vec3> positions(100, glm::vec3(0.1f, 0.0f, 0.0f));
   const RenderResult result = renderCase(sceneLookingAt({0, -3, 0}, {0, 0, 0}), positions, 0.1f);
   expectAllChannelsFinite(result);
-  EXPECT_GT(coveredPixels(result), 10u);
+  EXPECT_GT(coveredPixels(result), 3u) << "a finite ellipsoid, at least k_n r across";
 }
 
 TEST(GLLiquidStability, StraddlingTheNearPlaneAndBehindTheCamera) {

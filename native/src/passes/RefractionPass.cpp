@@ -17,7 +17,7 @@ RefractionPass::RefractionPass(const ShaderLibrary& shaders)
 
 LiquidData RefractionPass::run(const std::optional<SurfaceLayers>& splashes,
                                const std::optional<SurfaceLayers>& aggregates, const BackgroundData& background,
-                               const LiquidParameters& parameters, float particleRadius, int width, int height) {
+                               const LiquidParameters& parameters, int width, int height) {
   ensureTexture(color_, GL_RGBA32F, width, height);
   ensureTexture(splashColor_, GL_RGBA32F, width, height);
   ensureTexture(surfaceClass_, GL_R32F, width, height);
@@ -70,8 +70,6 @@ LiquidData RefractionPass::run(const std::optional<SurfaceLayers>& splashes,
   glUniform1i(uniformLocation(program, "maxRefractions"), parameters.max_refractions);
   glUniform1f(uniformLocation(program, "stepPixels"), parameters.trace_step_pixels);
   glUniform1i(uniformLocation(program, "maxSteps"), parameters.trace_max_steps);
-  // A step never shorter than a tenth of a particle radius, so rays along the view axis still advance.
-  glUniform1f(uniformLocation(program, "minimumStep"), 0.1f * particleRadius);
   drawFullscreenTriangle(emptyVertexArray_.id());
   checkGlError("refracting through the liquid");
   return {color_, splashColor_, surfaceClass_, thickness_, frontDepth_, frontNormal_};
