@@ -50,13 +50,20 @@ def blender(arguments, script, *script_arguments):
         raise RuntimeError(f"{' '.join(command)} failed:\n{result.stdout[-3000:]}\n{result.stderr[-2000:]}")
 
 
+def references_directory(work, example, plan):
+    """One directory per example, size and sample count, so a quick run's noisy references never stand in
+    for a full run's (a reference is rendered only where its file is missing)."""
+    return os.path.join(work, "references",
+                        f"{example}_{plan['width']}x{plan['height']}_{plan['reference_spp']}spp")
+
+
 def prepare_example(arguments, example, plan, absorption_rgb):
     """Bakes the example if its cache is missing and renders whatever references are missing."""
     directory = os.path.join(runs.REPOSITORY, "examples", example)
     if not os.path.isdir(os.path.join(directory, "cache", "mesh")):
         log(f"{example}: baking the Mantaflow cache")
         blender(arguments, os.path.join(directory, "bake.py"), "--output", directory, "--skip-render")
-    references = os.path.join(arguments.work, "references", example)
+    references = references_directory(arguments.work, example, plan)
     started = time.perf_counter()
     blender(arguments, os.path.join(runs.REPOSITORY, "tests", "bench", "references.py"),
             "--example", directory, "--output", references, "--cameras", ",".join(plan["cameras"]),
@@ -128,7 +135,8 @@ def main():
         }
 
     log("scaling")
-    base_scene = os.path.join(arguments.work, "references", plan["examples"][0], plan["cameras"][0], "scene.json")
+    base_scene = os.path.join(references_directory(arguments.work, plan["examples"][0], plan),
+                              plan["cameras"][0], "scene.json")
     scaling_work = os.path.join(arguments.work, "scaling")
     os.makedirs(scaling_work, exist_ok=True)
     mantaflow_ply = runs.export_particles(base_scene, json.load(open(base_scene))["frame"],
