@@ -1,0 +1,161 @@
+#!/usr/bin/python3
+"""Spindrift's speed-against-error benchmark: one command that regenerates docs/benchmarks.md and its plots.
+
+    tests/bench/benchmark.py [--quick] [--output docs] [--work build/bench]
+
+Bakes the examples and renders the Cycles references where they are missing (git-ignored, under --work),
+runs every configuration of the sweep through `build/bin/spindrift render --set ... --stats`, VTK's fluid
+mapper and Cycles at increasing sample counts on the same frames, measures the scaling with particle count and
+resolution, runs the stability suite, and writes OUTPUT/benchmarks.md and OUTPUT/images/bench_*.png.
+`--quick` is a smoke run of a tiny subset (one example, one camera, few settings, one repeat).
+"""
+
+import argparse
+import json
+import os
+import platform
+import subprocess
+import sys
+import time
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+import report  # noqa: E402
+import runs  # noqa: E402
+import scaling  # noqa: E402
+import sweep  # noqa: E402
+
+EXAMPLES = ("dam_break", "drop")
+
+
+def parse_arguments():
+    parser = argparse.ArgumentParser(description=__doc__.split("\n")[0])
+    parser.add_argument("--quick", action="store_true", help="a smoke run of a tiny subset")
+    parser.add_argument("--output", default=os.path.join(runs.REPOSITORY, "docs"))
+    parser.add_argument("--work", default=os.path.join(runs.REPOSITORY, "build", "bench"))
+    parser.add_argument("--blender", default="blender")
+    parser.add_argument("--report-only", action="store_true",
+                        help="rewrite the page and plots from WORK/results.json without running anything")
+    return parser.parse_args()
+
+
+def log(message):
+    print(f"[benchmark] {message}", flush=True)
+
+
+def blender(arguments, script, *script_arguments):
+    command = [arguments.blender, "-b", "--factory-startup", "--python-exit-code", "1", "--python", script,
+               "--", *script_arguments]
+    result = subprocess.run(command, capture_output=True, text=True)
+    if result.returncode != 0:
+        raise RuntimeError(f"{' '.join(command)} failed:\n{result.stdout[-3000:]}\n{result.stderr[-2000:]}")
+
+
+def references_directory(work, example, plan):
+    """One directory per example, size and sample count, so a quick run's noisy references never stand in
+    for a full run's (a reference is rendered only where its file is missing)."""
+    return os.path.join(work, "references",
+                        f"{example}_{plan['width']}x{plan['height']}_{plan['reference_spp']}spp")
+
+
+def prepare_example(arguments, example, plan, absorption_rgb):
+    """Bakes the example if its cache is missing and renders whatever references are missing."""
+    directory = os.path.join(runs.REPOSITORY, "examples", example)
+    if not os.path.isdir(os.path.join(directory, "cache", "mesh")):
+        log(f"{example}: baking the Mantaflow cache")
+        blender(arguments, os.path.join(directory, "bake.py"), "--output", directory, "--skip-render")
+    references = references_directory(arguments.work, example, plan)
+    started = time.perf_counter()
+    blender(arguments, os.path.join(runs.REPOSITORY, "tests", "bench", "references.py"),
+            "--example", directory, "--output", references, "--cameras", ",".join(plan["cameras"]),
+            "--width", str(plan["width"]), "--height", str(plan["height"]),
+            "--background-spp", str(plan["background_spp"]), "--reference-spp", str(plan["reference_spp"]),
+            "--sweep-camera", plan["cameras"][0], "--sweep-spp", ",".join(map(str, plan["sweep_spp"])),
+            "--absorption-rgb", ",".join(map(str, absorption_rgb)))
+    log(f"{example}: references ready ({time.perf_counter() - started:.0f} s)")
+    return references
+
+
+def absorption_from(table):
+    """a * c_a, the per-unit-length absorption the Cycles water must match (parameter defaults)."""
+    a = table["liquid.absorption"]["default"]
+    return [a * c for c in table["liquid.absorption_rgb"]["default"]]
+
+
+def machine_description():
+    cpu = "?"
+    if os.path.isfile("/proc/cpuinfo"):
+        names = [line.split(":", 1)[1].strip() for line in open("/proc/cpuinfo") if line.startswith("model name")]
+        cpu = f"{names[0]} ({len(names)} logical cores)" if names else cpu
+    memory = "?"
+    if os.path.isfile("/proc/meminfo"):
+        kib = int(open("/proc/meminfo").readline().split()[1])
+        memory = f"{kib / 1024 ** 2:.0f} GiB"
+    blender_version = subprocess.run(["blender", "--version"], capture_output=True, text=True).stdout
+    return {"cpu": cpu, "memory": memory, "os": platform.platform(), "gl_renderer": runs.gl_renderer(),
+            "blender": blender_version.splitlines()[0] if blender_version else "?",
+            "load_average": os.getloadavg()}
+
+
+def run_stability_suite(work):
+    """The hard cases (and the closed-form accuracy tests, whose errors they record) as gtest JSON."""
+    binary = os.path.join(runs.REPOSITORY, "build", "bin", "spindrift_tests")
+    output = os.path.join(work, "stability.json")
+    if not os.path.isfile(binary):
+        return None
+    subprocess.run([binary, "--gtest_filter=GLLiquidStability.*:GLLiquidAccuracy.*",
+                    f"--gtest_output=json:{output}"], capture_output=True)
+    return json.load(open(output)) if os.path.isfile(output) else None
+
+
+def main():
+    arguments = parse_arguments()
+    os.makedirs(arguments.work, exist_ok=True)
+    if arguments.report_only:
+        results = json.load(open(os.path.join(arguments.work, "results.json")))
+        report.write(results, arguments.output, results["plan"].get("quick", False))
+        return
+    started = time.perf_counter()
+    plan = sweep.plan(arguments.quick)
+    plan["quick"] = arguments.quick
+    table = runs.parameter_table()
+    absorption = absorption_from(table)
+    machine = machine_description()
+    log(f"renderer: {machine['gl_renderer']}; {machine['cpu']}")
+
+    results = {"machine": machine, "plan": plan, "examples": {}}
+    for example in plan["examples"]:
+        references = prepare_example(arguments, example, plan, absorption)
+        log(f"{example}: Spindrift configurations")
+        spindrift_rows = sweep.run_configurations(example, references, plan, table, arguments.work)
+        log(f"{example}: Cycles sample sweep and VTK")
+        results["examples"][example] = {
+            "spindrift": spindrift_rows,
+            "cycles": sweep.cycles_points(references, plan),
+            "vtk": sweep.vtk_points(example, references, plan, absorption, arguments.work),
+        }
+
+    log("scaling")
+    base_scene = os.path.join(references_directory(arguments.work, plan["examples"][0], plan),
+                              plan["cameras"][0], "scene.json")
+    scaling_work = os.path.join(arguments.work, "scaling")
+    os.makedirs(scaling_work, exist_ok=True)
+    mantaflow_ply = runs.export_particles(base_scene, json.load(open(base_scene))["frame"],
+                                          os.path.join(scaling_work, "mantaflow.ply"))
+    particle_rows = scaling.particle_scaling(base_scene, mantaflow_ply, plan["particle_counts"],
+                                             plan["particle_repeats"], scaling_work)
+    resolution_rows = scaling.resolution_scaling(base_scene, plan["resolutions"], plan["resolution_repeats"],
+                                                 scaling_work)
+    results["scaling"] = {"particles": particle_rows, "resolutions": resolution_rows,
+                          "slopes": scaling.slopes(particle_rows, resolution_rows)}
+
+    log("stability suite")
+    results["stability"] = run_stability_suite(arguments.work)
+    results["runtime_s"] = time.perf_counter() - started
+    with open(os.path.join(arguments.work, "results.json"), "w") as handle:
+        json.dump(results, handle, indent=1, default=str)
+    report.write(results, arguments.output, arguments.quick)
+    log(f"done in {results['runtime_s'] / 60:.1f} min: {os.path.join(arguments.output, 'benchmarks.md')}")
+
+
+if __name__ == "__main__":
+    main()

@@ -1,0 +1,250 @@
+"""Renders the benchmark's references with Cycles, from an example's own Mantaflow bake.
+
+Run inside Blender (tests/bench/benchmark.py does this when a reference is missing):
+
+    blender -b --factory-startup --python-exit-code 1 --python tests/bench/references.py -- \
+        --example examples/drop --output build/bench/references/drop [--width 480 --height 270 ...]
+
+The scene is built by the example's own bake.py (its `build_scene`), never copied here. For every camera of
+EXAMPLE/cameras.json it writes into OUTPUT/CAMERA/:
+
+- background.exr: everything but the liquid, colour and planar depth (Spindrift's background);
+- liquid_passes.exr: Mantaflow's liquid mesh alone, Depth and Normal passes at one sample through the pixel
+  centre (the geometric truth for depth, silhouette and normals);
+- reference.exr: the whole scene with the liquid mesh as water (glass, IOR 1.33, Beer-Lambert absorption
+  matching liquid.absorption_rgb) at --reference-spp samples;
+- scene.json: the Spindrift scene file for this camera, pointing at the example's cache and background.exr;
+- for --sweep-camera, cycles_spp_NNNN.exr for every --sweep-spp, and cycles_timings.json (wall seconds).
+
+The water casts no shadow (Cycles ray visibility): Spindrift refracts the background render, whose floor is
+lit, so a shadowed floor under the water would measure the light model rather than the screen-space surface.
+"""
+
+import argparse
+import gzip
+import importlib.util
+import json
+import os
+import struct
+import sys
+import tempfile
+import time
+
+import bpy
+from mathutils import Vector
+
+
+def log(message):
+    print(f"[references] {message}", flush=True)
+
+
+def parse_arguments():
+    argv = sys.argv[sys.argv.index("--") + 1:] if "--" in sys.argv else []
+    parser = argparse.ArgumentParser(prog="references.py", description=__doc__.split("\n")[0])
+    parser.add_argument("--example", required=True, help="example directory with bake.py, cameras.json, cache/")
+    parser.add_argument("--output", required=True)
+    parser.add_argument("--cameras", default="", help="comma-separated camera names (default: all)")
+    parser.add_argument("--width", type=int, default=480)
+    parser.add_argument("--height", type=int, default=270)
+    parser.add_argument("--background-spp", type=int, default=64)
+    parser.add_argument("--reference-spp", type=int, default=256)
+    parser.add_argument("--sweep-camera", default="oblique")
+    parser.add_argument("--sweep-spp", default="", help="comma-separated sample counts to time, e.g. 1,4,16")
+    parser.add_argument("--absorption-rgb", default="0.9,0.3,0.15",
+                        help="a * c_a of Spindrift's equation 9, per world unit")
+    return parser.parse_args(argv)
+
+
+def load_example(directory):
+    spec = importlib.util.spec_from_file_location("example_bake", os.path.join(directory, "bake.py"))
+    module = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(module)
+    # drop/bake.py wraps dam_break/bake.py; either way the layout constants live beside build_scene.
+    return getattr(module, "dam_break", module)
+
+
+def read_bobj(path):
+    """Mantaflow's gzipped binary mesh: vertex count and xyz floats, normals likewise, triangles as int triples."""
+    data = gzip.open(path).read()
+    offset = 0
+
+    def read_block(item_format, item_size):
+        nonlocal offset
+        count = struct.unpack_from("<i", data, offset)[0]
+        offset += 4
+        items = [struct.unpack_from(item_format, data, offset + i * item_size) for i in range(count)]
+        offset += count * item_size
+        return items
+
+    vertices = read_block("<3f", 12)
+    read_block("<3f", 12)  # per-vertex normals: Cycles interpolates its own from the smooth-shaded mesh
+    triangles = read_block("<3i", 12)
+    return vertices, triangles
+
+
+def add_liquid_mesh(example, cache_directory, frame, absorption_rgb):
+    """Mantaflow's liquid mesh of `frame`, placed as Blender's fluid modifier places it, as water.
+
+    The bobj's vertices are in the domain's normalised frame: centred on the domain and divided by its
+    longest side (checked: dam_break frame 16 spans 0.0213 to 2.8698 m from the minimum corner, as bake.py
+    prints for Blender's own evaluated mesh).
+    """
+    vertices, triangles = read_bobj(os.path.join(cache_directory, "mesh", f"fluid_mesh_{frame:04d}.bobj.gz"))
+    centre = example.DOMAIN_MIN + example.DOMAIN_SIZE / 2
+    scale = max(example.DOMAIN_SIZE)
+    world = [tuple(centre + Vector(v) * scale) for v in vertices]
+    mesh = bpy.data.meshes.new("LiquidMesh")
+    mesh.from_pydata(world, [], [tuple(t) for t in triangles])
+    mesh.polygons.foreach_set("use_smooth", [True] * len(mesh.polygons))
+    mesh.update()
+    liquid = bpy.data.objects.new("LiquidMesh", mesh)
+    bpy.context.scene.collection.objects.link(liquid)
+    liquid.visible_shadow = False
+    liquid.data.materials.append(make_water_material(absorption_rgb))
+    log(f"liquid mesh of frame {frame}: {len(world)} vertices, {len(triangles)} triangles")
+    return liquid
+
+
+def make_water_material(absorption_rgb):
+    """Glass with IOR 1.33 and a volume that absorbs exp(-l c) per channel, as Spindrift's equation 9.
+
+    Cycles' Volume Absorption removes density * (1 - colour) per unit length, so density is the largest
+    coefficient and each channel's colour is 1 - c / density.
+    """
+    material = bpy.data.materials.new("Water")
+    material.use_nodes = True
+    nodes, links = material.node_tree.nodes, material.node_tree.links
+    nodes.remove(nodes["Principled BSDF"])
+    output = nodes["Material Output"]
+    glass = nodes.new("ShaderNodeBsdfGlass")
+    glass.distribution = 'SHARP'
+    glass.inputs["IOR"].default_value = 1.33
+    glass.inputs["Color"].default_value = (1, 1, 1, 1)
+    links.new(glass.outputs["BSDF"], output.inputs["Surface"])
+    density = max(absorption_rgb)
+    absorption = nodes.new("ShaderNodeVolumeAbsorption")
+    absorption.inputs["Density"].default_value = density
+    absorption.inputs["Color"].default_value = (*[1 - c / density for c in absorption_rgb], 1)
+    links.new(absorption.outputs["Volume"], output.inputs["Volume"])
+    return material
+
+
+def place_camera(camera, definition, width, height):
+    camera.location = Vector(definition["location"])
+    direction = Vector(definition["target"]) - camera.location
+    camera.rotation_euler = direction.to_track_quat('-Z', 'Y').to_euler()
+    camera.data.lens = definition["lens_mm"]
+    scene = bpy.context.scene
+    scene.render.resolution_x, scene.render.resolution_y = width, height
+    bpy.context.view_layer.update()
+
+
+def write_scene_file(example, camera, domain, example_directory, path, width, height):
+    description = example.scene_description(camera, domain)
+    description["camera"]["width"], description["camera"]["height"] = width, height
+    for source in description["particles"]:
+        source["path"] = os.path.join(example_directory, source["path"])
+    description["background"]["image"] = "background.exr"
+    with open(path, "w", encoding="utf-8") as handle:
+        handle.write(example.format_scene_json(description))
+
+
+def render(path, samples, seed=0):
+    """Renders the current scene to a 32-bit multilayer EXR; returns the wall time in seconds."""
+    scene = bpy.context.scene
+    scene.cycles.samples = samples
+    scene.cycles.seed = seed
+    scene.render.filepath = path
+    started = time.perf_counter()
+    bpy.ops.render.render(write_still=True)
+    return time.perf_counter() - started
+
+
+def set_visible(objects, visible):
+    for obj in objects:
+        obj.hide_render = not visible
+
+
+def configure_cycles(example, output):
+    scene = bpy.context.scene
+    example.configure_background_render(scene, output)
+    # Adaptive sampling would make "N samples" mean fewer on easy pixels; the sweep wants exactly N.
+    scene.cycles.use_adaptive_sampling = False
+    scene.cycles.max_bounces = 16
+    scene.cycles.transmission_bounces = 16
+    scene.cycles.transparent_max_bounces = 16
+    scene.cycles.volume_bounces = 0
+    scene.view_layers[0].use_pass_normal = True
+
+
+def render_camera(arguments, example, camera, domain, liquid, definition, example_directory):
+    scene = bpy.context.scene
+    directory = os.path.join(arguments.output, definition["name"])
+    os.makedirs(directory, exist_ok=True)
+    place_camera(camera, definition, arguments.width, arguments.height)
+    write_scene_file(example, camera, domain, example_directory, os.path.join(directory, "scene.json"),
+                     arguments.width, arguments.height)
+    solids = [obj for obj in scene.objects
+              if obj.type == 'MESH' and obj != liquid and not obj.hide_render]
+
+    def missing(name):
+        return not os.path.isfile(os.path.join(directory, name))
+
+    if missing("background.exr"):
+        set_visible([liquid], False)
+        seconds = render(os.path.join(directory, "background.exr"), arguments.background_spp)
+        log(f"{definition['name']}: background in {seconds:.1f} s")
+        set_visible([liquid], True)
+    if missing("liquid_passes.exr"):
+        # One sample through each pixel's centre: depth and normal of exactly the surface the ray meets.
+        set_visible(solids, False)
+        scene.render.film_transparent = True
+        filter_width = scene.cycles.filter_width
+        scene.cycles.filter_width = 0.01
+        render(os.path.join(directory, "liquid_passes.exr"), 1)
+        scene.cycles.filter_width = filter_width
+        scene.render.film_transparent = False
+        set_visible(solids, True)
+    if missing("reference.exr"):
+        seconds = render(os.path.join(directory, "reference.exr"), arguments.reference_spp)
+        log(f"{definition['name']}: reference ({arguments.reference_spp} spp) in {seconds:.1f} s")
+    if definition["name"] == arguments.sweep_camera and arguments.sweep_spp:
+        timings_path = os.path.join(directory, "cycles_timings.json")
+        timings = json.load(open(timings_path)) if os.path.isfile(timings_path) else {}
+        for samples in [int(s) for s in arguments.sweep_spp.split(",")]:
+            name = f"cycles_spp_{samples:04d}.exr"
+            if str(samples) in timings and not missing(name):
+                continue
+            # Another seed than the reference's, so the sweep's noise is independent of the reference's.
+            timings[str(samples)] = render(os.path.join(directory, name), samples, seed=1)
+            log(f"{definition['name']}: {samples} spp in {timings[str(samples)]:.2f} s")
+        with open(timings_path, "w", encoding="utf-8") as handle:
+            json.dump(timings, handle, indent=1)
+
+
+def main():
+    arguments = parse_arguments()
+    arguments.output = os.path.abspath(arguments.output)
+    example_directory = os.path.abspath(arguments.example)
+    example = load_example(example_directory)
+    cameras = json.load(open(os.path.join(example_directory, "cameras.json")))
+    if arguments.cameras:
+        wanted = arguments.cameras.split(",")
+        cameras = [c for c in cameras if c["name"] in wanted]
+
+    # The example's domain gets a scratch cache directory: nothing here bakes, and Blender may free a cache
+    # it did not bake in this session (see dam_break/bake.py).
+    with tempfile.TemporaryDirectory(prefix="references_cache_") as scratch:
+        domain, _, camera = example.build_scene(scratch)
+        bpy.context.scene.frame_set(example.SHOWCASE_FRAME)
+        absorption = [float(c) for c in arguments.absorption_rgb.split(",")]
+        liquid = add_liquid_mesh(example, os.path.join(example_directory, "cache"), example.SHOWCASE_FRAME,
+                                 absorption)
+        configure_cycles(example, arguments.output)
+        for definition in cameras:
+            render_camera(arguments, example, camera, domain, liquid, definition, example_directory)
+    log("done")
+
+
+if __name__ == "__main__":
+    main()

@@ -1,0 +1,173 @@
+"""Writes docs/benchmarks.md and docs/images/bench_*.png from the benchmark's results."""
+
+import math
+import os
+
+import plots
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+# The README's "Benchmarks" section heads the page; the notes on method are the benchmark's own.
+SECTION_FILE = os.path.join(HERE, "..", "..", "docs", "README-benchmarks-section.md")
+NOTES_FILE = os.path.join(HERE, "method_notes.md")
+
+
+def number(value, digits=3):
+    if value is None or (isinstance(value, float) and math.isnan(value)):
+        return "–"
+    return f"{value:.{digits}g}" if abs(value) < 1000 else f"{value:.0f}"
+
+
+def table(header, rows):
+    lines = ["| " + " | ".join(header) + " |", "|" + "---|" * len(header)]
+    lines += ["| " + " | ".join(str(cell) for cell in row) + " |" for row in rows]
+    return "\n".join(lines)
+
+
+def cycles_time_at_error(cycles, error):
+    """Cycles' time for `error` (MAE), interpolated on log time against log error between sweep points;
+    None where the error lies outside the sweep's range."""
+    points = sorted((p["mae"], p["time_s"]) for p in cycles if p["mae"] == p["mae"])
+    for (low_error, low_time), (high_error, high_time) in zip(points, points[1:]):
+        if low_error <= error <= high_error:
+            t = (math.log(error) - math.log(low_error)) / (math.log(high_error) - math.log(low_error))
+            return math.exp(math.log(low_time) + t * (math.log(high_time) - math.log(low_time)))
+    return None
+
+
+def method_points(data):
+    points = [(row["timing"]["total_ms"], row["errors"]["mae"], "spindrift", row["label"])
+              for row in data["spindrift"] if "timing" in row]
+    points += [(row["frame_ms"], row["errors"]["mae"], "vtk", row["label"]) for row in data["vtk"]]
+    points += [(p["time_s"] * 1e3, p["mae"], "cycles", f"{p['spp']} spp") for p in data["cycles"]]
+    return points
+
+
+def spindrift_table(data):
+    rows = []
+    for row in data["spindrift"]:
+        if "skipped" in row:
+            rows.append([row["label"], "skipped: " + row["skipped"]] + [""] * 11)
+            continue
+        t, e = row["timing"], row["errors"]
+        gpu = sum(p["gpu_ms"] for p in t["passes"].values())
+        smoothing = t["passes"].get("smoothing", {}).get("gpu_ms")
+        cycles_time = cycles_time_at_error(data["cycles"], e["mae"])
+        ratio = number(cycles_time * 1e3 / t["total_ms"]) + "×" if cycles_time else "–"
+        rows.append([row["label"], number(t["wall_s"] * 1e3, 4), number(t["total_ms"], 4), number(gpu, 4),
+                     number(smoothing), number(e["iou"]), number(e["depth_median_r"]), number(e["depth_p95_r"]),
+                     number(e["silhouette_bias_r"]), number(e["normal_median_deg"]), number(e["normal_p95_deg"]),
+                     f"{number(e['mae'])} / {number(e['ssim'])}", ratio])
+    return table(["setting", "wall ms", "frame ms", "GPU ms", "smoothing GPU ms", "IoU", "depth med (r)",
+                  "depth p95 (r)", "edge bias (r)", "normal med °", "normal p95 °", "MAE / SSIM",
+                  "Cycles time at equal MAE"], rows)
+
+
+def pass_table(data):
+    names = []
+    for row in data["spindrift"]:
+        for name in row.get("timing", {}).get("passes", {}):
+            if name not in names:
+                names.append(name)
+    rows = [[row["label"]] + [number(row["timing"]["passes"].get(name, {}).get("gpu_ms")) for name in names]
+            for row in data["spindrift"] if "timing" in row]
+    return table(["setting"] + [f"{name} GPU ms" for name in names], rows)
+
+
+def peers_table(data):
+    rows = [[row["label"], number(row["frame_ms"], 4), number(row["first_frame_ms"], 4), number(row["errors"]["mae"]),
+             number(row["errors"]["ssim"])] for row in data["vtk"]]
+    rows += [[f"Cycles {p['spp']} spp", number(p["time_s"] * 1e3, 4), "", number(p["mae"]), number(p["ssim"])]
+             for p in data["cycles"]]
+    return table(["method", "frame ms", "first frame ms", "MAE", "SSIM"], rows)
+
+
+def scaling_tables(scaling):
+    particle_rows = [[row["source"], f"{row['count']:,}", number(row["total_ms"], 4), number(row["wall_s"] * 1e3, 4),
+                      number(row["peak_rss_mib"], 4), number(row["peak_gpu_mib"]), row["repeats"]]
+                     for row in scaling["particles"]]
+    resolution_rows = [[f"{row['width']}×{row['height']}", number(row["total_ms"], 4),
+                        number(row["wall_s"] * 1e3, 4), number(row["peak_rss_mib"], 4), number(row["peak_gpu_mib"]),
+                        row["repeats"]] for row in scaling["resolutions"]]
+    slopes = scaling["slopes"]
+    slope_rows = [[key.replace("_", " "), number(value)] for key, value in slopes.items()]
+    return "\n\n".join([
+        table(["particles", "count", "frame ms", "wall ms", "peak host MiB", "peak GPU MiB", "runs"], particle_rows),
+        table(["resolution", "frame ms", "wall ms", "peak host MiB", "peak GPU MiB", "runs"], resolution_rows),
+        table(["fitted log-log slope", "exponent"], slope_rows)])
+
+
+def stability_table(suite):
+    if not suite:
+        return "The test binary `build/bin/spindrift_tests` was not built; no stability results."
+    rows = []
+    for group in suite.get("testsuites", []):
+        for test in group.get("testsuite", []):
+            failed = bool(test.get("failures"))
+            known = {"name", "file", "line", "status", "result", "timestamp", "time", "classname", "failures"}
+            errors = ", ".join(f"{k} {v}" for k, v in test.items() if k not in known) or "–"
+            outcome = "fail" if failed else ("skipped" if test.get("result") == "SKIPPED" else "pass")
+            rows.append([f"{group['name']}.{test['name']}", outcome,
+                         test.get("time", ""), errors])
+    return table(["case", "result", "time", "error against its reference"], rows)
+
+
+def write_plots(results, images):
+    written = []
+    for example, data in results["examples"].items():
+        path = os.path.join(images, f"bench_time_vs_error_{example}.png")
+        plots.time_vs_error(method_points(data), "composite MAE over liquid (linear RGB)", path,
+                            f"{example}: time per frame against image error (mean over cameras; Cycles on one)")
+        written.append(path)
+        geometric = [(row["timing"]["total_ms"], row["errors"]["depth_median_r"], "spindrift", row["label"])
+                     for row in data["spindrift"] if "timing" in row]
+        path = os.path.join(images, f"bench_time_vs_depth_{example}.png")
+        plots.time_vs_error(geometric, "median |depth error| (particle radii)", path,
+                            f"{example}: time per frame against depth error")
+        written.append(path)
+    particles = results["scaling"]["particles"]
+    series = {}
+    for source in ("synthetic", "resampled"):
+        rows = [row for row in particles if row["source"] == source]
+        series[source] = ([r["count"] for r in rows], [r["total_ms"] for r in rows], [r["peak_rss_mib"] for r in rows])
+    path = os.path.join(images, "bench_scaling_particles.png")
+    plots.scaling(series, "particles", path, "Frame time and memory against particle count")
+    written.append(path)
+    rows = results["scaling"]["resolutions"]
+    path = os.path.join(images, "bench_scaling_resolution.png")
+    plots.scaling({"dam_break": ([r["pixels"] for r in rows], [r["total_ms"] for r in rows],
+                                 [r["peak_rss_mib"] for r in rows])}, "pixels", path,
+                  "Frame time and memory against resolution")
+    written.append(path)
+    return written
+
+
+def write(results, output, quick):
+    images = os.path.join(output, "images")
+    os.makedirs(images, exist_ok=True)
+    write_plots(results, images)
+    plan, machine = results["plan"], results["machine"]
+    parts = [open(SECTION_FILE).read().strip(), "", open(NOTES_FILE).read().strip()]
+    parts += ["", "## The machine", "",
+              table(["", ""], [["OpenGL renderer", machine["gl_renderer"]], ["CPU", machine["cpu"]],
+                               ["memory", machine["memory"]], ["OS", machine["os"]], ["Blender", machine["blender"]],
+                               ["load average at start", ", ".join(f"{v:.1f}" for v in machine["load_average"])],
+                               ["run", ("--quick" if quick else "full") + f", {results['runtime_s'] / 60:.1f} min"]])]
+    for example, data in results["examples"].items():
+        parts += ["", f"## {example}", "",
+                  f"{plan['width']}×{plan['height']}, cameras {', '.join(plan['cameras'])}; times on "
+                  f"`{plan['cameras'][0]}` (median of {plan['repeats']} runs), errors the mean over the cameras.",
+                  "", f"![time against error, {example}](images/bench_time_vs_error_{example}.png)",
+                  f"![time against depth error, {example}](images/bench_time_vs_depth_{example}.png)", "",
+                  "### Spindrift settings", "", spindrift_table(data), "", "### GPU time per pass", "",
+                  pass_table(data), "", "### Peers: VTK's fluid mapper and Cycles", "", peers_table(data)]
+    parts += ["", "## Scaling", "", "Default settings, the dam-break `oblique` camera (480×270 for the particle sweep, "
+              "its background resampled for the resolution sweep).", "",
+              "![scaling with particles](images/bench_scaling_particles.png)",
+              "![scaling with resolution](images/bench_scaling_resolution.png)", "",
+              scaling_tables(results["scaling"]), "", "## Stability suite", "",
+              "`build/bin/spindrift_tests --gtest_filter='GLLiquidStability.*:GLLiquidAccuracy.*' "
+              "--gtest_output=json:…`, run by the benchmark; errors are the properties the tests record.", "",
+              stability_table(results["stability"]), ""]
+    with open(os.path.join(output, "benchmarks.md"), "w") as handle:
+        handle.write("\n".join(parts))
+

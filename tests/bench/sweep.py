@@ -1,0 +1,144 @@
+"""What the benchmark runs: the plan (full or quick), Spindrift's configurations, Cycles' sample counts and
+VTK's fluid mapper, each measured on the same frames against the same Cycles references."""
+
+import json
+import os
+
+import runs
+
+CAMERAS = ["oblique", "closeup", "topdown", "grazing"]
+
+
+def plan(quick):
+    """Sizes of the run. The full run is sized to take about 35 minutes on 2 cores with llvmpipe."""
+    if quick:
+        return {"examples": ["dam_break"], "cameras": ["oblique"], "width": 480, "height": 270,
+                "background_spp": 16, "reference_spp": 32, "sweep_spp": [1, 4], "repeats": 1,
+                "configurations": configurations(quick=True), "vtk_filters": ["narrow_range"],
+                "particle_counts": [10_000, 100_000], "particle_repeats": lambda count: 1,
+                "resolutions": [(854, 480), (1280, 720)], "resolution_repeats": lambda pixels: 1}
+    return {"examples": ["dam_break", "drop"], "cameras": CAMERAS, "width": 480, "height": 270,
+            "background_spp": 64, "reference_spp": 256, "sweep_spp": [1, 4, 16, 64], "repeats": 5,
+            "configurations": configurations(quick=False), "vtk_filters": ["narrow_range", "bilateral"],
+            "particle_counts": [10_000, 30_000, 100_000, 300_000, 1_000_000, 4_000_000],
+            "particle_repeats": lambda count: 3 if count <= 300_000 else 1,
+            "resolutions": [(854, 480), (1280, 720), (1920, 1080), (3840, 2160)],
+            "resolution_repeats": lambda pixels: 3 if pixels <= 1280 * 720 else 1}
+
+
+def configurations(quick):
+    """(label, settings, foam) for every point of the sweep. The defaults (plane_fit, 3 iterations, window 9,
+    4 refractions, layers split, foam on) are the centre; every other axis varies one thing from them."""
+    default = {"liquid.smoothing": "plane_fit", "liquid.smoothing_iterations": 3, "liquid.plane_fit_window": 9,
+               "liquid.max_refractions": 4, "liquid.layers": "split"}
+
+    def variant(label, foam=True, **changes):
+        settings = dict(default)
+        settings.update({f"liquid.{key}": value for key, value in changes.items()})
+        return label, settings, foam
+
+    if quick:
+        return [variant("plane_fit i3 w9"), variant("none", smoothing="none"),
+                variant("max_refractions 1", max_refractions=1), variant("plane_fit, foam off", foam=False)]
+    points = [variant(f"plane_fit i{i} w{w}", smoothing_iterations=i, plane_fit_window=w)
+              for i in (1, 3, 5) for w in (5, 9, 15)]
+    points += [variant(f"{method} i{i}", smoothing=method, smoothing_iterations=i)
+               for method in ("bilateral", "narrow_range") for i in (1, 3)]
+    points += [variant(f"curvature_flow s{steps}", smoothing="curvature_flow", curvature_flow_steps=steps)
+               for steps in (20, 60)]
+    points += [variant("none", smoothing="none")]
+    points += [variant(f"max_refractions {n}", max_refractions=n) for n in (1, 2)]
+    points += [variant("layers merged", layers="merged"), variant("plane_fit, foam off", foam=False)]
+    return points
+
+
+def scene_for(camera_directory, foam):
+    """The camera's scene file, or a copy without the foam sources (foam off) beside it."""
+    scene = os.path.join(camera_directory, "scene.json")
+    if foam:
+        return scene
+    description = json.load(open(scene))
+    description["particles"] = [p for p in description["particles"] if p.get("role", "liquid") != "foam"]
+    without_foam = os.path.join(camera_directory, "scene_without_foam.json")
+    with open(without_foam, "w") as handle:
+        json.dump(description, handle, indent=1)
+    return without_foam
+
+
+def liquid_radius(scene):
+    description = json.load(open(scene))
+    return next(p["radius"] for p in description["particles"] if p.get("role", "liquid") == "liquid")
+
+
+def run_configurations(example, references, plan, table, work):
+    rows = []
+    work_directory = os.path.join(work, "runs", example)
+    os.makedirs(work_directory, exist_ok=True)
+    for label, settings, foam in plan["configurations"]:
+        why_not = runs.unsupported_settings(settings, table)
+        if why_not and "liquid.layers" in settings and settings["liquid.layers"] == "split":
+            # Builds without the layers parameter always split: drop the default rather than skip the point.
+            settings = {k: v for k, v in settings.items() if k != "liquid.layers"}
+            why_not = runs.unsupported_settings(settings, table)
+        if why_not:
+            rows.append({"label": label, "settings": settings, "foam": foam, "skipped": why_not})
+            print(f"  {label}: skipped ({why_not})", flush=True)
+            continue
+        per_camera, timing = [], None
+        for index, camera in enumerate(plan["cameras"]):
+            camera_directory = os.path.join(references, camera)
+            scene = scene_for(camera_directory, foam)
+            exr = os.path.join(work_directory, f"{camera}.exr")
+            # Timing on the first camera; one run on each other camera for its errors.
+            repeats = plan["repeats"] if index == 0 else 1
+            measured = runs.timed_spindrift(scene, exr, settings, repeats, work_directory)
+            timing = timing or measured
+            per_camera.append(runs.frame_errors(exr, camera_directory, liquid_radius(scene),
+                                                runs.SPINDRIFT_CHANNELS))
+        errors = runs.mean_errors(per_camera)
+        rows.append({"label": label, "settings": settings, "foam": foam, "timing": timing, "errors": errors,
+                     "per_camera": dict(zip(plan["cameras"], per_camera))})
+        print(f"  {label}: {timing['total_ms']:.0f} ms/frame, MAE {errors['mae']:.4f}, "
+              f"depth {errors['depth_median_r']:.2f} r", flush=True)
+    return rows
+
+
+def cycles_points(references, plan):
+    camera_directory = os.path.join(references, plan["cameras"][0])
+    timings = json.load(open(os.path.join(camera_directory, "cycles_timings.json")))
+    points = []
+    for samples in plan["sweep_spp"]:
+        exr = os.path.join(camera_directory, f"cycles_spp_{samples:04d}.exr")
+        errors = runs.frame_errors(exr, camera_directory, 1.0,
+                                   {"composite": ["Combined.R", "Combined.G", "Combined.B"]})
+        points.append({"spp": samples, "time_s": timings[str(samples)], **errors})
+    return points
+
+
+def vtk_points(example, references, plan, absorption, work):
+    work_directory = os.path.join(work, "vtk", example)
+    os.makedirs(work_directory, exist_ok=True)
+    first_scene = os.path.join(references, plan["cameras"][0], "scene.json")
+    particles = runs.export_particles(first_scene, json.load(open(first_scene))["frame"],
+                                      os.path.join(work_directory, "particles.ply"))
+    rows = []
+    for filter_name in plan["vtk_filters"]:
+        per_camera, timing = [], None
+        for index, camera in enumerate(plan["cameras"]):
+            camera_directory = os.path.join(references, camera)
+            composite, frame_ms, first_ms, renderer = runs.run_vtk(
+                os.path.join(camera_directory, "scene.json"), particles,
+                os.path.join(work_directory, f"{camera}.npz"), plan["repeats"] if index == 0 else 1,
+                filter_name, absorption)
+            timing = timing or {"frame_ms": frame_ms, "first_frame_ms": first_ms, "gl_renderer": renderer}
+            per_camera.append(runs.frame_errors(None, camera_directory, 1.0, {"composite_array": composite}))
+        rows.append({"label": f"VTK {filter_name}", **timing, "errors": runs.mean_errors(per_camera)})
+        print(f"  VTK {filter_name}: {timing['frame_ms']:.0f} ms/frame, MAE {rows[-1]['errors']['mae']:.4f}",
+              flush=True)
+    return rows
+
+
+def error_of(row):
+    """The error axis shared by all three renderers: mean absolute error of the composite over liquid."""
+    return row["errors"]["mae"] if "errors" in row else row["mae"]
+
