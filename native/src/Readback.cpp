@@ -26,4 +26,35 @@ ImageLayer filledLayer(int width, int height, const std::string& name, const std
   return {name, channels, std::vector<float>(std::size_t(width) * std::size_t(height) * channels.size(), value)};
 }
 
+namespace {
+
+ImageLayer totalThickness(const Texture2D& thicknessByType) {
+  ImageLayer byType = readLayer(thicknessByType, "foam_thickness", {"R", "G", "B"});
+  ImageLayer total{"foam_thickness", {"Y"}, std::vector<float>(byType.pixels.size() / 3)};
+  for (std::size_t i = 0; i < total.pixels.size(); ++i)
+    total.pixels[i] = byType.pixels[3 * i] + byType.pixels[3 * i + 1] + byType.pixels[3 * i + 2];
+  return total;
+}
+
+}  // namespace
+
+void readFoamLayers(const FoamLayerData* foam, int width, int height, std::vector<ImageLayer>& layers) {
+  const std::vector<std::string> rgba = {"R", "G", "B", "A"}, rgb = {"R", "G", "B"};
+  if (!foam) {
+    for (const char* name : {"foam", "foam_spray", "foam_surface", "foam_bubble"})
+      layers.push_back(filledLayer(width, height, name, rgba, 0.0f));
+    layers.push_back(filledLayer(width, height, "foam_shadow", rgb, 0.0f));
+    layers.push_back(filledLayer(width, height, "foam_irradiance", rgb, 0.0f));
+    layers.push_back(filledLayer(width, height, "foam_thickness", {"Y"}, 0.0f));
+    return;
+  }
+  layers.push_back(readLayer(foam->foam, "foam", rgba));
+  layers.push_back(readLayer(foam->spray, "foam_spray", rgba));
+  layers.push_back(readLayer(foam->surface, "foam_surface", rgba));
+  layers.push_back(readLayer(foam->bubble, "foam_bubble", rgba));
+  layers.push_back(readLayer(foam->shadow, "foam_shadow", rgb));
+  layers.push_back(readLayer(foam->irradiance, "foam_irradiance", rgb));
+  layers.push_back(totalThickness(foam->thickness));
+}
+
 }  // namespace spindrift

@@ -34,4 +34,22 @@ void drawFullscreenTriangle(GLuint emptyVertexArray) {
   glDrawArrays(GL_TRIANGLES, 0, 3);
 }
 
+void bindColorTargets(GLuint framebuffer, std::initializer_list<const Texture2D*> targets) {
+  GLenum drawBuffers[8];
+  GLsizei count = 0;
+  int width = 0, height = 0;
+  for (const Texture2D* target : targets) {
+    const GLenum attachment = GL_COLOR_ATTACHMENT0 + GLenum(count);
+    glNamedFramebufferTexture(framebuffer, attachment, target ? target->id() : 0, 0);
+    drawBuffers[count++] = target ? attachment : GL_NONE;
+    if (target && width == 0) {
+      width = target->width;
+      height = target->height;
+    }
+  }
+  glNamedFramebufferDrawBuffers(framebuffer, count, drawBuffers);
+  glBindFramebuffer(GL_FRAMEBUFFER, framebuffer);
+  glViewport(0, 0, width, height);
+}
+
 }  // namespace spindrift

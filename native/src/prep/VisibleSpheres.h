@@ -3,12 +3,29 @@
 #include <cstddef>
 #include <vector>
 
+#include <glm/mat4x4.hpp>
+#include <glm/vec3.hpp>
 #include <glm/vec4.hpp>
 
 #include "spindrift/Camera.h"
 #include "spindrift/Particles.h"
 
 namespace spindrift {
+
+/// The camera's view frustum, for culling spheres on the CPU.
+class ViewFrustum {
+ public:
+  explicit ViewFrustum(const Camera& camera);
+  /// Whether a world-space sphere can reach the frustum between the clip planes. Spheres that contain the
+  /// camera are left out too: a quad cannot cover them.
+  bool reaches(const glm::vec3& worldCentre, float radius) const;
+
+ private:
+  glm::mat4 cameraFromWorld_;
+  glm::vec3 sidePlanes_[4];  ///< Inward unit normals of the side planes, which pass through the camera.
+  float nearClip_;
+  float farClip_;
+};
 
 /// The spheres the impostor pass draws: world centre in xyz, radius in w.
 struct VisibleSpheres {
