@@ -438,7 +438,16 @@ def render_with_liquid(scene, domain, domain_settings, cache_directory, render_d
     glass = nodes.new("ShaderNodeBsdfGlass")
     glass.inputs["IOR"].default_value = WATER_IOR
     glass.inputs["Roughness"].default_value = 0.0
-    water.node_tree.links.new(glass.outputs["BSDF"], nodes["Material Output"].inputs["Surface"])
+    # Without caustics the glass would cast a black shadow; shadow rays pass through it instead, so the floor
+    # under the water is lit as under clear water.
+    light_path = nodes.new("ShaderNodeLightPath")
+    transparent = nodes.new("ShaderNodeBsdfTransparent")
+    mix = nodes.new("ShaderNodeMixShader")
+    links = water.node_tree.links
+    links.new(light_path.outputs["Is Shadow Ray"], mix.inputs["Fac"])
+    links.new(glass.outputs["BSDF"], mix.inputs[1])
+    links.new(transparent.outputs["BSDF"], mix.inputs[2])
+    links.new(mix.outputs["Shader"], nodes["Material Output"].inputs["Surface"])
     domain.data.materials.clear()
     domain.data.materials.append(water)
     domain.hide_render = False

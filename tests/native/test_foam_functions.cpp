@@ -28,7 +28,8 @@ double sigmoid(double rho, double rhoMod, double rhoExp) {
 
 double radicalInverse(unsigned index, unsigned base) {
   double result = 0.0, weight = 1.0 / base;
-  for (; index > 0; index /= base, weight /= base) result += weight * (index % base);
+  for (; index > 0; index /= base, weight /= base)
+    result += weight * (index % base);
   return result;
 }
 
@@ -60,7 +61,8 @@ std::vector<float> evaluateOnGpu(const std::vector<float>& rows) {
     const std::size_t count = rows.size() / 4;
     BufferObject inputs = createBuffer(), outputs = createBuffer();
     glNamedBufferStorage(inputs.id(), GLsizeiptr(rows.size() * sizeof(float)), rows.data(), 0);
-    glNamedBufferStorage(outputs.id(), GLsizeiptr(count * 8 * sizeof(float)), nullptr, GL_DYNAMIC_STORAGE_BIT);
+    glNamedBufferStorage(outputs.id(), GLsizeiptr(count * 8 * sizeof(float)), nullptr,
+                         GL_DYNAMIC_STORAGE_BIT);
     glUseProgram(program.id());
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, inputs.id());
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, outputs.id());
@@ -77,8 +79,8 @@ std::vector<float> evaluateOnGpu(const std::vector<float>& rows) {
 
 TEST(GLFoamFunctions, FalloffMatchesEquationOne) {
   // The paper's shapes (spray, surface foam, bubble before 1 - f, lifetime), another b, and x beyond b.
-  const double shapes[][3] = {{1.0, 1.5, 1.0}, {1.0, 2.25, 1.0}, {1.0, 2.0, 1.0}, {1.0, 2.0, 0.4}, {0.3, 1.0, 2.0},
-                              {2.5, 3.0, 0.5}};
+  const double shapes[][3] = {{1.0, 1.5, 1.0}, {1.0, 2.25, 1.0}, {1.0, 2.0, 1.0},
+                              {1.0, 2.0, 0.4}, {0.3, 1.0, 2.0},  {2.5, 3.0, 0.5}};
   std::vector<float> rows;
   for (const auto& shape : shapes)
     for (double x = 0.0; x <= 1.2 * shape[0]; x += shape[0] / 20.0)
@@ -102,8 +104,8 @@ TEST(GLFoamFunctions, SigmoidMatchesFormula) {
   for (std::size_t i = 0; i < rows.size() / 4; ++i) {
     const double expected = sigmoid(rows[4 * i], rows[4 * i + 1], rows[4 * i + 2]);
     ASSERT_TRUE(std::isfinite(results[8 * i + 1]));
-    EXPECT_NEAR(results[8 * i + 1], expected, 2e-6) << "iota(" << rows[4 * i] << ", " << rows[4 * i + 1] << ", "
-                                                    << rows[4 * i + 2] << ")";
+    EXPECT_NEAR(results[8 * i + 1], expected, 2e-6)
+        << "iota(" << rows[4 * i] << ", " << rows[4 * i + 1] << ", " << rows[4 * i + 2] << ")";
   }
   // The paper's default iota(rho, 3, 1.25): one full particle gives 1/4.
   EXPECT_NEAR(sigmoid(1.0, 3.0, 1.25), 0.25, 1e-12);
@@ -111,14 +113,16 @@ TEST(GLFoamFunctions, SigmoidMatchesFormula) {
 
 TEST(GLFoamFunctions, HaltonSamplesAreRadicalInversesInBases235) {
   std::vector<float> rows;
-  for (unsigned i = 0; i < 512; ++i) rows.insert(rows.end(), {float(i), 1.0f, 1.0f, 1.0f});
+  for (unsigned i = 0; i < 512; ++i)
+    rows.insert(rows.end(), {float(i), 1.0f, 1.0f, 1.0f});
   const std::vector<float> results = evaluateOnGpu(rows);
   int insideSphere = 0;
   for (unsigned i = 0; i < 512; ++i) {
     const double expected[3] = {2 * radicalInverse(i + 1, 2) - 1, 2 * radicalInverse(i + 1, 3) - 1,
                                 2 * radicalInverse(i + 1, 5) - 1};
     const float got[3] = {results[8 * i + 2], results[8 * i + 3], results[8 * i + 4]};
-    for (int axis = 0; axis < 3; ++axis) EXPECT_NEAR(got[axis], expected[axis], 1e-6) << i << " " << axis;
+    for (int axis = 0; axis < 3; ++axis)
+      EXPECT_NEAR(got[axis], expected[axis], 1e-6) << i << " " << axis;
     insideSphere += expected[0] * expected[0] + expected[1] * expected[1] + expected[2] * expected[2] <= 1.0;
   }
   // Low discrepancy: the share inside the unit sphere is close to its volume's share of the cube, pi / 6.

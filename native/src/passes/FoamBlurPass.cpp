@@ -14,7 +14,8 @@ FoamLayerData FoamBlurPass::run(const FoamSurfaceData& surface, const FoamThickn
                                 const FoamParameters& parameters, int width, int height) {
   ensureTexture(horizontalShadow_, GL_R32F, width, height);
   ensureTexture(horizontalIrradiance_, GL_RGBA16F, width, height);
-  for (Texture2D* layer : {&foam_, &spray_, &surface_, &bubble_}) ensureTexture(*layer, GL_RGBA32F, width, height);
+  for (Texture2D* layer : {&foam_, &spray_, &surface_, &bubble_})
+    ensureTexture(*layer, GL_RGBA32F, width, height);
   ensureTexture(shadow_, GL_RGBA16F, width, height);
   ensureTexture(irradiance_, GL_RGBA16F, width, height);
 
@@ -39,7 +40,8 @@ FoamLayerData FoamBlurPass::run(const FoamSurfaceData& surface, const FoamThickn
   drawFullscreenTriangle(emptyVertexArray_.id());
 
   // Vertical, into the foam layers.
-  bindColorTargets(framebuffer_.id(), {nullptr, nullptr, &foam_, &spray_, &surface_, &bubble_, &shadow_, &irradiance_});
+  bindColorTargets(framebuffer_.id(),
+                   {nullptr, nullptr, &foam_, &spray_, &surface_, &bubble_, &shadow_, &irradiance_});
   glUniform2i(uniformLocation(program, "direction"), 0, 1);
   glUniform1i(uniformLocation(program, "finalRun"), 1);
   glBindTextureUnit(0, horizontalShadow_.id());

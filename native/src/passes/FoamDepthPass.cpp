@@ -10,8 +10,8 @@ FoamDepthPass::FoamDepthPass(const ShaderLibrary& shaders)
       framebuffer_(createFramebuffer()),
       particleBuffer_(createBuffer()) {}
 
-FoamSurfaceData FoamDepthPass::run(const std::vector<FoamInstance>& particles, const FoamSceneDepth& scene, int width,
-                                   int height) {
+FoamSurfaceData FoamDepthPass::run(const std::vector<FoamInstance>& particles, const FoamSceneDepth& scene,
+                                   int width, int height) {
   // Grow-only storage: a sequence reallocates only when a frame has more foam in view than any before it.
   const std::size_t bytes = particles.size() * sizeof(FoamInstance);
   if (bytes > particleBufferBytes_) {

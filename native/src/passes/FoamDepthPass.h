@@ -21,7 +21,8 @@ struct FoamSurfaceData {
 class FoamDepthPass {
  public:
   explicit FoamDepthPass(const ShaderLibrary& shaders);
-  FoamSurfaceData run(const std::vector<FoamInstance>& particles, const FoamSceneDepth& scene, int width, int height);
+  FoamSurfaceData run(const std::vector<FoamInstance>& particles, const FoamSceneDepth& scene, int width,
+                      int height);
 
  private:
   ProgramObject program_;

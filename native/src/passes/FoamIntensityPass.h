@@ -16,7 +16,8 @@ struct FoamIntensityData {
 class FoamIntensityPass {
  public:
   explicit FoamIntensityPass(const ShaderLibrary& shaders);
-  FoamIntensityData run(const FoamThicknessData& thickness, const FoamParameters& parameters, int width, int height);
+  FoamIntensityData run(const FoamThicknessData& thickness, const FoamParameters& parameters, int width,
+                        int height);
 
  private:
   ProgramObject program_;

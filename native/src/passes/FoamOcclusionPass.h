@@ -25,7 +25,8 @@ struct FoamOcclusionStatistics {
 };
 
 /// Multi-pass screen-space ambient occlusion with Halton samples, turned into the shadow zeta, and the
-/// irradiance from the environment by cosine-weighted sample directions or an irradiance map (foam paper 2.4).
+/// irradiance from the environment by cosine-weighted sample directions or an irradiance map (foam
+/// paper 2.4).
 class FoamOcclusionPass {
  public:
   /// The largest sample count a pass may take (foam.ao_max_samples' maximum).

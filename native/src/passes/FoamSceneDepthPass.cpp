@@ -9,8 +9,8 @@ FoamSceneDepthPass::FoamSceneDepthPass(const ShaderLibrary& shaders)
       emptyVertexArray_(createVertexArray()),
       framebuffer_(createFramebuffer()) {}
 
-FoamSceneDepth FoamSceneDepthPass::run(const BackgroundData& background, const Texture2D* liquidFrontDepth, int width,
-                                       int height) {
+FoamSceneDepth FoamSceneDepthPass::run(const BackgroundData& background, const Texture2D* liquidFrontDepth,
+                                       int width, int height) {
   ensureTexture(fluidEyeDepth_, GL_R32F, width, height);
   bindColorTargets(framebuffer_.id(), {&fluidEyeDepth_});
   glDisable(GL_DEPTH_TEST);

@@ -24,10 +24,13 @@ FoamThicknessData FoamThicknessPass::run(const FoamSurfaceData& surface, const F
   const GLuint program = program_.id();
   glUseProgram(program);
   const FoamParameters& p = parameters;
-  glUniform3f(uniformLocation(program, "falloffN"), p.spray_falloff_n, p.surface_falloff_n, p.bubble_falloff_n);
-  glUniform3f(uniformLocation(program, "falloffM"), p.spray_falloff_m, p.surface_falloff_m, p.bubble_falloff_m);
+  glUniform3f(uniformLocation(program, "falloffN"), p.spray_falloff_n, p.surface_falloff_n,
+              p.bubble_falloff_n);
+  glUniform3f(uniformLocation(program, "falloffM"), p.spray_falloff_m, p.surface_falloff_m,
+              p.bubble_falloff_m);
   glUniform2f(uniformLocation(program, "lifetimeFalloff"), p.lifetime_falloff_n, p.lifetime_falloff_m);
-  glUniform3f(uniformLocation(program, "attenuation"), p.attenuation_distance, p.attenuation_n, p.attenuation_m);
+  glUniform3f(uniformLocation(program, "attenuation"), p.attenuation_distance, p.attenuation_n,
+              p.attenuation_m);
   glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, surface.particles.id());
   glBindTextureUnit(0, scene.solidEyeDepth.id());
   glBindTextureUnit(1, scene.fluidEyeDepth.id());

@@ -18,8 +18,8 @@ struct FoamThicknessData {
 class FoamThicknessPass {
  public:
   explicit FoamThicknessPass(const ShaderLibrary& shaders);
-  FoamThicknessData run(const FoamSurfaceData& surface, const FoamSceneDepth& scene, const FoamParameters& parameters,
-                        int width, int height);
+  FoamThicknessData run(const FoamSurfaceData& surface, const FoamSceneDepth& scene,
+                        const FoamParameters& parameters, int width, int height);
 
  private:
   ProgramObject program_;

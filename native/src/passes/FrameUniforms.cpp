@@ -47,6 +47,10 @@ void bindColorTargets(GLuint framebuffer, std::initializer_list<const Texture2D*
       height = target->height;
     }
   }
+  // Attachments left from an earlier use (perhaps of another size, or since deleted) would clip rendering to
+  // the smallest attachment: detach every one not named.
+  for (GLint unused = count; unused < 8; ++unused)
+    glNamedFramebufferTexture(framebuffer, GL_COLOR_ATTACHMENT0 + GLenum(unused), 0, 0);
   glNamedFramebufferDrawBuffers(framebuffer, count, drawBuffers);
   glBindFramebuffer(GL_FRAMEBUFFER, framebuffer);
   glViewport(0, 0, width, height);

@@ -18,7 +18,8 @@ float foamNormalisedAge(float lifeFrames, const FoamParameters& parameters) {
   return std::clamp(1.0f - lifeFrames / parameters.lifetime_frames, 0.0f, 1.0f);
 }
 
-FoamPreparation prepareFoam(const Particles& particles, const Camera& camera, const FoamParameters& parameters) {
+FoamPreparation prepareFoam(const Particles& particles, const Camera& camera,
+                            const FoamParameters& parameters) {
   const ViewFrustum frustum(camera);
   FoamPreparation result;
   std::size_t foamIndex = 0;
@@ -30,12 +31,13 @@ FoamPreparation prepareFoam(const Particles& particles, const Camera& camera, co
       ++result.culled;
       continue;
     }
-    const FoamType type = kind == ParticleKind::Spray ? FoamType::Spray
+    const FoamType type = kind == ParticleKind::Spray    ? FoamType::Spray
                           : kind == ParticleKind::Bubble ? FoamType::Bubble
                                                          : FoamType::Surface;
     (type == FoamType::Spray ? result.spray : type == FoamType::Bubble ? result.bubble : result.surface)++;
-    result.instances.push_back({glm::vec4(particles.positions[i], radius),
-                                glm::vec4(float(int(type)), foamNormalisedAge(particles.life[i], parameters), 0.0f, 0.0f)});
+    result.instances.push_back(
+        {glm::vec4(particles.positions[i], radius),
+         glm::vec4(float(int(type)), foamNormalisedAge(particles.life[i], parameters), 0.0f, 0.0f)});
   }
   return result;
 }

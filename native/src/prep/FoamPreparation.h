@@ -24,10 +24,10 @@ static_assert(sizeof(FoamInstance) == 32, "FoamInstance must match the shaders' 
 /// The foam particles of one frame that the view can see, ready to draw.
 struct FoamPreparation {
   std::vector<FoamInstance> instances;
-  std::size_t spray = 0;    ///< In view, by type.
+  std::size_t spray = 0;  ///< In view, by type.
   std::size_t surface = 0;
   std::size_t bubble = 0;
-  std::size_t culled = 0;   ///< Foam particles outside the view frustum.
+  std::size_t culled = 0;  ///< Foam particles outside the view frustum.
 };
 
 /// The radius the foam paper draws particle `index` (its place among the frame's foam particles) with:
@@ -39,6 +39,7 @@ float foamDrawnRadius(float radius, ParticleKind kind, std::size_t index, const 
 float foamNormalisedAge(float lifeFrames, const FoamParameters& parameters);
 
 /// Culls the Spray, Bubble and Foam particles to the view and packs them (foam paper 2.1).
-FoamPreparation prepareFoam(const Particles& particles, const Camera& camera, const FoamParameters& parameters);
+FoamPreparation prepareFoam(const Particles& particles, const Camera& camera,
+                            const FoamParameters& parameters);
 
 }  // namespace spindrift

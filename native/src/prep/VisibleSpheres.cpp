@@ -23,7 +23,8 @@ bool ViewFrustum::reaches(const glm::vec3& worldCentre, float radius) const {
   const float eyeDepth = -centre.z;
   bool visible = eyeDepth + radius >= nearClip_ && eyeDepth - radius <= farClip_ &&
                  glm::dot(centre, centre) > radius * radius;
-  for (const glm::vec3& plane : sidePlanes_) visible = visible && glm::dot(plane, centre) >= -radius;
+  for (const glm::vec3& plane : sidePlanes_)
+    visible = visible && glm::dot(plane, centre) >= -radius;
   return visible;
 }
 

@@ -34,7 +34,8 @@ struct VisibleSpheres {
 };
 
 /// Keeps the particles of `kind` whose sphere can reach the view frustum between the clip planes. Spheres
-/// that contain the camera are left out too: a quad cannot cover them (the liquid pipeline handles that case).
+/// that contain the camera are left out too: a quad cannot cover them (the liquid pipeline handles that
+/// case).
 VisibleSpheres visibleSpheres(const Particles& particles, ParticleKind kind, const Camera& camera);
 
 }  // namespace spindrift
