@@ -6,10 +6,12 @@ Run headless from the repository root:
 
 It builds the scene from an empty file, bakes a Mantaflow FLIP liquid with spray, foam and bubbles into
 OUTPUT/cache, renders the background (everything but the liquid, with a Depth pass) into
-OUTPUT/renders/background.exr plus a PNG preview, and writes OUTPUT/scene.json, the Spindrift scene file that
-points at both. `--skip-bake` and `--skip-render` reuse what is already there (examples/dam_break/prepare.sh
-uses them); scene.json is written every time and depends only on the constants below, so it comes out
-byte-identical on every run.
+OUTPUT/renders/background.exr plus a PNG preview, renders the same frame again with Mantaflow's liquid mesh
+as water into OUTPUT/renders/with_liquid.exr (for foam composited over a full render), and writes
+OUTPUT/scene.json and OUTPUT/scene_foam_only.json, the Spindrift scene files that point at them.
+`--skip-bake`, `--skip-render` and `--skip-liquid-render` reuse what is already there
+(examples/dam_break/prepare.sh uses them); the scene files are written every time and depend only on the
+constants below, so they come out byte-identical on every run.
 """
 
 import argparse
@@ -48,12 +50,21 @@ COLUMN_MAX = Vector((-0.95, 0.9375, 0.85))
 OBSTACLE_MIN = Vector((0.15, 0.2, 0.0))
 OBSTACLE_MAX = Vector((0.45, 0.5, 0.3))
 
+# The longest life of a secondary particle, in frames; scene files pass it on as foam.lifetime_frames, which
+# normalises the remaining life the cache stores into the age that fades foam out.
+SECONDARY_LIFE_MAX = 16.0
+
 WALL_THICKNESS = 0.08
 WALL_HEIGHT = 0.6
 
 RENDER_WIDTH = 960
 RENDER_HEIGHT = 540
 RENDER_SAMPLES = 48
+# The render with the liquid mesh: glass needs a few more bounces than the opaque background (in and out of the
+# water, and the floor seen through it), and fewer samples keep it near half a minute on two cores.
+LIQUID_RENDER_SAMPLES = 32
+LIQUID_RENDER_BOUNCES = 8
+WATER_IOR = 1.33
 
 # A plain world colour: it lights the scene softly and is the background colour Spindrift falls back on.
 WORLD_COLOR = (0.52, 0.62, 0.78)
@@ -62,9 +73,11 @@ WORLD_STRENGTH = 0.55
 # Particle radii written to scene.json, in world units. Mantaflow seeds FLIP particles on a 2x2x2 sub-grid of
 # each cell (particle_number = 2), so neighbours are half a cell apart; a radius of 0.55 cells makes their
 # spheres overlap into a closed surface without bloating thin sheets much beyond the liquid mesh.
-# Secondary particles are single droplets and flecks of foam, drawn much smaller.
+# Secondary particles are flecks of foam: the foam pipeline draws particle i at FOAM_RADIUS / ((i mod 5) + 1)
+# (bubbles at half that), so radii spread between 0.12 and 0.6 cells and the foam reads as flecks of a few
+# pixels at this distance.
 LIQUID_RADIUS = 0.55 * CELL_SIZE
-FOAM_RADIUS = 0.2 * CELL_SIZE
+FOAM_RADIUS = 0.6 * CELL_SIZE
 
 CAMERA_LOCATION = Vector((2.05, -3.35, 1.6))
 CAMERA_TARGET = Vector((-0.1, 0.15, 0.3))
@@ -82,6 +95,7 @@ def parse_arguments():
     parser.add_argument("--output", required=True, help="directory for cache/, renders/ and scene.json")
     parser.add_argument("--skip-bake", action="store_true", help="reuse the cache already in OUTPUT/cache")
     parser.add_argument("--skip-render", action="store_true", help="reuse OUTPUT/renders/background.exr")
+    parser.add_argument("--skip-liquid-render", action="store_true", help="reuse OUTPUT/renders/with_liquid.exr")
     return parser.parse_args(argv)
 
 
@@ -212,7 +226,7 @@ def configure_domain(domain, cache_directory):
     settings.sndparticle_sampling_wavecrest = 150
     settings.sndparticle_sampling_trappedair = 6
     settings.sndparticle_life_min = 6.0
-    settings.sndparticle_life_max = 16.0
+    settings.sndparticle_life_max = SECONDARY_LIFE_MAX
 
     # Last: changing almost any domain setting makes Blender free the cache in the domain's cache directory,
     # files on disk included.
@@ -390,6 +404,72 @@ def render_background(scene, render_directory):
     return elapsed
 
 
+def render_with_liquid(scene, domain, domain_settings, cache_directory, render_directory):
+    """Renders the showcase frame with Mantaflow's liquid mesh as water: the full render foam is composited over.
+
+    The domain reads a copy of the cache in replay mode, so Blender never frees (deletes) the real cache and
+    never simulates: every file of the frame is already there. The domain's evaluated mesh is then the liquid
+    mesh of `cache/mesh/fluid_mesh_####.bobj.gz`; it renders as glass of water's index of refraction.
+    """
+    os.makedirs(render_directory, exist_ok=True)
+    configure_background_render(scene, render_directory)
+    scene.cycles.samples = LIQUID_RENDER_SAMPLES
+    scene.cycles.max_bounces = LIQUID_RENDER_BOUNCES
+    scene.cycles.transmission_bounces = LIQUID_RENDER_BOUNCES
+    scene.cycles.transparent_max_bounces = LIQUID_RENDER_BOUNCES
+    # Caustics through glass are what makes fireflies at few samples; the floor seen through the water and the
+    # reflections do not need them.
+    scene.cycles.caustics_reflective = False
+    scene.cycles.caustics_refractive = False
+    scene.cycles.blur_glossy = 1.0
+    scene.cycles.sample_clamp_indirect = 4.0
+    scene.render.filepath = os.path.join(render_directory, "with_liquid.exr")
+
+    copy = tempfile.TemporaryDirectory(prefix="dam_break_replay_")
+    replay_cache = os.path.join(copy.name, "cache")
+    shutil.copytree(cache_directory, replay_cache)
+    domain_settings.cache_type = 'REPLAY'
+    domain_settings.cache_directory = replay_cache
+
+    water = bpy.data.materials.new("Water")
+    water.use_nodes = True
+    nodes = water.node_tree.nodes
+    nodes.remove(nodes["Principled BSDF"])
+    glass = nodes.new("ShaderNodeBsdfGlass")
+    glass.inputs["IOR"].default_value = WATER_IOR
+    glass.inputs["Roughness"].default_value = 0.0
+    # Without caustics the glass would cast a black shadow; shadow rays pass through it instead, so the floor
+    # under the water is lit as under clear water.
+    light_path = nodes.new("ShaderNodeLightPath")
+    transparent = nodes.new("ShaderNodeBsdfTransparent")
+    mix = nodes.new("ShaderNodeMixShader")
+    links = water.node_tree.links
+    links.new(light_path.outputs["Is Shadow Ray"], mix.inputs["Fac"])
+    links.new(glass.outputs["BSDF"], mix.inputs[1])
+    links.new(transparent.outputs["BSDF"], mix.inputs[2])
+    links.new(mix.outputs["Shader"], nodes["Material Output"].inputs["Surface"])
+    domain.data.materials.clear()
+    domain.data.materials.append(water)
+    domain.hide_render = False
+    # The secondary particles are Spindrift's foam: they must not show in this render.
+    for system in domain.particle_systems:
+        system.settings.render_type = 'NONE'
+
+    scene.frame_set(SHOWCASE_FRAME)
+    evaluated = domain.evaluated_get(bpy.context.evaluated_depsgraph_get())
+    vertices = len(evaluated.data.vertices)
+    if vertices == 0:
+        raise RuntimeError(f"the liquid mesh of frame {SHOWCASE_FRAME} did not load from {replay_cache}")
+    log(f"rendering the frame with the liquid mesh ({vertices} vertices, glass IOR {WATER_IOR}, "
+        f"{LIQUID_RENDER_SAMPLES} samples, CPU)")
+    started = time.perf_counter()
+    bpy.ops.render.render(write_still=True)
+    elapsed = time.perf_counter() - started
+    log(f"rendered {scene.render.filepath} in {elapsed:.1f} s")
+    copy.cleanup()
+    return elapsed
+
+
 def row_major(matrix):
     """A 4x4 matrix as 16 numbers, row by row, rounded so the file is stable and readable."""
     return [clean_number(matrix[row][column]) for row in range(4) for column in range(4)]
@@ -406,42 +486,72 @@ def domain_minimum_corner(domain):
     return Vector((min(c.x for c in corners), min(c.y for c in corners), min(c.z for c in corners)))
 
 
-def scene_description(camera, domain):
-    """The Spindrift scene file (version 1) for this example, with paths relative to the file."""
+def camera_description(camera):
+    return {
+        "width": RENDER_WIDTH,
+        "height": RENDER_HEIGHT,
+        "fov_y_deg": clean_number(math.degrees(camera.data.angle_y)),
+        "near": clean_number(camera.data.clip_start),
+        "far": clean_number(camera.data.clip_end),
+        "world_from_camera": row_major(camera.matrix_world),
+    }
+
+
+def particle_sources(domain):
+    """The liquid and the foam source, in this order."""
     # Mantaflow writes positions in the domain's local frame with its minimum corner at the origin, in world
     # units; the domain has no rotation or scale, so file -> world is a translation to that corner.
-    world_from_file = Matrix.Translation(domain_minimum_corner(domain))
+    world_from_file = row_major(Matrix.Translation(domain_minimum_corner(domain)))
+    return [
+        {
+            "path": "cache/data/fluid_data_####.vdb",
+            "grid": "particles",
+            "role": "liquid",
+            "radius": clean_number(LIQUID_RADIUS),
+            "world_from_file": world_from_file,
+        },
+        {
+            "path": "cache/particles/fluid_particles_####.vdb",
+            "grid": "particles_secondary",
+            "role": "foam",
+            "radius": clean_number(FOAM_RADIUS),
+            "world_from_file": world_from_file,
+        },
+    ]
+
+
+def scene_description(camera, domain):
+    """The Spindrift scene file (version 1) for this example, with paths relative to the file: liquid and foam
+    over the background render, which has no liquid in it."""
     return {
         "version": 1,
         "frame": SHOWCASE_FRAME,
-        "camera": {
-            "width": RENDER_WIDTH,
-            "height": RENDER_HEIGHT,
-            "fov_y_deg": clean_number(math.degrees(camera.data.angle_y)),
-            "near": clean_number(camera.data.clip_start),
-            "far": clean_number(camera.data.clip_end),
-            "world_from_camera": row_major(camera.matrix_world),
-        },
-        "particles": [
-            {
-                "path": "cache/data/fluid_data_####.vdb",
-                "grid": "particles",
-                "role": "liquid",
-                "radius": clean_number(LIQUID_RADIUS),
-                "world_from_file": row_major(world_from_file),
-            },
-            {
-                "path": "cache/particles/fluid_particles_####.vdb",
-                "grid": "particles_secondary",
-                "role": "foam",
-                "radius": clean_number(FOAM_RADIUS),
-                "world_from_file": row_major(world_from_file),
-            },
-        ],
+        "camera": camera_description(camera),
+        "particles": particle_sources(domain),
         "background": {
             "image": "renders/background.exr",
             "color": [clean_number(c) for c in WORLD_COLOR],
         },
+        "foam": {"lifetime_frames": SECONDARY_LIFE_MAX},
+    }
+
+
+def foam_only_scene_description(camera, domain):
+    """Foam only, over the full render that already holds the liquid mesh: with no liquid source Spindrift
+    renders no liquid; the solids' depth comes from the background render, the liquid's surface from the
+    depth of the render with the liquid, and foam behind that surface fades with its depth below it."""
+    return {
+        "version": 1,
+        "frame": SHOWCASE_FRAME,
+        "camera": camera_description(camera),
+        "particles": particle_sources(domain)[1:],
+        "background": {
+            "image": "renders/with_liquid.exr",
+            "depth": "renders/background.exr",
+            "liquid_depth": "renders/with_liquid.exr",
+            "color": [clean_number(c) for c in WORLD_COLOR],
+        },
+        "foam": {"lifetime_frames": SECONDARY_LIFE_MAX},
     }
 
 
@@ -459,9 +569,9 @@ def check_domain_transform(domain):
         raise RuntimeError("the liquid domain must have no rotation and unit scale")
 
 
-def write_scene_file(path, camera, domain):
+def write_scene_file(path, description, domain):
     check_domain_transform(domain)
-    text = format_scene_json(scene_description(camera, domain))
+    text = format_scene_json(description)
     with open(path, "w", encoding="utf-8") as handle:
         handle.write(text)
     log(f"wrote {path}")
@@ -476,9 +586,9 @@ def main():
 
     log("building the scene")
     # Without a bake in this session Blender does not know the cache on disk is a finished bake, and may free
-    # it; the domain then gets a scratch directory, as nothing here needs to read the cache.
+    # it; the domain then gets a scratch directory (the render with the liquid reads a copy of the cache).
     scratch = tempfile.TemporaryDirectory(prefix="dam_break_cache_") if arguments.skip_bake else None
-    domain, _, camera = build_scene(scratch.name if scratch else cache_directory)
+    domain, domain_settings, camera = build_scene(scratch.name if scratch else cache_directory)
     scene = bpy.context.scene
 
     if arguments.skip_bake:
@@ -493,7 +603,14 @@ def main():
         scene.frame_set(SHOWCASE_FRAME)
         render_background(scene, render_directory)
 
-    write_scene_file(os.path.join(output, "scene.json"), camera, domain)
+    if arguments.skip_liquid_render:
+        log("skipping the render with the liquid: reusing renders/with_liquid.exr")
+    else:
+        render_with_liquid(scene, domain, domain_settings, cache_directory, render_directory)
+
+    write_scene_file(os.path.join(output, "scene.json"), scene_description(camera, domain), domain)
+    write_scene_file(os.path.join(output, "scene_foam_only.json"), foam_only_scene_description(camera, domain),
+                     domain)
     if scratch:
         scratch.cleanup()
     log("done")

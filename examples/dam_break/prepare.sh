@@ -37,8 +37,15 @@ if [[ -f "$here/renders/background.exr" ]]; then
 else
   echo "prepare.sh: rendering the background"
 fi
+if [[ -f "$here/renders/with_liquid.exr" ]]; then
+  echo "prepare.sh: $here/renders/with_liquid.exr exists, not rendering"
+  arguments+=(--skip-liquid-render)
+else
+  echo "prepare.sh: rendering the frame with the liquid mesh"
+fi
 
-if [[ " ${arguments[*]-} " == *" --skip-bake "* && " ${arguments[*]-} " == *" --skip-render "* ]]; then
+if [[ " ${arguments[*]-} " == *" --skip-bake "* && " ${arguments[*]-} " == *" --skip-render "* &&
+      " ${arguments[*]-} " == *" --skip-liquid-render "* ]]; then
   echo "prepare.sh: nothing to do"
   exit 0
 fi

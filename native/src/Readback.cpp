@@ -6,13 +6,18 @@
 
 namespace spindrift {
 
-ImageLayer readLayer(const Texture2D& texture, const std::string& name, const std::vector<std::string>& channels) {
+ImageLayer readLayer(const Texture2D& texture, const std::string& name,
+                     const std::vector<std::string>& channels) {
   const std::size_t channelCount = channels.size();
-  const GLenum format = channelCount == 1 ? GL_RED : channelCount == 2 ? GL_RG : channelCount == 3 ? GL_RGB : GL_RGBA;
+  const GLenum format = channelCount == 1   ? GL_RED
+                        : channelCount == 2 ? GL_RG
+                        : channelCount == 3 ? GL_RGB
+                                            : GL_RGBA;
   const std::size_t rowFloats = std::size_t(texture.width) * channelCount;
   std::vector<float> bottomFirst(rowFloats * std::size_t(texture.height));
   glPixelStorei(GL_PACK_ALIGNMENT, 4);
-  glGetTextureImage(texture.id(), 0, format, GL_FLOAT, GLsizei(bottomFirst.size() * sizeof(float)), bottomFirst.data());
+  glGetTextureImage(texture.id(), 0, format, GL_FLOAT, GLsizei(bottomFirst.size() * sizeof(float)),
+                    bottomFirst.data());
   checkGlError(("reading back " + name).c_str());
   ImageLayer layer{name, channels, std::vector<float>(bottomFirst.size())};
   for (int row = 0; row < texture.height; ++row)
@@ -21,9 +26,41 @@ ImageLayer readLayer(const Texture2D& texture, const std::string& name, const st
   return layer;
 }
 
-ImageLayer filledLayer(int width, int height, const std::string& name, const std::vector<std::string>& channels,
-                       float value) {
-  return {name, channels, std::vector<float>(std::size_t(width) * std::size_t(height) * channels.size(), value)};
+ImageLayer filledLayer(int width, int height, const std::string& name,
+                       const std::vector<std::string>& channels, float value) {
+  return {name, channels,
+          std::vector<float>(std::size_t(width) * std::size_t(height) * channels.size(), value)};
+}
+
+namespace {
+
+ImageLayer totalThickness(const Texture2D& thicknessByType) {
+  ImageLayer byType = readLayer(thicknessByType, "foam_thickness", {"R", "G", "B"});
+  ImageLayer total{"foam_thickness", {"Y"}, std::vector<float>(byType.pixels.size() / 3)};
+  for (std::size_t i = 0; i < total.pixels.size(); ++i)
+    total.pixels[i] = byType.pixels[3 * i] + byType.pixels[3 * i + 1] + byType.pixels[3 * i + 2];
+  return total;
+}
+
+}  // namespace
+
+void readFoamLayers(const FoamLayerData* foam, int width, int height, std::vector<ImageLayer>& layers) {
+  const std::vector<std::string> rgba = {"R", "G", "B", "A"}, rgb = {"R", "G", "B"};
+  if (!foam) {
+    for (const char* name : {"foam", "foam_spray", "foam_surface", "foam_bubble"})
+      layers.push_back(filledLayer(width, height, name, rgba, 0.0f));
+    layers.push_back(filledLayer(width, height, "foam_shadow", rgb, 0.0f));
+    layers.push_back(filledLayer(width, height, "foam_irradiance", rgb, 0.0f));
+    layers.push_back(filledLayer(width, height, "foam_thickness", {"Y"}, 0.0f));
+    return;
+  }
+  layers.push_back(readLayer(foam->foam, "foam", rgba));
+  layers.push_back(readLayer(foam->spray, "foam_spray", rgba));
+  layers.push_back(readLayer(foam->surface, "foam_surface", rgba));
+  layers.push_back(readLayer(foam->bubble, "foam_bubble", rgba));
+  layers.push_back(readLayer(foam->shadow, "foam_shadow", rgb));
+  layers.push_back(readLayer(foam->irradiance, "foam_irradiance", rgb));
+  layers.push_back(totalThickness(foam->thickness));
 }
 
 }  // namespace spindrift

@@ -11,9 +11,16 @@
 #include "passes/CompositePass.h"
 #include "passes/DepthSmoothingPass.h"
 #include "passes/EllipsoidImpostorPass.h"
+#include "passes/FoamBlurPass.h"
+#include "passes/FoamDepthPass.h"
+#include "passes/FoamIntensityPass.h"
+#include "passes/FoamOcclusionPass.h"
+#include "passes/FoamSceneDepthPass.h"
+#include "passes/FoamThicknessPass.h"
 #include "passes/FrameUniforms.h"
 #include "passes/RefractionPass.h"
 #include "prep/BackgroundCache.h"
+#include "prep/FoamPreparation.h"
 #include "prep/LiquidPreparation.h"
 #include "Readback.h"
 
@@ -37,6 +44,12 @@ struct FramePipeline {
   DepthSmoothingPass frontSmoothing{shaders};
   DepthSmoothingPass backSmoothing{shaders};
   RefractionPass refraction{shaders};
+  FoamSceneDepthPass foamSceneDepth{shaders};
+  FoamDepthPass foamDepth{shaders};
+  FoamThicknessPass foamThickness{shaders};
+  FoamIntensityPass foamIntensity{shaders};
+  FoamOcclusionPass foamOcclusion{shaders};
+  FoamBlurPass foamBlur{shaders};
   CompositePass composite{shaders};
 };
 
@@ -87,13 +100,14 @@ RenderResult Renderer::renderFrame(const Scene& scene, int frame) {
 }
 
 // The frame, top to bottom, as the liquid paper's figure 4 draws it: prepare the particles on the CPU (split
-// into splashes and aggregates, anisotropic ellipsoids), then on the GL thread the background, the front and
-// back depth layers of splashes and of aggregates, smoothing of the aggregate layers, refraction, and the
-// composite; then read the layers back. A pass the frame does not need is not run, and the stats say why.
+// into splashes and aggregates, anisotropic ellipsoids; foam culled and packed), then on the GL thread the
+// background, the front and back depth layers of splashes and of aggregates, smoothing of the aggregate layers,
+// refraction, the foam paper's seven passes (figure 2), and the composite; then read the layers back. A pass the frame does not need is not run, and the stats say why.
 RenderResult Renderer::renderParticles(const Scene& scene, const Particles& particles, int frame) {
   const Clock::time_point start = Clock::now();
   const Camera& camera = scene.camera;
   const LiquidParameters& liquidParameters = scene.parameters.liquid;
+  const FoamParameters& foamParameters = scene.parameters.foam;
   const int width = camera.width, height = camera.height;
   RenderResult result;
   result.width = width;
@@ -109,6 +123,7 @@ RenderResult Renderer::renderParticles(const Scene& scene, const Particles& part
   const Clock::time_point prepareStart = Clock::now();
   const LiquidPreparation liquid = prepareLiquid(particles, camera, liquidParameters);
   const float radius = typicalLiquidRadius(particles);
+  const FoamPreparation foam = prepareFoam(particles, camera, foamParameters);
   const BackgroundImages backgroundImages = impl_->backgroundCache.load(scene.background, frame, width, height);
   stats.prepareMilliseconds = millisecondsSince(prepareStart);
   stats.liquid.splashParticles = liquid.splashes.size();
@@ -117,6 +132,10 @@ RenderResult Renderer::renderParticles(const Scene& scene, const Particles& part
   stats.liquid.culled = liquid.culled;
   stats.liquid.neighbourMilliseconds = liquid.neighbourMilliseconds;
   stats.liquid.anisotropyMilliseconds = liquid.anisotropyMilliseconds;
+  stats.foam.sprayParticles = foam.spray;
+  stats.foam.surfaceParticles = foam.surface;
+  stats.foam.bubbleParticles = foam.bubble;
+  stats.foam.culled = foam.culled;
 
   impl_->glThread.run([&] {
     FramePipeline& pipeline = *impl_->pipeline;
@@ -174,10 +193,52 @@ RenderResult Renderer::renderParticles(const Scene& scene, const Particles& part
     } else {
       skip("refraction", "no liquid particles in view");
     }
+    // Foam (foam paper, figure 2): the solids' and the liquid's depth, the foam's nearest depth, its thickness,
+    // intensity, shadow and irradiance, then blur and the foam layer.
+    std::optional<FoamLayerData> foamLayer;
+    if (!foam.instances.empty()) {
+      std::optional<FoamSceneDepth> sceneDepth;
+      std::optional<FoamSurfaceData> foamSurface;
+      std::optional<FoamThicknessData> foamThickness;
+      std::optional<FoamIntensityData> foamIntensity;
+      std::optional<FoamOcclusionData> foamOcclusion;
+      {
+        ScopedPassTimer timed(timer, "foam_scene_depth");
+        sceneDepth.emplace(pipeline.foamSceneDepth.run(*background, liquidLayer ? &liquidLayer->frontDepth : nullptr,
+                                                       width, height));
+      }
+      {
+        ScopedPassTimer timed(timer, "foam_depth");
+        foamSurface.emplace(pipeline.foamDepth.run(foam.instances, *sceneDepth, width, height));
+      }
+      {
+        ScopedPassTimer timed(timer, "foam_thickness");
+        foamThickness.emplace(pipeline.foamThickness.run(*foamSurface, *sceneDepth, foamParameters, width, height));
+      }
+      {
+        ScopedPassTimer timed(timer, "foam_intensity");
+        foamIntensity.emplace(pipeline.foamIntensity.run(*foamThickness, foamParameters, width, height));
+      }
+      {
+        ScopedPassTimer timed(timer, "foam_occlusion");
+        foamOcclusion.emplace(pipeline.foamOcclusion.run(*foamSurface, *foamIntensity, *sceneDepth, *background,
+                                                         foamParameters, width, height));
+      }
+      {
+        ScopedPassTimer timed(timer, "foam_blur");
+        foamLayer.emplace(pipeline.foamBlur.run(*foamSurface, *foamThickness, *foamIntensity, *foamOcclusion,
+                                                foamParameters, width, height));
+      }
+    } else {
+      for (const char* pass : {"foam_scene_depth", "foam_depth", "foam_thickness", "foam_intensity", "foam_occlusion",
+                               "foam_blur"})
+        skip(pass, "no foam particles in view");
+    }
     std::optional<CompositeData> composite;
     {
       ScopedPassTimer timed(timer, "composite");
-      composite.emplace(pipeline.composite.run(*background, liquidLayer ? &*liquidLayer : nullptr, width, height));
+      composite.emplace(pipeline.composite.run(*background, liquidLayer ? &*liquidLayer : nullptr,
+                                               foamLayer ? &*foamLayer : nullptr, width, height));
     }
     stats.passes = timer.collect();
 
@@ -204,6 +265,12 @@ RenderResult Renderer::renderParticles(const Scene& scene, const Particles& part
       result.layers.push_back(filledLayer(width, height, "normal", {"X", "Y", "Z"}, 0.0f));
       result.layers.push_back(filledLayer(width, height, "thickness", {"Y"}, 0.0f));
     }
+    if (foamLayer) {
+      const FoamOcclusionStatistics occlusion = pipeline.foamOcclusion.statistics();
+      stats.foam.foamPixels = occlusion.foamPixels;
+      stats.foam.aoSamplesPerPixel = occlusion.foamPixels ? double(occlusion.samples) / occlusion.foamPixels : 0.0;
+    }
+    readFoamLayers(foamLayer ? &*foamLayer : nullptr, width, height, result.layers);
     for (ImageLayer& layer : intermediate) result.layers.push_back(std::move(layer));
     stats.readbackMilliseconds = millisecondsSince(readbackStart);
   });

@@ -7,3 +7,10 @@ vec2 equirectangularUvFromDirection(vec3 direction) {
   float v = atan(direction.z, length(direction.xy)) / kPi + 0.5;
   return vec2(u, v);  // Textures are uploaded bottom row first, so v runs up as in Blender.
 }
+
+// The inverse of equirectangularUvFromDirection: the unit direction at texture coordinates (u, v).
+vec3 directionFromEquirectangularUv(vec2 uv) {
+  float azimuth = (0.5 - uv.x) * 2.0 * kPi;
+  float elevation = (uv.y - 0.5) * kPi;
+  return vec3(cos(elevation) * cos(azimuth), cos(elevation) * sin(azimuth), sin(elevation));
+}

@@ -32,6 +32,16 @@ vec3 worldDirectionFromFragCoord(vec2 fragCoord) {
   return normalize(mat3(frame.worldFromCamera) * cameraRayFromFragCoord(fragCoord));
 }
 
+// Window coordinates (gl_FragCoord convention) of a camera-space point in front of the camera.
+vec2 fragCoordFromCamera(vec3 position) {
+  vec4 clip = frame.clipFromCamera * vec4(position, 1.0);
+  return (clip.xy / clip.w * 0.5 + 0.5) * frame.viewportSize.xy;
+}
+
+bool onScreen(vec2 fragCoord) {
+  return all(greaterThanEqual(fragCoord, vec2(0.0))) && all(lessThan(fragCoord, frame.viewportSize.xy));
+}
+
 // The depth-buffer value written with gl_FragDepth: logarithmic in eye depth, so a 32-bit float depth buffer
 // orders surfaces with the same relative precision from the near to the far plane.
 float depthBufferFromEyeDepth(float eyeDepth) {

@@ -9,16 +9,6 @@ uniform int maxSteps;      // samples at most; a longer image is sampled more sp
 
 float rayEyeDepth(vec3 origin, vec3 direction, float t) { return -(origin.z + t * direction.z); }
 
-// Window coordinates (gl_FragCoord convention) of a camera-space point in front of the camera.
-vec2 fragCoordFromCamera(vec3 position) {
-  vec4 clip = frame.clipFromCamera * vec4(position, 1.0);
-  return (clip.xy / clip.w * 0.5 + 0.5) * frame.viewportSize.xy;
-}
-
-bool onScreen(vec2 fragCoord) {
-  return all(greaterThanEqual(fragCoord, vec2(0.0))) && all(lessThan(fragCoord, frame.viewportSize.xy));
-}
-
 // The world size of one pixel at an eye depth.
 float pixelSizeAt(float eyeDepth) { return 2.0 * frame.tanHalfFov.y * eyeDepth * frame.viewportSize.w; }
 

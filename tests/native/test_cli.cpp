@@ -62,11 +62,16 @@ TEST(CLI, RendersExrPngAndStats) {
   EXPECT_EQ(spec.width, 64);
   EXPECT_EQ(spec.height, 48);
   const std::set<std::string> channels(spec.channelnames.begin(), spec.channelnames.end());
-  const std::set<std::string> expected{"composite.R", "composite.G", "composite.B", "composite.A",
+  std::set<std::string> expected{"composite.R", "composite.G", "composite.B", "composite.A",
                                        "liquid.R",    "liquid.G",    "liquid.B",    "liquid.A",
                                        "depth.Z",     "normal.X",    "normal.Y",    "normal.Z",
                                        "liquid_splash.R", "liquid_splash.G", "liquid_splash.B", "liquid_splash.A",
                                        "liquid_class.Y",  "thickness.Y"};
+  for (const char* layer : {"foam", "foam_spray", "foam_surface", "foam_bubble"})
+    for (const char* channel : {".R", ".G", ".B", ".A"}) expected.insert(std::string(layer) + channel);
+  for (const char* layer : {"foam_shadow", "foam_irradiance"})
+    for (const char* channel : {".R", ".G", ".B"}) expected.insert(std::string(layer) + channel);
+  expected.insert("foam_thickness.Y");
   EXPECT_EQ(channels, expected);
   std::vector<float> pixels(std::size_t(spec.width) * spec.height * spec.nchannels);
   ASSERT_TRUE(input->read_image(0, 0, 0, spec.nchannels, OIIO::TypeDesc::FLOAT, pixels.data()));

@@ -30,8 +30,12 @@ std::array<long, std::size_t(GlObjectType::Count)> liveObjects() {
 Particles randomParticles(std::mt19937& random, int count) {
   std::uniform_real_distribution<float> coordinate(-1.0f, 1.0f);
   Particles particles;
+  // Every fourth particle is foam, so the foam passes run (and must not leak) too.
+  const ParticleKind kinds[] = {ParticleKind::Liquid, ParticleKind::Liquid, ParticleKind::Liquid, ParticleKind::Spray,
+                                ParticleKind::Liquid, ParticleKind::Liquid, ParticleKind::Liquid, ParticleKind::Foam,
+                                ParticleKind::Liquid, ParticleKind::Liquid, ParticleKind::Liquid, ParticleKind::Bubble};
   for (int i = 0; i < count; ++i)
-    particles.append({coordinate(random), coordinate(random), coordinate(random)}, 0.05f, ParticleKind::Liquid, 0.0f,
+    particles.append({coordinate(random), coordinate(random), coordinate(random)}, 0.05f, kinds[i % 12], 0.0f,
                      glm::vec3(0.0f));
   return particles;
 }
@@ -49,7 +53,7 @@ TEST(GLResources, TwoHundredFramesKeepObjectsAndMemoryFlat) {
     // Particle counts vary from frame to frame, and every tenth frame is empty, as in a real sequence.
     const int count = frame % 10 == 0 ? 0 : 200 + int(random() % 800);
     const RenderResult result = renderer.renderParticles(scene, randomParticles(random, count), frame);
-    ASSERT_EQ(result.layers.size(), 7u);
+    ASSERT_EQ(result.layers.size(), 14u);  // 7 of the liquid and composite, 7 of the foam
     if (frame == 20) {
       afterWarmUp = liveObjects();
       residentAfterWarmUp = residentKilobytes();

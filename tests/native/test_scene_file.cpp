@@ -102,6 +102,22 @@ TEST(SceneFile, MissingFrameFileNamesTheFrame) {
   }
 }
 
+// Foam over a full render: the depth of the render with the liquid is a path of its own beside the solids'.
+TEST(SceneFile, ReadsBackgroundLiquidDepth) {
+  TempDirectory directory;
+  directory.write("p.ply", kParticlesPly);
+  directory.write("with_liquid.exr", "");
+  directory.write("background.exr", "");
+  const Scene scene = parseScene(
+      sceneWith(kLookAt, R"(, "background": {"image": "with_liquid.exr", "depth": "background.exr",
+                              "liquid_depth": "with_liquid.exr"}, "foam": {"ao_passes": 2})"),
+      directory.path() / "scene.json");
+  EXPECT_EQ(scene.background.liquidDepth, directory.path() / "with_liquid.exr");
+  EXPECT_EQ(scene.background.depth, directory.path() / "background.exr");
+  EXPECT_EQ(scene.parameters.foam.ao_passes, 2);
+  EXPECT_TRUE(parseScene(sceneWith(kLookAt), directory.path() / "s.json").background.liquidDepth.empty());
+}
+
 // Each bad file gets one error that names the key at fault.
 struct BadScene {
   const char* name;
@@ -150,6 +166,11 @@ INSTANTIATE_TEST_SUITE_P(
         BadScene{"GridOnPly", R"({"version": 1, "camera": {"width": 8, "height": 8, "fov_y_deg": 40)" + kLookAt + R"(}, "particles": [{"path": "p.ply", "radius": 1, "grid": "x"}]})", "particles[0].grid"},
         BadScene{"TypoInSource", R"({"version": 1, "camera": {"width": 8, "height": 8, "fov_y_deg": 40)" + kLookAt + R"(}, "particles": [{"path": "p.ply", "raduis": 1}]})", "particles[0].raduis"},
         BadScene{"MissingBackgroundImage", sceneWith(kLookAt, R"(, "background": {"image": "bg.exr"})"), "background.image"},
+        BadScene{"MissingLiquidDepth", sceneWith(kLookAt, R"(, "background": {"liquid_depth": "with_liquid.exr"})"), "background.liquid_depth"},
+        BadScene{"LiquidDepthNotAString", sceneWith(kLookAt, R"(, "background": {"liquid_depth": 3})"), "background.liquid_depth"},
+        BadScene{"TypoInBackground", sceneWith(kLookAt, R"(, "background": {"liquid_dpeth": "p.ply"})"), "background.liquid_dpeth"},
+        BadScene{"FoamParameterOutOfRange", sceneWith(kLookAt, R"(, "foam": {"ao_passes": 0})"), "foam.ao_passes"},
+        BadScene{"UnknownFoamChoice", sceneWith(kLookAt, R"(, "foam": {"irradiance": "probe"})"), "foam.irradiance"},
         BadScene{"NegativeBackgroundColor", sceneWith(kLookAt, R"(, "background": {"color": [0, -1, 0]})"), "background.color"},
         BadScene{"UnknownParameter", sceneWith(kLookAt, R"(, "liquid": {"absorption_colour": [1, 1, 1]})"), "liquid.absorption_colour"},
         BadScene{"ParameterOutOfRange", sceneWith(kLookAt, R"(, "liquid": {"ior": 7})"), "liquid.ior"},

@@ -46,6 +46,16 @@ struct LiquidFrameStats {
   double anisotropyMilliseconds = 0.0;
 };
 
+/// What the foam pipeline found in a frame.
+struct FoamFrameStats {
+  std::size_t sprayParticles = 0;    ///< In view, by type.
+  std::size_t surfaceParticles = 0;
+  std::size_t bubbleParticles = 0;
+  std::size_t culled = 0;            ///< Outside the view frustum.
+  std::size_t foamPixels = 0;        ///< Pixels the SSAO shaded.
+  double aoSamplesPerPixel = 0.0;    ///< Mean SSAO samples per foam pixel, all passes together.
+};
+
 /// What a frame cost and contained; `--stats` writes it as JSON.
 struct FrameStats {
   int frame = 0;
@@ -55,6 +65,7 @@ struct FrameStats {
   std::string glVersion;
   ParticleCounts counts;                 ///< Everything the sources held, by kind.
   LiquidFrameStats liquid;
+  FoamFrameStats foam;
   double loadMilliseconds = 0.0;         ///< Reading particle files.
   double prepareMilliseconds = 0.0;      ///< CPU preparation: culling and packing.
   double readbackMilliseconds = 0.0;

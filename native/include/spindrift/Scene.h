@@ -33,6 +33,8 @@ struct Background {
   std::filesystem::path image;        ///< Colour, or empty.
   std::filesystem::path depth;        ///< Planar eye depth; empty means the image's own depth channel, if any.
   bool depthExplicit = false;         ///< True when the scene named `depth`, which must then be found.
+  /// Planar eye depth of a render that includes the liquid (foam over a full render); empty when none.
+  std::filesystem::path liquidDepth;
   std::filesystem::path environment;  ///< Equirectangular, +Z up as Blender's world; or empty.
   glm::vec3 color{0.05f, 0.05f, 0.06f};
 };

@@ -18,6 +18,7 @@ void BackgroundPass::upload(const BackgroundImages& images) {
   uploadOrRelease(imageTexture_, images.color, GL_RGBA32F, false);
   uploadOrRelease(depthTexture_, images.eyeDepth, GL_R32F, false);
   uploadOrRelease(environmentTexture_, images.environment, GL_RGBA32F, true);
+  uploadOrRelease(liquidDepthTexture_, images.liquidEyeDepth, GL_R32F, false);
   if (environmentTexture_) glTextureParameteri(environmentTexture_.id(), GL_TEXTURE_WRAP_S, GL_REPEAT);
   uploadedGeneration_ = images.generation;
 }
@@ -45,7 +46,8 @@ BackgroundData BackgroundPass::run(const BackgroundImages& images, int width, in
   glBindTextureUnit(2, environmentTexture_.id());
   drawFullscreenTriangle(emptyVertexArray_.id());
   checkGlError("resolving the background");
-  return {color_, eyeDepth_, environmentTexture_ ? &environmentTexture_ : nullptr, images.fallbackColor};
+  return {color_, eyeDepth_, environmentTexture_ ? &environmentTexture_ : nullptr, images.fallbackColor,
+          liquidDepthTexture_ ? &liquidDepthTexture_ : nullptr};
 }
 
 }  // namespace spindrift

@@ -15,6 +15,7 @@ struct BackgroundImages {
   const FloatImage* color = nullptr;        ///< RGBA, premultiplied.
   const FloatImage* eyeDepth = nullptr;     ///< Planar eye depth, one channel.
   const FloatImage* environment = nullptr;  ///< Equirectangular RGBA, any size.
+  const FloatImage* liquidEyeDepth = nullptr;  ///< Planar eye depth of a render that includes the liquid.
   glm::vec3 fallbackColor{0.0f};
   std::uint64_t generation = 0;  ///< Changes whenever any image changes, so unchanged ones stay uploaded.
 };
@@ -25,6 +26,8 @@ struct BackgroundData {
   const Texture2D& eyeDepth;  ///< R32F planar eye depth; 1e10 where nothing is.
   const Texture2D* environment;  ///< Null when the scene has none.
   glm::vec3 fallbackColor;
+  /// R32F planar eye depth of a render that includes the liquid, as the file has it; null when none.
+  const Texture2D* liquidEyeDepth;
 };
 
 /// Resolves the background image over the environment or colour, and the solids' depth, per pixel.
@@ -42,6 +45,7 @@ class BackgroundPass {
   Texture2D imageTexture_;
   Texture2D depthTexture_;
   Texture2D environmentTexture_;
+  Texture2D liquidDepthTexture_;
   Texture2D color_;
   Texture2D eyeDepth_;
   std::uint64_t uploadedGeneration_ = ~std::uint64_t(0);

@@ -9,7 +9,8 @@ CompositePass::CompositePass(const ShaderLibrary& shaders)
       emptyVertexArray_(createVertexArray()),
       framebuffer_(createFramebuffer()) {}
 
-CompositeData CompositePass::run(const BackgroundData& background, const LiquidData* liquid, int width, int height) {
+CompositeData CompositePass::run(const BackgroundData& background, const LiquidData* liquid, const FoamLayerData* foam,
+                                 int width, int height) {
   ensureTexture(color_, GL_RGBA32F, width, height);
   glNamedFramebufferTexture(framebuffer_.id(), GL_COLOR_ATTACHMENT0, color_.id(), 0);
   glBindFramebuffer(GL_FRAMEBUFFER, framebuffer_.id());
@@ -20,6 +21,8 @@ CompositeData CompositePass::run(const BackgroundData& background, const LiquidD
   glBindTextureUnit(0, background.color.id());
   glUniform1i(uniformLocation(program_.id(), "hasLiquid"), liquid ? 1 : 0);
   glBindTextureUnit(1, liquid ? liquid->color.id() : 0);
+  glUniform1i(uniformLocation(program_.id(), "hasFoam"), foam ? 1 : 0);
+  glBindTextureUnit(2, foam ? foam->foam.id() : 0);
   drawFullscreenTriangle(emptyVertexArray_.id());
   checkGlError("compositing");
   return {color_};

@@ -3,6 +3,7 @@
 #include "gl/GlObjects.h"
 #include "gl/ShaderLibrary.h"
 #include "passes/BackgroundPass.h"
+#include "passes/FoamBlurPass.h"
 #include "passes/RefractionPass.h"
 
 namespace spindrift {
@@ -12,12 +13,13 @@ struct CompositeData {
   const Texture2D& color;  ///< RGBA32F, premultiplied.
 };
 
-/// Puts the liquid layer over the background.
+/// Puts the liquid layer over the background and the foam over both.
 class CompositePass {
  public:
   explicit CompositePass(const ShaderLibrary& shaders);
-  /// `liquid` is null when the frame has no liquid in view.
-  CompositeData run(const BackgroundData& background, const LiquidData* liquid, int width, int height);
+  /// `liquid` is null when the frame has no liquid in view, `foam` when it has no foam in view.
+  CompositeData run(const BackgroundData& background, const LiquidData* liquid, const FoamLayerData* foam, int width,
+                    int height);
 
  private:
   ProgramObject program_;

@@ -34,4 +34,26 @@ void drawFullscreenTriangle(GLuint emptyVertexArray) {
   glDrawArrays(GL_TRIANGLES, 0, 3);
 }
 
+void bindColorTargets(GLuint framebuffer, std::initializer_list<const Texture2D*> targets) {
+  GLenum drawBuffers[8];
+  GLsizei count = 0;
+  int width = 0, height = 0;
+  for (const Texture2D* target : targets) {
+    const GLenum attachment = GL_COLOR_ATTACHMENT0 + GLenum(count);
+    glNamedFramebufferTexture(framebuffer, attachment, target ? target->id() : 0, 0);
+    drawBuffers[count++] = target ? attachment : GL_NONE;
+    if (target && width == 0) {
+      width = target->width;
+      height = target->height;
+    }
+  }
+  // Attachments left from an earlier use (perhaps of another size, or since deleted) would clip rendering to
+  // the smallest attachment: detach every one not named.
+  for (GLint unused = count; unused < 8; ++unused)
+    glNamedFramebufferTexture(framebuffer, GL_COLOR_ATTACHMENT0 + GLenum(unused), 0, 0);
+  glNamedFramebufferDrawBuffers(framebuffer, count, drawBuffers);
+  glBindFramebuffer(GL_FRAMEBUFFER, framebuffer);
+  glViewport(0, 0, width, height);
+}
+
 }  // namespace spindrift

@@ -1,5 +1,7 @@
 #pragma once
 
+#include <initializer_list>
+
 #include <glm/mat4x4.hpp>
 #include <glm/vec4.hpp>
 
@@ -31,5 +33,9 @@ class FrameUniformBuffer {
 
 /// Draws the fullscreen triangle of shaders/fullscreen.vert into the bound framebuffer.
 void drawFullscreenTriangle(GLuint emptyVertexArray);
+
+/// Attaches `targets` as colour attachments 0, 1, ... (a null target leaves its draw buffer GL_NONE), makes
+/// them the draw buffers, binds the framebuffer and sets the viewport to the first target's size.
+void bindColorTargets(GLuint framebuffer, std::initializer_list<const Texture2D*> targets);
 
 }  // namespace spindrift

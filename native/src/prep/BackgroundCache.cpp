@@ -25,13 +25,17 @@ BackgroundImages BackgroundCache::load(const Background& background, int frame, 
   const std::filesystem::path depth = background.depth.empty() ? image : pathForFrame(background.depth, frame);
   const std::filesystem::path environment =
       background.environment.empty() ? "" : pathForFrame(background.environment, frame);
+  const std::filesystem::path liquidDepth =
+      background.liquidDepth.empty() ? "" : pathForFrame(background.liquidDepth, frame);
   const std::string key = image.string() + "|" + depth.string() + "|" + environment.string() + "|" +
+                          liquidDepth.string() + "|" +
                           std::to_string(width) + "x" + std::to_string(height);
   if (key != key_) {
     key_.clear();  // Stays cleared if a read below throws, so the next frame tries again.
     color_.reset();
     eyeDepth_.reset();
     environment_.reset();
+    liquidEyeDepth_.reset();
     if (!image.empty()) color_ = atSize(readColorImage(image), image, width, height, false);
     if (!depth.empty()) {
       std::optional<FloatImage> depthImage = readDepthImage(depth);
@@ -41,6 +45,12 @@ BackgroundImages BackgroundCache::load(const Background& background, int frame, 
       if (depthImage) eyeDepth_ = atSize(std::move(*depthImage), depth, width, height, true);
     }
     if (!environment.empty()) environment_ = readColorImage(environment);
+    if (!liquidDepth.empty()) {
+      std::optional<FloatImage> depthImage = readDepthImage(liquidDepth);
+      if (!depthImage)
+        throw Error(liquidDepth.string() + ": no depth channel for liquid_depth (expected e.g. ViewLayer.Depth.Z or Z)");
+      liquidEyeDepth_ = atSize(std::move(*depthImage), liquidDepth, width, height, true);
+    }
     key_ = key;
     ++generation_;
   }
@@ -48,6 +58,7 @@ BackgroundImages BackgroundCache::load(const Background& background, int frame, 
   images.color = color_ ? &*color_ : nullptr;
   images.eyeDepth = eyeDepth_ ? &*eyeDepth_ : nullptr;
   images.environment = environment_ ? &*environment_ : nullptr;
+  images.liquidEyeDepth = liquidEyeDepth_ ? &*liquidEyeDepth_ : nullptr;
   images.fallbackColor = background.color;
   images.generation = generation_;
   return images;

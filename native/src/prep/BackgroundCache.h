@@ -14,7 +14,8 @@ namespace spindrift {
 /// size, so a sequence over one static background reads and uploads it once.
 class BackgroundCache {
  public:
-  /// Throws Error when a named file cannot be read, or `depth` was named and holds no depth channel.
+  /// Throws Error when a named file cannot be read, or `depth` was named and holds no depth channel, or
+  /// `liquid_depth` holds none.
   BackgroundImages load(const Background& background, int frame, int width, int height);
 
  private:
@@ -23,6 +24,7 @@ class BackgroundCache {
   std::optional<FloatImage> color_;
   std::optional<FloatImage> eyeDepth_;
   std::optional<FloatImage> environment_;
+  std::optional<FloatImage> liquidEyeDepth_;
 };
 
 }  // namespace spindrift

@@ -86,7 +86,7 @@ ParticleSource readParticleSource(const JsonFields& fields, const std::filesyste
 }
 
 Background readBackground(const JsonFields& fields, const std::filesystem::path& baseDirectory) {
-  fields.allowOnly({"image", "depth", "environment", "color"});
+  fields.allowOnly({"image", "depth", "liquid_depth", "environment", "color"});
   Background background;
   if (fields.has("image")) {
     background.image = fields.path("image", baseDirectory);
@@ -96,6 +96,10 @@ Background readBackground(const JsonFields& fields, const std::filesystem::path&
     background.depth = fields.path("depth", baseDirectory);
     background.depthExplicit = true;
     requireExisting(fields, "depth", background.depth);
+  }
+  if (fields.has("liquid_depth")) {
+    background.liquidDepth = fields.path("liquid_depth", baseDirectory);
+    requireExisting(fields, "liquid_depth", background.liquidDepth);
   }
   if (fields.has("environment")) {
     background.environment = fields.path("environment", baseDirectory);

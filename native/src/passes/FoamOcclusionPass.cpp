@@ -1,0 +1,99 @@
+#include "passes/FoamOcclusionPass.h"
+
+#include <algorithm>
+
+#include "passes/FrameUniforms.h"
+
+namespace spindrift {
+namespace {
+
+// Large enough to resolve an environment's hue by direction; irradiance varies slowly.
+constexpr int kIrradianceMapWidth = 64;
+constexpr int kIrradianceMapHeight = 32;
+
+}  // namespace
+
+FoamOcclusionPass::FoamOcclusionPass(const ShaderLibrary& shaders)
+    : program_(shaders.program({"fullscreen.vert", "foam_occlusion.frag"})),
+      irradianceMapProgram_(shaders.program({"foam_irradiance_map.comp"})),
+      emptyVertexArray_(createVertexArray()),
+      framebuffer_(createFramebuffer()),
+      haltonSamples_(createBuffer()),
+      counters_(createBuffer()) {
+  // The samples are the same for every pixel and frame (a constant seed): made once, by the shader library's
+  // own Halton code, so what the tests check is what the pass uses.
+  const ProgramObject generator = shaders.program({"foam_halton_samples.comp"});
+  glNamedBufferStorage(haltonSamples_.id(), GLsizeiptr(kMaximumSamples * 4 * sizeof(float)), nullptr, 0);
+  glUseProgram(generator.id());
+  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, haltonSamples_.id());
+  glDispatchCompute(kMaximumSamples / 64, 1, 1);
+  glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+  glNamedBufferStorage(counters_.id(), 2 * sizeof(std::uint32_t), nullptr, GL_DYNAMIC_STORAGE_BIT);
+  checkGlError("making the foam's SSAO samples");
+}
+
+void FoamOcclusionPass::bindEnvironment(GLuint program, const BackgroundData& background) const {
+  glBindTextureUnit(5, background.environment ? background.environment->id() : 0);
+  glUniform1i(uniformLocation(program, "hasEnvironment"), background.environment ? 1 : 0);
+  glUniform3fv(uniformLocation(program, "fallbackColor"), 1, &background.fallbackColor.x);
+}
+
+FoamOcclusionData FoamOcclusionPass::run(const FoamSurfaceData& surface, const FoamIntensityData& intensity,
+                                         const FoamSceneDepth& scene, const BackgroundData& background,
+                                         const FoamParameters& parameters, int width, int height) {
+  const bool useIrradianceMap = parameters.irradiance == "irradiance_map";
+  if (useIrradianceMap) {
+    ensureTexture(irradianceMap_, GL_RGBA16F, kIrradianceMapWidth, kIrradianceMapHeight);
+    glTextureParameteri(irradianceMap_.id(), GL_TEXTURE_MIN_FILTER, GL_LINEAR);
+    glTextureParameteri(irradianceMap_.id(), GL_TEXTURE_MAG_FILTER, GL_LINEAR);
+    glTextureParameteri(irradianceMap_.id(), GL_TEXTURE_WRAP_S, GL_REPEAT);
+    glUseProgram(irradianceMapProgram_.id());
+    bindEnvironment(irradianceMapProgram_.id(), background);
+    glBindImageTexture(0, irradianceMap_.id(), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA16F);
+    glDispatchCompute(kIrradianceMapWidth / 8, kIrradianceMapHeight / 8, 1);
+    glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT);
+    checkGlError("making the foam's irradiance map");
+  }
+
+  ensureTexture(shadow_, GL_R32F, width, height);
+  ensureTexture(irradiance_, GL_RGBA16F, width, height);
+  bindColorTargets(framebuffer_.id(), {&shadow_, &irradiance_});
+  glDisable(GL_DEPTH_TEST);
+  glDisable(GL_BLEND);
+  const std::uint32_t zeros[2] = {0, 0};
+  glNamedBufferSubData(counters_.id(), 0, sizeof zeros, zeros);
+  const GLuint program = program_.id();
+  glUseProgram(program);
+  const FoamParameters& p = parameters;
+  glUniform1f(uniformLocation(program, "initialRadiusFactor"), p.ao_initial_radius_factor);
+  glUniform1f(uniformLocation(program, "radiusIncrementFactor"), p.ao_radius_increment_factor);
+  glUniform1i(uniformLocation(program, "passes"), p.ao_passes);
+  glUniform1f(uniformLocation(program, "sampleDensity"), p.ao_sample_density);
+  glUniform1i(uniformLocation(program, "minSamples"), std::min(p.ao_min_samples, p.ao_max_samples));
+  glUniform1i(uniformLocation(program, "maxSamples"), p.ao_max_samples);
+  glUniform1f(uniformLocation(program, "maxOcclusionDistance"), p.ao_max_occlusion_distance);
+  glUniform1f(uniformLocation(program, "liquidOpacity"), p.ao_liquid_opacity);
+  glUniform3f(uniformLocation(program, "shadowShape"), p.shadow_scale, p.shadow_exponent, p.shadow_offset);
+  glUniform1i(uniformLocation(program, "useIrradianceMap"), useIrradianceMap ? 1 : 0);
+  bindEnvironment(program, background);
+  glBindTextureUnit(0, surface.depthAndSearchRadius.id());
+  glBindTextureUnit(1, surface.normal.id());
+  glBindTextureUnit(2, intensity.intensity.id());
+  glBindTextureUnit(3, scene.fluidEyeDepth.id());
+  glBindTextureUnit(4, scene.solidEyeDepth.id());
+  glBindTextureUnit(6, useIrradianceMap ? irradianceMap_.id() : 0);
+  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, haltonSamples_.id());
+  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, counters_.id());
+  drawFullscreenTriangle(emptyVertexArray_.id());
+  checkGlError("estimating the foam's shadow and irradiance");
+  return {shadow_, irradiance_};
+}
+
+FoamOcclusionStatistics FoamOcclusionPass::statistics() const {
+  std::uint32_t counters[2] = {0, 0};
+  glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
+  glGetNamedBufferSubData(counters_.id(), 0, sizeof counters, counters);
+  return {counters[0], counters[1]};
+}
+
+}  // namespace spindrift

@@ -1,0 +1,122 @@
+#version 450 core
+// Foam pass 6 (paper 2.4): the shadow zeta from multi-pass screen-space ambient occlusion with Halton samples,
+// and the irradiance I from the environment, per foam pixel.
+#include "lib/frame.glsl"
+#include "lib/environment.glsl"
+#include "lib/foam_environment.glsl"
+
+layout(binding = 0) uniform sampler2D foamDepth;  // eye depth, h
+layout(binding = 1) uniform sampler2D foamNormal;
+layout(binding = 2) uniform sampler2D foamIntensity;
+layout(binding = 3) uniform sampler2D fluidEyeDepth;
+layout(binding = 4) uniform sampler2D solidEyeDepth;
+layout(binding = 6) uniform sampler2D irradianceMap;
+
+// The Halton samples in [-1, 1]^3 (xyz) with their length (w), made once by FoamOcclusionPass.
+layout(std430, binding = 0) readonly buffer HaltonSamples {
+  vec4 haltonSamples[];
+};
+// 0: foam pixels, 1: SSAO samples taken (nu summed over passes), for the frame's stats.
+layout(std430, binding = 1) buffer OcclusionCounters {
+  uint occlusionCounters[2];
+};
+
+uniform float initialRadiusFactor;    // AOInitSRFac
+uniform float radiusIncrementFactor;  // AOSRIncFac
+uniform int passes;                   // AO#Passes
+uniform float sampleDensity;          // AOSDens
+uniform int minSamples;               // AO#MinSamp
+uniform int maxSamples;               // AO#MaxSamp
+uniform float maxOcclusionDistance;   // AOMaxOcclDist
+uniform float liquidOpacity;          // a_i of a liquid occluder
+uniform vec3 shadowShape;             // AOShScale, AOShExp, AOShOffset
+uniform bool useIrradianceMap;
+
+layout(location = 0) out float outShadow;
+layout(location = 1) out vec4 outIrradiance;
+
+// delta of one occluder at eye depth `occluderDepth` for the fragment at `fragmentDepth`: the quadratic
+// falloff that keeps distant fragments from occluding.
+float occlusionRange(float fragmentDepth, float occluderDepth) {
+  float falloff = max(1.0 - abs(fragmentDepth - occluderDepth) / maxOcclusionDistance, 0.0);
+  return falloff * falloff;
+}
+
+void main() {
+  ivec2 pixel = ivec2(gl_FragCoord.xy);
+  outShadow = 0.0;
+  outIrradiance = vec4(0.0);
+  if (texelFetch(foamIntensity, pixel, 0).r <= 0.0) return;
+  vec2 depthAndSearchRadius = texelFetch(foamDepth, pixel, 0).rg;
+  float depth = depthAndSearchRadius.x;
+  float searchRadius = depthAndSearchRadius.y;
+  if (depth >= kNoSurfaceDepth * 0.5) return;
+  vec3 position = cameraRayFromFragCoord(gl_FragCoord.xy) * depth;
+  vec3 worldNormal = normalize(texelFetch(foamNormal, pixel, 0).xyz);
+  vec3 cameraNormal = mat3(frame.cameraFromWorld) * worldNormal;
+  float worldPerSearchRadius = frame.tanHalfFov.y * depth;  // h is relative to half the screen's height
+  float pixelsPerSearchRadius = 0.5 * frame.viewportSize.y;
+
+  float occlusion = 0.0, weights = 0.0;
+  vec3 irradiance = vec3(0.0);
+  int irradianceSamples = 0;
+  uint samplesTaken = 0u;
+  for (int pass = 0; pass < passes; ++pass) {
+    float passRadius = searchRadius * (initialRadiusFactor + radiusIncrementFactor * float(pass));
+    float screenRadius = passRadius * pixelsPerSearchRadius;
+    int count = int(clamp(0.75 * kPi * screenRadius * screenRadius * screenRadius * sampleDensity,
+                          float(minSamples), float(maxSamples)));
+    samplesTaken += uint(count);
+    float worldRadius = passRadius * worldPerSearchRadius;
+    for (int i = 0; i < count; ++i) {
+      vec4 unit = haltonSamples[i];
+      if (unit.w > 1.0 || unit.w == 0.0) continue;  // outside the unit sphere
+      if (pass == 0 && !useIrradianceMap) {
+        // The sample's direction, turned into the normal's hemisphere, weighted by its cosine.
+        vec3 direction = unit.xyz / unit.w;
+        if (dot(direction, cameraNormal) < 0.0) direction = -direction;
+        irradiance += environmentRadiance(mat3(frame.worldFromCamera) * direction) * dot(direction, cameraNormal);
+        ++irradianceSamples;
+      }
+      vec3 samplePosition = position + worldRadius * unit.xyz;
+      float sampleDepth = -samplePosition.z;
+      if (sampleDepth <= getNearClip()) continue;
+      vec2 sampleFragCoord = fragCoordFromCamera(samplePosition);
+      if (!onScreen(sampleFragCoord)) continue;
+      ivec2 samplePixel = ivec2(sampleFragCoord);
+      float lambda = (1.0 - unit.w) * (1.0 - unit.w);
+      weights += lambda;
+      // k: the sample lies behind foam, liquid or a solid, each within AOMaxOcclDist of the fragment. a sums
+      // the opacities of the fragments in front of it (foam: its intensity), and delta is the nearest one's.
+      float foamOccluder = texelFetch(foamDepth, samplePixel, 0).r;
+      float fluidOccluder = texelFetch(fluidEyeDepth, samplePixel, 0).r;
+      float solidOccluder = texelFetch(solidEyeDepth, samplePixel, 0).r;
+      float opacity = 0.0, delta = 0.0;
+      if (sampleDepth > foamOccluder) {
+        float range = occlusionRange(depth, foamOccluder);
+        if (range > 0.0) opacity += texelFetch(foamIntensity, samplePixel, 0).r;
+        delta = max(delta, range);
+      }
+      if (sampleDepth > fluidOccluder) {
+        float range = occlusionRange(depth, fluidOccluder);
+        if (range > 0.0) opacity += liquidOpacity;
+        delta = max(delta, range);
+      }
+      if (sampleDepth > solidOccluder) {
+        float range = occlusionRange(depth, solidOccluder);
+        if (range > 0.0) opacity += 1.0;
+        delta = max(delta, range);
+      }
+      occlusion += lambda * delta * min(opacity, 1.0);
+    }
+  }
+  atomicAdd(occlusionCounters[0], 1u);
+  atomicAdd(occlusionCounters[1], samplesTaken);
+  float omega = weights > 0.0 ? occlusion / weights : 0.0;
+  outShadow = clamp(pow(omega * shadowShape.x, shadowShape.y) + shadowShape.z, 0.0, 1.0);
+  if (useIrradianceMap)
+    irradiance = texture(irradianceMap, equirectangularUvFromDirection(worldNormal)).rgb;
+  else
+    irradiance = irradianceSamples > 0 ? irradiance / float(irradianceSamples) : vec3(0.0);
+  outIrradiance = vec4(irradiance, 1.0);
+}
