@@ -12,6 +12,7 @@
 #include <OpenImageIO/imageio.h>
 #include <OpenImageIO/strutil.h>
 
+#include "io/OiioErrors.h"
 #include "spindrift/Error.h"
 
 namespace spindrift {
@@ -21,17 +22,8 @@ namespace {
 // allocation failure instead of an Error.
 constexpr long long kMaxPixels = 1LL << 30;
 
-[[noreturn]] void fail(const std::filesystem::path& path, const std::string& what) {
-  throw Error(path.string() + ": " + what);
-}
-
-// OIIO's messages may span lines; an Error is one line.
-std::string oneLine(std::string message) {
-  std::replace(message.begin(), message.end(), '\n', ' ');
-  while (!message.empty() && message.back() == ' ')
-    message.pop_back();
-  return message.empty() ? "unknown OpenImageIO error" : message;
-}
+using oiio_errors::fail;
+using oiio_errors::oneLine;
 
 std::unique_ptr<OIIO::ImageInput> openImage(const std::filesystem::path& path) {
   if (!std::filesystem::exists(path)) fail(path, "no such image file");

@@ -14,21 +14,14 @@
 
 #include <OpenImageIO/imageio.h>
 
+#include "io/OiioErrors.h"
 #include "spindrift/Error.h"
 
 namespace spindrift {
 namespace {
 
-[[noreturn]] void fail(const std::filesystem::path& path, const std::string& what) {
-  throw Error(path.string() + ": " + what);
-}
-
-std::string oneLine(std::string message) {
-  std::replace(message.begin(), message.end(), '\n', ' ');
-  while (!message.empty() && message.back() == ' ')
-    message.pop_back();
-  return message.empty() ? "unknown OpenImageIO error" : message;
-}
+using oiio_errors::fail;
+using oiio_errors::oneLine;
 
 void checkLayerSizes(const RenderResult& result, const std::filesystem::path& path) {
   if (result.width <= 0 || result.height <= 0) {

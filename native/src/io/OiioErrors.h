@@ -1,0 +1,23 @@
+#pragma once
+
+#include <algorithm>
+#include <filesystem>
+#include <string>
+
+#include "spindrift/Error.h"
+
+namespace spindrift::oiio_errors {
+
+/// Throws the one-line Error every image reader and writer reports: "<file>: <what went wrong>".
+[[noreturn]] inline void fail(const std::filesystem::path& path, const std::string& what) {
+  throw Error(path.string() + ": " + what);
+}
+
+/// OpenImageIO's messages may span lines; an Error is one line.
+inline std::string oneLine(std::string message) {
+  std::replace(message.begin(), message.end(), '\n', ' ');
+  while (!message.empty() && message.back() == ' ') message.pop_back();
+  return message.empty() ? "unknown OpenImageIO error" : message;
+}
+
+}  // namespace spindrift::oiio_errors
