@@ -62,7 +62,9 @@ def prepare_example(arguments, example, plan, absorption_rgb):
     directory = os.path.join(runs.REPOSITORY, "examples", example)
     if not os.path.isdir(os.path.join(directory, "cache", "mesh")):
         log(f"{example}: baking the Mantaflow cache")
-        blender(arguments, os.path.join(directory, "bake.py"), "--output", directory, "--skip-render")
+        # The whole script, renders included: its render steps also keep the cache the bake wrote (a bake
+        # followed by Blender's cleanup of a domain it has not rendered can leave the cache directory empty).
+        blender(arguments, os.path.join(directory, "bake.py"), "--output", directory)
     references = references_directory(arguments.work, example, plan)
     started = time.perf_counter()
     blender(arguments, os.path.join(runs.REPOSITORY, "tests", "bench", "references.py"),
