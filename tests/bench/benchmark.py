@@ -62,8 +62,8 @@ def prepare_example(arguments, example, plan, absorption_rgb):
     directory = os.path.join(runs.REPOSITORY, "examples", example)
     if not os.path.isdir(os.path.join(directory, "cache", "mesh")):
         log(f"{example}: baking the Mantaflow cache")
-        # The whole script, renders included: its render steps also keep the cache the bake wrote (a bake
-        # followed by Blender's cleanup of a domain it has not rendered can leave the cache directory empty).
+        # The whole script, renders included, as a user runs it: run with --skip-render from here, the bake left
+        # an empty cache directory behind (seen once with Blender 3.4.1; the cause was not pinned down).
         blender(arguments, os.path.join(directory, "bake.py"), "--output", directory)
     references = references_directory(arguments.work, example, plan)
     started = time.perf_counter()
