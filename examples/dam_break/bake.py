@@ -425,48 +425,57 @@ def render_with_liquid(scene, domain, domain_settings, cache_directory, render_d
     scene.cycles.sample_clamp_indirect = 4.0
     scene.render.filepath = os.path.join(render_directory, "with_liquid.exr")
 
-    copy = tempfile.TemporaryDirectory(prefix="dam_break_replay_")
-    replay_cache = os.path.join(copy.name, "cache")
-    shutil.copytree(cache_directory, replay_cache)
-    domain_settings.cache_type = 'REPLAY'
-    domain_settings.cache_directory = replay_cache
+    # Changing the domain's cache settings makes Blender free (delete) the bake in the directory the domain
+    # points at. The real cache is moved aside first, so nothing is there to delete, and put back at the end.
+    stash = cache_directory.rstrip(os.sep) + ".stash"
+    os.rename(cache_directory, stash)
+    try:
+        copy = tempfile.TemporaryDirectory(prefix="dam_break_replay_")
+        replay_cache = os.path.join(copy.name, "cache")
+        shutil.copytree(stash, replay_cache)
+        domain_settings.cache_type = 'REPLAY'
+        domain_settings.cache_directory = replay_cache
 
-    water = bpy.data.materials.new("Water")
-    water.use_nodes = True
-    nodes = water.node_tree.nodes
-    nodes.remove(nodes["Principled BSDF"])
-    glass = nodes.new("ShaderNodeBsdfGlass")
-    glass.inputs["IOR"].default_value = WATER_IOR
-    glass.inputs["Roughness"].default_value = 0.0
-    # Without caustics the glass would cast a black shadow; shadow rays pass through it instead, so the floor
-    # under the water is lit as under clear water.
-    light_path = nodes.new("ShaderNodeLightPath")
-    transparent = nodes.new("ShaderNodeBsdfTransparent")
-    mix = nodes.new("ShaderNodeMixShader")
-    links = water.node_tree.links
-    links.new(light_path.outputs["Is Shadow Ray"], mix.inputs["Fac"])
-    links.new(glass.outputs["BSDF"], mix.inputs[1])
-    links.new(transparent.outputs["BSDF"], mix.inputs[2])
-    links.new(mix.outputs["Shader"], nodes["Material Output"].inputs["Surface"])
-    domain.data.materials.clear()
-    domain.data.materials.append(water)
-    domain.hide_render = False
-    # The secondary particles are Spindrift's foam: they must not show in this render.
-    for system in domain.particle_systems:
-        system.settings.render_type = 'NONE'
+        water = bpy.data.materials.new("Water")
+        water.use_nodes = True
+        nodes = water.node_tree.nodes
+        nodes.remove(nodes["Principled BSDF"])
+        glass = nodes.new("ShaderNodeBsdfGlass")
+        glass.inputs["IOR"].default_value = WATER_IOR
+        glass.inputs["Roughness"].default_value = 0.0
+        # Without caustics the glass would cast a black shadow; shadow rays pass through it instead, so the floor
+        # under the water is lit as under clear water.
+        light_path = nodes.new("ShaderNodeLightPath")
+        transparent = nodes.new("ShaderNodeBsdfTransparent")
+        mix = nodes.new("ShaderNodeMixShader")
+        links = water.node_tree.links
+        links.new(light_path.outputs["Is Shadow Ray"], mix.inputs["Fac"])
+        links.new(glass.outputs["BSDF"], mix.inputs[1])
+        links.new(transparent.outputs["BSDF"], mix.inputs[2])
+        links.new(mix.outputs["Shader"], nodes["Material Output"].inputs["Surface"])
+        domain.data.materials.clear()
+        domain.data.materials.append(water)
+        domain.hide_render = False
+        # The secondary particles are Spindrift's foam: they must not show in this render.
+        for system in domain.particle_systems:
+            system.settings.render_type = 'NONE'
 
-    scene.frame_set(SHOWCASE_FRAME)
-    evaluated = domain.evaluated_get(bpy.context.evaluated_depsgraph_get())
-    vertices = len(evaluated.data.vertices)
-    if vertices == 0:
-        raise RuntimeError(f"the liquid mesh of frame {SHOWCASE_FRAME} did not load from {replay_cache}")
-    log(f"rendering the frame with the liquid mesh ({vertices} vertices, glass IOR {WATER_IOR}, "
-        f"{LIQUID_RENDER_SAMPLES} samples, CPU)")
-    started = time.perf_counter()
-    bpy.ops.render.render(write_still=True)
-    elapsed = time.perf_counter() - started
-    log(f"rendered {scene.render.filepath} in {elapsed:.1f} s")
-    copy.cleanup()
+        scene.frame_set(SHOWCASE_FRAME)
+        evaluated = domain.evaluated_get(bpy.context.evaluated_depsgraph_get())
+        vertices = len(evaluated.data.vertices)
+        if vertices == 0:
+            raise RuntimeError(f"the liquid mesh of frame {SHOWCASE_FRAME} did not load from {replay_cache}")
+        log(f"rendering the frame with the liquid mesh ({vertices} vertices, glass IOR {WATER_IOR}, "
+            f"{LIQUID_RENDER_SAMPLES} samples, CPU)")
+        started = time.perf_counter()
+        bpy.ops.render.render(write_still=True)
+        elapsed = time.perf_counter() - started
+        log(f"rendered {scene.render.filepath} in {elapsed:.1f} s")
+        copy.cleanup()
+    finally:
+        if os.path.isdir(cache_directory):
+            shutil.rmtree(cache_directory)  # Only what Blender may have recreated, empty, while freeing.
+        os.rename(stash, cache_directory)
     return elapsed
 
 
