@@ -6,9 +6,42 @@ import os
 import plots
 
 HERE = os.path.dirname(os.path.abspath(__file__))
-# The README's "Benchmarks" section heads the page; the notes on method are the benchmark's own.
-SECTION_FILE = os.path.join(HERE, "..", "..", "docs", "README-benchmarks-section.md")
+# The README's "Benchmarks" section heads the page (one text, kept in the README); the notes on method are the
+# benchmark's own.
+README_FILE = os.path.join(HERE, "..", "..", "README.md")
 NOTES_FILE = os.path.join(HERE, "method_notes.md")
+
+
+def readme_benchmarks_section():
+    """The README's "## Benchmarks" section, as the page's title and introduction."""
+    text = open(README_FILE).read()
+    start = text.index("## Benchmarks")
+    end = text.find("\n## ", start + 1)
+    section = text[start:end if end >= 0 else len(text)].strip()
+    return "# Benchmarks" + section[len("## Benchmarks"):]
+
+
+# The settings a user gets without --set: the parameter table's defaults (plane_fit, 3 iterations, 9x9,
+# four refractions, split layers, foam on).
+DEFAULT_LABEL = "plane_fit i3 w9"
+
+
+def defaults_on_front(data):
+    """Whether the default setting is on the Pareto front of Spindrift's settings (with foam) for frame time
+    against each error, and which settings beat it where it is not."""
+    rows = []
+    settings = [entry for entry in data["spindrift"] if entry.get("foam", True) and entry.get("errors")]
+    default = next((entry for entry in settings if entry["label"] == DEFAULT_LABEL), None)
+    if default is None:
+        return "The default setting was not measured."
+    for key, name in (("mae", "image MAE"), ("normal_median_deg", "median normal error"),
+                      ("depth_median_r", "median depth error")):
+        time, error = default["timing"]["total_ms"], default["errors"][key]
+        better = [entry["label"] for entry in settings
+                  if entry["timing"]["total_ms"] <= time and entry["errors"][key] <= error
+                  and (entry["timing"]["total_ms"] < time or entry["errors"][key] < error)]
+        rows.append([name, "yes" if not better else "no", ", ".join(better) or "–"])
+    return table(["error", f"default ({DEFAULT_LABEL}) on the Pareto front?", "settings faster and no worse"], rows)
 
 
 def number(value, digits=3):
@@ -146,7 +179,7 @@ def write(results, output, quick):
     os.makedirs(images, exist_ok=True)
     write_plots(results, images)
     plan, machine = results["plan"], results["machine"]
-    parts = [open(SECTION_FILE).read().strip(), "", open(NOTES_FILE).read().strip()]
+    parts = [readme_benchmarks_section(), "", open(NOTES_FILE).read().strip()]
     parts += ["", "## The machine", "",
               table(["", ""], [["OpenGL renderer", machine["gl_renderer"]], ["CPU", machine["cpu"]],
                                ["memory", machine["memory"]], ["OS", machine["os"]], ["Blender", machine["blender"]],
@@ -158,7 +191,8 @@ def write(results, output, quick):
                   f"`{plan['cameras'][0]}` (median of {plan['repeats']} runs), errors the mean over the cameras.",
                   "", f"![time against error, {example}](images/bench_time_vs_error_{example}.png)",
                   f"![time against depth error, {example}](images/bench_time_vs_depth_{example}.png)", "",
-                  "### Spindrift settings", "", spindrift_table(data), "", "### GPU time per pass", "",
+                  "### Spindrift settings", "", spindrift_table(data), "", "### Where the defaults stand", "",
+                  defaults_on_front(data), "", "### GPU time per pass", "",
                   pass_table(data), "", "### Peers: VTK's fluid mapper and Cycles", "", peers_table(data)]
     parts += ["", "## Scaling", "", "Default settings, the dam-break `oblique` camera (480×270 for the particle sweep, "
               "its background resampled for the resolution sweep).", "",
