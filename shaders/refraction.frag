@@ -271,6 +271,7 @@ void main() {
   int refractions = 0;
   bool inside = false;
   int secondBody = -1;
+  ivec2 entryPixel = pixel;  // where the path last entered a body, for the thickness of an unseen remainder
   for (int crossing = 0; crossing < 4; ++crossing) {
     // The normal faces the side the ray comes from.
     vec3 facing = dot(normal, direction) < 0.0 ? normal : -normal;
@@ -280,28 +281,34 @@ void main() {
     bool totalInternalReflection = dot(refracted, refracted) == 0.0;
     vec3 reflected = reflect(direction, facing);
     if (totalInternalReflection) {
-      // All light is reflected back into the liquid; the reflected ray's colour is looked up directly and
-      // attenuated by the path so far, which ends the path.
+      // All light is reflected back into the liquid: the path travels on inside the body along the
+      // reflection, to its next meeting with the surface, within the loop's budget of crossings.
       atomicAdd(rayCounters[5], 1u);
-      colour += throughput * colourAlong(position, reflected);
-      throughput = vec3(0.0);
-      break;
+      direction = reflected;
+    } else {
+      // Schlick's cosine is taken on the rarer (air) side, which is the refracted side when leaving.
+      float fresnel = schlickFresnel(inside ? -dot(refracted, facing) : cosine, indexOfRefraction);
+      colour += throughput * fresnel * colourAlong(position, reflected);
+      throughput *= 1.0 - fresnel;
+      direction = refracted;
+      ++refractions;
+      inside = !inside;
     }
-    // Schlick's cosine is taken on the rarer (air) side, which is the refracted side when leaving.
-    float fresnel = schlickFresnel(inside ? -dot(refracted, facing) : cosine, indexOfRefraction);
-    colour += throughput * fresnel * colourAlong(position, reflected);
-    throughput *= 1.0 - fresnel;
-    direction = refracted;
-    ++refractions;
-    inside = !inside;
     if (inside) {
       Crossing exit = findExit(position, direction, body);
       float length = exit.t;  // Where the liquid ends, or where a march that never left it stopped.
+      if (!exit.found) {
+        // The march left the screen inside the liquid. The unseen rest of the path is estimated from the
+        // body's thickness where the path entered it: a path through a body that thick along this direction
+        // is (back - front) / |cos| long, of which `length` was seen.
+        float thicknessHere = max(backDepth(body, entryPixel) - frontDepth(body, entryPixel), 0.0);
+        length = max(length, thicknessHere / max(abs(direction.z), 0.2));
+      }
       pathInLiquid += length;
       throughput *= exp(-absorptionPerUnitLength * length);
       if (!exit.found || refractions >= maxRefractions) {
         // One refraction, or a march that left the screen: the light behind comes straight through.
-        position += length * direction;
+        position += exit.t * direction;
         break;
       }
       position += exit.t * direction;
@@ -315,6 +322,7 @@ void main() {
       atomicAdd(rayCounters[4], 1u);
       position += entry.t * direction;
       body = entry.body;
+      entryPixel = ivec2(entry.fragCoord);
       normal = surfaceNormal(body, entry.back, entry.fragCoord);
       if (dot(normal, normal) == 0.0) normal = -direction;
     }

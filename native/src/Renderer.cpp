@@ -18,9 +18,11 @@
 #include "passes/FoamSceneDepthPass.h"
 #include "passes/FoamThicknessPass.h"
 #include "passes/FrameUniforms.h"
+#include "passes/LiquidLighting.h"
 #include "passes/RefractionPass.h"
 #include "prep/BackgroundCache.h"
 #include "prep/FoamPreparation.h"
+#include "prep/LightViews.h"
 #include "prep/LiquidPreparation.h"
 #include "Readback.h"
 
@@ -43,6 +45,7 @@ struct FramePipeline {
   EllipsoidImpostorPass aggregateImpostors{shaders};
   DepthSmoothingPass frontSmoothing{shaders};
   DepthSmoothingPass backSmoothing{shaders};
+  LiquidLighting lighting{shaders};
   RefractionPass refraction{shaders};
   FoamSceneDepthPass foamSceneDepth{shaders};
   FoamDepthPass foamDepth{shaders};
@@ -125,6 +128,7 @@ RenderResult Renderer::renderParticles(const Scene& scene, const Particles& part
   const float radius = typicalLiquidRadius(particles);
   const FoamPreparation foam = prepareFoam(particles, camera, foamParameters);
   const BackgroundImages backgroundImages = impl_->backgroundCache.load(scene.background, frame, width, height);
+  const LightingPreparation lighting = prepareLighting(particles, scene.lights, scene.parameters);
   stats.prepareMilliseconds = millisecondsSince(prepareStart);
   stats.liquid.splashParticles = liquid.splashes.size();
   stats.liquid.aggregateParticles = liquid.aggregates.size();
@@ -136,6 +140,10 @@ RenderResult Renderer::renderParticles(const Scene& scene, const Particles& part
   stats.foam.surfaceParticles = foam.surface;
   stats.foam.bubbleParticles = foam.bubble;
   stats.foam.culled = foam.culled;
+  stats.light.lights = scene.lights.size();
+  stats.light.lightsSeeingLiquid = lighting.lights.size();
+  stats.light.lightPasses = backgroundImages.lightPasses != nullptr;
+  stats.light.prepareMilliseconds = lighting.milliseconds;
 
   impl_->glThread.run([&] {
     FramePipeline& pipeline = *impl_->pipeline;
@@ -147,6 +155,20 @@ RenderResult Renderer::renderParticles(const Scene& scene, const Particles& part
     {
       ScopedPassTimer timed(timer, "background");
       background.emplace(pipeline.background.run(backgroundImages, width, height));
+    }
+    // Light through the liquid onto the background (shadows, caustics, submerged points), before anything
+    // refracts or shows the background.
+    std::optional<LitBackgroundData> lit;
+    if (!lighting.lights.empty()) {
+      lit.emplace(pipeline.lighting.run(lighting, camera, *background, radius, scene.parameters, timer, skip));
+      background.emplace(lit->background);
+      stats.light.caustics = !std::any_of(stats.skipped.begin(), stats.skipped.end(),
+                                          [](const SkippedPass& pass) { return pass.name == "caustics"; });
+    } else {
+      std::string reason = scene.lights.empty() ? "no lights in the scene" : "no light sees the liquid";
+      for (const std::string& why : lighting.skipped) reason += "; " + why;
+      for (const char* pass : {"light_depth_layers", "liquid_shadow", "caustics", "lit_background"})
+        skip(pass, reason.c_str());
     }
     std::vector<ImageLayer> intermediate;
     auto keep = [&](const SurfaceLayers& layers, const std::string& name) {
@@ -271,6 +293,16 @@ RenderResult Renderer::renderParticles(const Scene& scene, const Particles& part
       stats.foam.aoSamplesPerPixel = occlusion.foamPixels ? double(occlusion.samples) / occlusion.foamPixels : 0.0;
     }
     readFoamLayers(foamLayer ? &*foamLayer : nullptr, width, height, result.layers);
+    // The light passes exist whenever the scene has lights, so every frame of a sequence has the same channels.
+    if (lit) {
+      result.layers.push_back(readLayer(lit->liquidShadow, "liquid_shadow", {"R", "G", "B"}));
+      result.layers.push_back(readLayer(lit->caustics, "caustics", {"R", "G", "B"}));
+      result.layers.push_back(readLayer(lit->skyKept, "liquid_sky", {"R", "G", "B"}));
+    } else if (!scene.lights.empty()) {
+      result.layers.push_back(filledLayer(width, height, "liquid_shadow", {"R", "G", "B"}, 1.0f));
+      result.layers.push_back(filledLayer(width, height, "caustics", {"R", "G", "B"}, 0.0f));
+      result.layers.push_back(filledLayer(width, height, "liquid_sky", {"R", "G", "B"}, 1.0f));
+    }
     for (ImageLayer& layer : intermediate) result.layers.push_back(std::move(layer));
     stats.readbackMilliseconds = millisecondsSince(readbackStart);
   });

@@ -118,6 +118,31 @@ TEST(SceneFile, ReadsBackgroundLiquidDepth) {
   EXPECT_TRUE(parseScene(sceneWith(kLookAt), directory.path() / "s.json").background.liquidDepth.empty());
 }
 
+// Lights in Blender's terms: a sun's direction (normalised), spot and point positions, watts, the cone.
+TEST(SceneFile, ReadsLights) {
+  TempDirectory directory;
+  directory.write("p.ply", kParticlesPly);
+  const Scene scene = parseScene(
+      sceneWith(kLookAt, R"(, "lights": [
+        {"type": "sun", "direction": [0, 3, -4], "strength": 3.5, "color": [1, 0.9, 0.8]},
+        {"type": "spot", "position": [1, 2, 3], "direction": [0, 0, -1], "strength": 800, "spot_angle_deg": 30},
+        {"type": "point", "position": [0, 0, 5], "strength": 1000}], "light": {"shadow_map_size": 256})"),
+      directory.path() / "scene.json");
+  ASSERT_EQ(scene.lights.size(), 3u);
+  EXPECT_EQ(scene.lights[0].type, Light::Type::Sun);
+  EXPECT_NEAR(scene.lights[0].direction.y, 0.6f, 1e-6f);
+  EXPECT_NEAR(scene.lights[0].direction.z, -0.8f, 1e-6f);
+  EXPECT_FLOAT_EQ(scene.lights[0].strength, 3.5f);
+  EXPECT_FLOAT_EQ(scene.lights[0].color.b, 0.8f);
+  EXPECT_EQ(scene.lights[1].type, Light::Type::Spot);
+  EXPECT_FLOAT_EQ(scene.lights[1].spotAngleDegrees, 30.0f);
+  EXPECT_FLOAT_EQ(scene.lights[1].position.z, 3.0f);
+  EXPECT_EQ(scene.lights[2].type, Light::Type::Point);
+  EXPECT_FLOAT_EQ(scene.lights[2].color.g, 1.0f);
+  EXPECT_EQ(scene.parameters.light.shadow_map_size, 256);
+  EXPECT_TRUE(parseScene(sceneWith(kLookAt), directory.path() / "s.json").lights.empty());
+}
+
 // Each bad file gets one error that names the key at fault.
 struct BadScene {
   const char* name;
@@ -174,5 +199,15 @@ INSTANTIATE_TEST_SUITE_P(
         BadScene{"NegativeBackgroundColor", sceneWith(kLookAt, R"(, "background": {"color": [0, -1, 0]})"), "background.color"},
         BadScene{"UnknownParameter", sceneWith(kLookAt, R"(, "liquid": {"absorption_colour": [1, 1, 1]})"), "liquid.absorption_colour"},
         BadScene{"ParameterOutOfRange", sceneWith(kLookAt, R"(, "liquid": {"ior": 7})"), "liquid.ior"},
+        BadScene{"LightsNotAList", sceneWith(kLookAt, R"(, "lights": {"type": "sun"})"), "lights"},
+        BadScene{"UnknownLightType", sceneWith(kLookAt, R"(, "lights": [{"type": "area", "strength": 1}])"), "lights[0].type"},
+        BadScene{"SunWithoutDirection", sceneWith(kLookAt, R"(, "lights": [{"type": "sun", "strength": 1}])"), "lights[0].direction"},
+        BadScene{"ZeroSunDirection", sceneWith(kLookAt, R"(, "lights": [{"type": "sun", "direction": [0, 0, 0], "strength": 1}])"), "lights[0].direction"},
+        BadScene{"PointWithDirection", sceneWith(kLookAt, R"(, "lights": [{"type": "point", "position": [0, 0, 1], "direction": [0, 0, -1], "strength": 1}])"), "lights[0].direction"},
+        BadScene{"SunWithPosition", sceneWith(kLookAt, R"(, "lights": [{"type": "sun", "direction": [0, 0, -1], "position": [0, 0, 1], "strength": 1}])"), "lights[0].position"},
+        BadScene{"NegativeLightStrength", sceneWith(kLookAt, R"(, "lights": [{"type": "point", "position": [0, 0, 1], "strength": -2}])"), "lights[0].strength"},
+        BadScene{"ConeOnPoint", sceneWith(kLookAt, R"(, "lights": [{"type": "point", "position": [0, 0, 1], "strength": 1, "spot_angle_deg": 30}])"), "lights[0].spot_angle_deg"},
+        BadScene{"TypoInLight", sceneWith(kLookAt, R"(, "lights": [{"type": "sun", "direction": [0, 0, -1], "strenght": 1}])"), "lights[0].strenght"},
+        BadScene{"LightParameterOutOfRange", sceneWith(kLookAt, R"(, "light": {"direct_fraction": 2})"), "light.direct_fraction"},
         BadScene{"NaNInMatrix", sceneWith(R"(, "world_from_camera": [1,0,0,0,0,1,0,0,0,0,1,0,0,0,0,"x"])"), "camera.world_from_camera"}),
     [](const testing::TestParamInfo<BadScene>& info) { return info.param.name; });

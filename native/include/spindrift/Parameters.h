@@ -33,12 +33,18 @@ struct FoamParameters {
   SPINDRIFT_FOAM_PARAMETERS(SPINDRIFT_DECLARE_MEMBER)
 };
 
+/// Parameters of the light through the liquid (scene key `light`).
+struct LightParameters {
+  SPINDRIFT_LIGHT_PARAMETERS(SPINDRIFT_DECLARE_MEMBER)
+};
+
 #undef SPINDRIFT_DECLARE_MEMBER
 
 /// Every parameter, each with the default that parameters.def gives it.
 struct Parameters {
   LiquidParameters liquid;
   FoamParameters foam;
+  LightParameters light;
 };
 
 /// One row of parameters.def, for tools that list, document or build user interfaces from the table.

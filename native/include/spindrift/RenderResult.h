@@ -56,6 +56,15 @@ struct FoamFrameStats {
   double aoSamplesPerPixel = 0.0;    ///< Mean SSAO samples per foam pixel, all passes together.
 };
 
+/// What the light through the liquid found in a frame.
+struct LightFrameStats {
+  std::size_t lights = 0;               ///< In the scene.
+  std::size_t lightsSeeingLiquid = 0;   ///< Whose view of the liquid was drawn.
+  bool caustics = false;                ///< Whether any light's caustics were splatted.
+  bool lightPasses = false;             ///< Whether the background had Cycles' light passes.
+  double prepareMilliseconds = 0.0;     ///< CPU preparation of the lights' views (included in prepare_ms).
+};
+
 /// What a frame cost and contained; `--stats` writes it as JSON.
 struct FrameStats {
   int frame = 0;
@@ -66,6 +75,7 @@ struct FrameStats {
   ParticleCounts counts;                 ///< Everything the sources held, by kind.
   LiquidFrameStats liquid;
   FoamFrameStats foam;
+  LightFrameStats light;
   double loadMilliseconds = 0.0;         ///< Reading particle files.
   double prepareMilliseconds = 0.0;      ///< CPU preparation: culling and packing.
   double readbackMilliseconds = 0.0;

@@ -39,12 +39,24 @@ struct Background {
   glm::vec3 color{0.05f, 0.05f, 0.06f};
 };
 
+/// A lamp of the scene, in Blender's terms and units (docs/scene-format.md, `lights`).
+struct Light {
+  enum class Type { Sun, Spot, Point };
+  Type type = Type::Sun;
+  glm::vec3 direction{0.0f, 0.0f, -1.0f};  ///< Sun and spot: the way the light travels (a lamp's -Z), unit.
+  glm::vec3 position{0.0f};                ///< Spot and point: world position.
+  glm::vec3 color{1.0f};                   ///< Linear RGB.
+  float strength = 1.0f;       ///< Sun: irradiance in W/m^2; spot and point: power in W (Blender's units).
+  float spotAngleDegrees = 45.0f;  ///< Spot: full cone angle (Blender's spot_size).
+};
+
 /// A scene file, version 1 (docs/scene-format.md), parsed and validated.
 struct Scene {
   std::filesystem::path file;
   Camera camera;
   std::vector<ParticleSource> particles;
   Background background;
+  std::vector<Light> lights;  ///< Empty: the liquid casts no shadow and no caustics.
   Parameters parameters;
   int frame = 1;  ///< The frame rendered when the command line names none.
 };

@@ -71,7 +71,8 @@ GLenum stageFromFile(const std::string& file) {
   if (extension == ".vert") return GL_VERTEX_SHADER;
   if (extension == ".frag") return GL_FRAGMENT_SHADER;
   if (extension == ".comp") return GL_COMPUTE_SHADER;
-  throw Error("shader " + file + ": unknown stage (expected .vert, .frag or .comp)");
+  if (extension == ".geom") return GL_GEOMETRY_SHADER;
+  throw Error("shader " + file + ": unknown stage (expected .vert, .geom, .frag or .comp)");
 }
 
 }  // namespace

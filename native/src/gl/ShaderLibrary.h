@@ -20,7 +20,7 @@ class ShaderLibrary {
  public:
   explicit ShaderLibrary(std::filesystem::path directory);
 
-  /// Compiles and links one program from stage files named by extension: .vert, .frag, .comp.
+  /// Compiles and links one program from stage files named by extension: .vert, .geom, .frag, .comp.
   ProgramObject program(const std::vector<std::string>& stageFiles) const;
   /// The source of one stage after includes are resolved; `files` receives the name of each source-string
   /// number used in `#line` directives.

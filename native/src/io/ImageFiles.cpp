@@ -178,6 +178,40 @@ std::optional<FloatImage> readDepthImage(const std::filesystem::path& path) {
   return std::nullopt;
 }
 
+std::optional<std::array<FloatImage, 3>> readLightPasses(const std::filesystem::path& path) {
+  std::unique_ptr<OIIO::ImageInput> input = openImage(path);
+  const char* passNames[6] = {"DiffDir", "DiffInd", "DiffCol", "GlossDir", "GlossInd", "GlossCol"};
+  for (int subimage = 0; input->seek_subimage(subimage, 0); ++subimage) {
+    const OIIO::ImageSpec& spec = input->spec();
+    std::array<FloatImage, 6> passes;
+    bool complete = true;
+    for (int pass = 0; pass < 6 && complete; ++pass) {
+      std::array<int, 4> rgba{-1, -1, -1, -1};
+      complete = false;
+      for (const std::string& name : spec.channelnames) {
+        const std::string layer = layerOf(name);
+        const std::string suffix = passNames[pass];
+        if (layer.size() >= suffix.size() && layer.compare(layer.size() - suffix.size(), suffix.size(), suffix) == 0 &&
+            findRgba(spec, layer + ".", &rgba)) {
+          complete = true;
+          break;
+        }
+      }
+      if (complete) passes[pass] = readChannels(*input, path, subimage, {rgba[0], rgba[1], rgba[2], -1}, 0.0f);
+    }
+    if (!complete) continue;
+    std::array<FloatImage, 3> light{passes[0], passes[3], passes[1]};
+    for (std::size_t i = 0; i < light[0].pixels.size(); ++i) {
+      if (i % 4 == 3) continue;
+      light[0].pixels[i] = passes[2].pixels[i] * passes[0].pixels[i];
+      light[1].pixels[i] = passes[5].pixels[i] * passes[3].pixels[i];
+      light[2].pixels[i] = passes[2].pixels[i] * passes[1].pixels[i] + passes[5].pixels[i] * passes[4].pixels[i];
+    }
+    return light;
+  }
+  return std::nullopt;
+}
+
 FloatImage resizeImage(const FloatImage& image, int width, int height, bool nearest) {
   if (image.width <= 0 || image.height <= 0 || image.channels <= 0 ||
       image.pixels.size() != std::size_t(image.width) * image.height * image.channels) {

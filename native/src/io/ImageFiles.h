@@ -1,5 +1,6 @@
 #pragma once
 
+#include <array>
 #include <filesystem>
 #include <optional>
 #include <vector>
@@ -27,6 +28,12 @@ FloatImage readColorImage(const std::filesystem::path& path);
 /// Reads planar eye depth as one channel: a channel named "Z" or ending in ".Z" whose layer looks like
 /// depth ("Depth.Z", "ViewLayer.Depth.Z", "depth.Z", "Z"). Returns nothing when the file has no such channel.
 std::optional<FloatImage> readDepthImage(const std::filesystem::path& path);
+
+/// Reads Cycles' light passes (layers ending in DiffDir, DiffInd, DiffCol, GlossDir, GlossInd, GlossCol, as
+/// Blender writes them in a multilayer EXR) as three RGBA images: direct diffuse (DiffCol x DiffDir), direct
+/// glossy (GlossCol x GlossDir) and indirect light (DiffCol x DiffInd + GlossCol x GlossInd). Nothing when any
+/// of the six is missing.
+std::optional<std::array<FloatImage, 3>> readLightPasses(const std::filesystem::path& path);
 
 /// Resamples to a new size: bilinear for colour, nearest for depth (`nearest`), so depth edges stay sharp.
 FloatImage resizeImage(const FloatImage& image, int width, int height, bool nearest);

@@ -19,6 +19,8 @@ void BackgroundPass::upload(const BackgroundImages& images) {
   uploadOrRelease(depthTexture_, images.eyeDepth, GL_R32F, false);
   uploadOrRelease(environmentTexture_, images.environment, GL_RGBA32F, true);
   uploadOrRelease(liquidDepthTexture_, images.liquidEyeDepth, GL_R32F, false);
+  for (int i = 0; i < 3; ++i)
+    uploadOrRelease(lightPassTextures_[i], images.lightPasses ? &(*images.lightPasses)[i] : nullptr, GL_RGBA32F, false);
   if (environmentTexture_) glTextureParameteri(environmentTexture_.id(), GL_TEXTURE_WRAP_S, GL_REPEAT);
   uploadedGeneration_ = images.generation;
 }
@@ -47,7 +49,7 @@ BackgroundData BackgroundPass::run(const BackgroundImages& images, int width, in
   drawFullscreenTriangle(emptyVertexArray_.id());
   checkGlError("resolving the background");
   return {color_, eyeDepth_, environmentTexture_ ? &environmentTexture_ : nullptr, images.fallbackColor,
-          liquidDepthTexture_ ? &liquidDepthTexture_ : nullptr};
+          liquidDepthTexture_ ? &liquidDepthTexture_ : nullptr, lightPassTextures_[0] ? lightPassTextures_ : nullptr};
 }
 
 }  // namespace spindrift

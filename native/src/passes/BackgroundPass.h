@@ -1,5 +1,6 @@
 #pragma once
 
+#include <array>
 #include <cstdint>
 
 #include <glm/vec3.hpp>
@@ -16,6 +17,8 @@ struct BackgroundImages {
   const FloatImage* eyeDepth = nullptr;     ///< Planar eye depth, one channel.
   const FloatImage* environment = nullptr;  ///< Equirectangular RGBA, any size.
   const FloatImage* liquidEyeDepth = nullptr;  ///< Planar eye depth of a render that includes the liquid.
+  /// From Cycles' light passes: direct diffuse, direct glossy and indirect light (RGBA each), or null.
+  const std::array<FloatImage, 3>* lightPasses = nullptr;
   glm::vec3 fallbackColor{0.0f};
   std::uint64_t generation = 0;  ///< Changes whenever any image changes, so unchanged ones stay uploaded.
 };
@@ -28,6 +31,9 @@ struct BackgroundData {
   glm::vec3 fallbackColor;
   /// R32F planar eye depth of a render that includes the liquid, as the file has it; null when none.
   const Texture2D* liquidEyeDepth;
+  /// Direct diffuse (DiffCol x DiffDir), direct glossy (GlossCol x GlossDir) and indirect light (DiffCol x
+  /// DiffInd + GlossCol x GlossInd), RGBA32F each, from Cycles' light passes; null when the image has none.
+  const Texture2D* lightPasses = nullptr;
 };
 
 /// Resolves the background image over the environment or colour, and the solids' depth, per pixel.
@@ -46,6 +52,7 @@ class BackgroundPass {
   Texture2D depthTexture_;
   Texture2D environmentTexture_;
   Texture2D liquidDepthTexture_;
+  Texture2D lightPassTextures_[3];
   Texture2D color_;
   Texture2D eyeDepth_;
   std::uint64_t uploadedGeneration_ = ~std::uint64_t(0);

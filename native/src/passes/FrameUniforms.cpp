@@ -19,14 +19,14 @@ FrameUniforms FrameUniforms::fromCamera(const Camera& camera) {
   return uniforms;
 }
 
-void FrameUniformBuffer::update(const Camera& camera) {
+void FrameUniformBuffer::update(const Camera& camera, GLuint binding) {
   const FrameUniforms uniforms = FrameUniforms::fromCamera(camera);
   if (!buffer_) {
     buffer_ = createBuffer();
     glNamedBufferStorage(buffer_.id(), sizeof(FrameUniforms), nullptr, GL_DYNAMIC_STORAGE_BIT);
   }
   glNamedBufferSubData(buffer_.id(), 0, sizeof(FrameUniforms), &uniforms);
-  glBindBufferBase(GL_UNIFORM_BUFFER, 0, buffer_.id());
+  glBindBufferBase(GL_UNIFORM_BUFFER, binding, buffer_.id());
 }
 
 void drawFullscreenTriangle(GLuint emptyVertexArray) {

@@ -22,10 +22,11 @@ struct FrameUniforms {
   static FrameUniforms fromCamera(const Camera& camera);
 };
 
-/// The uniform buffer that holds FrameUniforms for the frame being drawn.
+/// The uniform buffer that holds FrameUniforms for the frame being drawn (binding 0), or for another view
+/// such as a light's (another binding).
 class FrameUniformBuffer {
  public:
-  void update(const Camera& camera);
+  void update(const Camera& camera, GLuint binding = 0);
 
  private:
   BufferObject buffer_;

@@ -36,7 +36,13 @@ BackgroundImages BackgroundCache::load(const Background& background, int frame, 
     eyeDepth_.reset();
     environment_.reset();
     liquidEyeDepth_.reset();
-    if (!image.empty()) color_ = atSize(readColorImage(image), image, width, height, false);
+    lightPasses_.reset();
+    if (!image.empty()) {
+      color_ = atSize(readColorImage(image), image, width, height, false);
+      lightPasses_ = readLightPasses(image);
+      if (lightPasses_)
+        for (FloatImage& pass : *lightPasses_) pass = atSize(std::move(pass), image, width, height, false);
+    }
     if (!depth.empty()) {
       std::optional<FloatImage> depthImage = readDepthImage(depth);
       if (!depthImage && background.depthExplicit)
@@ -59,6 +65,7 @@ BackgroundImages BackgroundCache::load(const Background& background, int frame, 
   images.eyeDepth = eyeDepth_ ? &*eyeDepth_ : nullptr;
   images.environment = environment_ ? &*environment_ : nullptr;
   images.liquidEyeDepth = liquidEyeDepth_ ? &*liquidEyeDepth_ : nullptr;
+  images.lightPasses = lightPasses_ ? &*lightPasses_ : nullptr;
   images.fallbackColor = background.color;
   images.generation = generation_;
   return images;

@@ -25,6 +25,7 @@ class BackgroundCache {
   std::optional<FloatImage> eyeDepth_;
   std::optional<FloatImage> environment_;
   std::optional<FloatImage> liquidEyeDepth_;
+  std::optional<std::array<FloatImage, 3>> lightPasses_;
 };
 
 }  // namespace spindrift

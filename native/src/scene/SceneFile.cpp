@@ -109,6 +109,35 @@ Background readBackground(const JsonFields& fields, const std::filesystem::path&
   return background;
 }
 
+Light readLight(const JsonFields& fields) {
+  fields.allowOnly({"type", "direction", "position", "color", "strength", "spot_angle_deg"});
+  Light light;
+  const std::string type = fields.string("type");
+  if (type == "sun") light.type = Light::Type::Sun;
+  else if (type == "spot") light.type = Light::Type::Spot;
+  else if (type == "point") light.type = Light::Type::Point;
+  else fields.fail("type", "\"" + type + "\" is not one of sun, spot, point");
+  const bool directional = light.type != Light::Type::Point;
+  if (directional) {
+    light.direction = fields.vec3("direction");
+    if (!(glm::length(light.direction) > 0.0f)) fields.fail("direction", "must not be zero");
+    light.direction = glm::normalize(light.direction);
+  } else if (fields.has("direction")) {
+    fields.fail("direction", "a point light has no direction");
+  }
+  if (light.type != Light::Type::Sun) light.position = fields.vec3("position");
+  else if (fields.has("position")) fields.fail("position", "a sun has no position (only a direction)");
+  if (light.type == Light::Type::Spot) {
+    if (fields.has("spot_angle_deg")) light.spotAngleDegrees = fields.number("spot_angle_deg", 0.0f, 180.0f);
+  } else if (fields.has("spot_angle_deg")) {
+    fields.fail("spot_angle_deg", "only spot lights have a cone");
+  }
+  if (fields.has("color")) light.color = fields.color("color");
+  light.strength = fields.number("strength", -1.0f, 1e30f);
+  if (light.strength < 0.0f) fields.fail("strength", "must not be negative");
+  return light;
+}
+
 }  // namespace
 
 Scene parseScene(const std::string& jsonText, const std::filesystem::path& sceneFile) {
@@ -120,7 +149,7 @@ Scene parseScene(const std::string& jsonText, const std::filesystem::path& scene
     throw Error(fileLabel + ": not valid JSON: " + error.what());
   }
   const JsonFields root(document, fileLabel, "");
-  root.allowOnly({"version", "frame", "camera", "particles", "background", "liquid", "foam"});
+  root.allowOnly({"version", "frame", "camera", "particles", "background", "lights", "liquid", "foam", "light"});
   if (root.integer("version", 0, 1000) != 1)
     root.fail("version", "this Spindrift reads version 1 scene files");
 
@@ -137,7 +166,13 @@ Scene parseScene(const std::string& jsonText, const std::filesystem::path& scene
         readParticleSource(JsonFields(particles[i], fileLabel, "particles[" + std::to_string(i) + "]"), baseDirectory));
 
   if (root.has("background")) scene.background = readBackground(root.child("background"), baseDirectory);
-  for (const char* group : {"liquid", "foam"})
+  if (root.has("lights")) {
+    const json& lights = root.raw("lights");
+    if (!lights.is_array()) root.fail("lights", "expected a list of lights");
+    for (std::size_t i = 0; i < lights.size(); ++i)
+      scene.lights.push_back(readLight(JsonFields(lights[i], fileLabel, "lights[" + std::to_string(i) + "]")));
+  }
+  for (const char* group : {"liquid", "foam", "light"})
     if (root.has(group)) setParameterGroup(scene.parameters, group, root.raw(group), fileLabel);
   return scene;
 }

@@ -1,0 +1,40 @@
+#pragma once
+
+#include "gl/GlObjects.h"
+#include "gl/ShaderLibrary.h"
+#include "passes/BackgroundPass.h"
+#include "passes/EllipsoidImpostorPass.h"
+#include "spindrift/Parameters.h"
+#include "spindrift/Scene.h"
+
+namespace spindrift {
+
+/// The sum over the lights of the light the liquid refracts onto the background.
+struct CausticData {
+  const Texture2D& causticSum;  ///< RGBA32F: sum of weight x caustic (weights as LiquidShadowData's).
+};
+
+/// Caustics from the light's view (Wyman and Davis 2006, in screen space): the paths of the light through a
+/// grid of the light's view of the liquid (shaders/caustic_paths.comp), then the grid's triangles splatted
+/// onto the background where the paths land, each carrying the light of its source area
+/// (shaders/caustic_splat.{vert,geom,frag}). The light's view must be bound at binding 2.
+class CausticPass {
+ public:
+  explicit CausticPass(const ShaderLibrary& shaders);
+  void begin(int width, int height);
+  void addLight(const Light& light, const SurfaceLayers& layers, const BackgroundData& background,
+                const LiquidParameters& liquid, const LightParameters& parameters);
+  CausticData result() const { return {causticSum_}; }
+
+ private:
+  ProgramObject pathsProgram_;
+  ProgramObject splatProgram_;
+  VertexArrayObject emptyVertexArray_;
+  FramebufferObject framebuffer_;
+  Texture2D receiverPosition_;
+  Texture2D receiverLight_;
+  Texture2D receiverLightTexel_;
+  Texture2D causticSum_;
+};
+
+}  // namespace spindrift

@@ -1,0 +1,34 @@
+#include "passes/LightDepthLayersPass.h"
+
+namespace spindrift {
+
+LightDepthLayersPass::LightDepthLayersPass(const ShaderLibrary& shaders)
+    : impostors_(shaders), frontSmoothing_(shaders), backSmoothing_(shaders) {}
+
+SurfaceLayers LightDepthLayersPass::run(const LightPreparation& light, const Camera& camera, float particleRadius,
+                                        const LiquidParameters& parameters) {
+  const int size = light.view.camera.width;
+  if (!noSolids_.matches(size, size, GL_R32F)) {
+    ensureTexture(noSolids_, GL_R32F, size, size);
+    const float farAway = 1e10f;
+    glClearTexImage(noSolids_.id(), 0, GL_RED, GL_FLOAT, &farAway);
+  }
+  // The impostor and smoothing shaders read the view from binding 0: give them the light's for a while.
+  lightUniforms_.update(light.view.camera, 0);
+  const BackgroundData noBackground{noSolids_, noSolids_, nullptr, glm::vec3(0.0f), nullptr};
+  const SurfaceLayers drawn = impostors_.run(light.liquid.aggregates, noBackground, size, size);
+  const auto restoreViews = [&] {
+    lightUniforms_.update(light.view.camera, 2);
+    cameraUniforms_.update(camera, 0);
+  };
+  if (parameters.smoothing == "none") {
+    restoreViews();
+    return drawn;
+  }
+  const DepthLayer front = frontSmoothing_.run(drawn.front, particleRadius, false, parameters, size, size);
+  const DepthLayer back = backSmoothing_.run(drawn.back, particleRadius, true, parameters, size, size);
+  restoreViews();
+  return {front, back};
+}
+
+}  // namespace spindrift

@@ -1,0 +1,32 @@
+#pragma once
+
+#include <vector>
+
+#include "gl/GlObjects.h"
+#include "gl/ShaderLibrary.h"
+#include "passes/DepthSmoothingPass.h"
+#include "passes/EllipsoidImpostorPass.h"
+#include "passes/FrameUniforms.h"
+#include "prep/LightViews.h"
+
+namespace spindrift {
+
+/// The liquid as a light sees it: the front and back depth layers of its ellipsoids drawn and smoothed in the
+/// light's view, by the same passes as the camera's layers. The light's frame block is left bound at
+/// binding 2 (shaders/lib/light_view.glsl) and the camera's is restored at binding 0.
+class LightDepthLayersPass {
+ public:
+  explicit LightDepthLayersPass(const ShaderLibrary& shaders);
+  SurfaceLayers run(const LightPreparation& light, const Camera& camera, float particleRadius,
+                    const LiquidParameters& parameters);
+
+ private:
+  FrameUniformBuffer lightUniforms_;
+  FrameUniformBuffer cameraUniforms_;
+  EllipsoidImpostorPass impostors_;
+  DepthSmoothingPass frontSmoothing_;
+  DepthSmoothingPass backSmoothing_;
+  Texture2D noSolids_;  ///< A light's view has no background: depth 1e10 everywhere.
+};
+
+}  // namespace spindrift

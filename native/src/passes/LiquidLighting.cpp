@@ -1,0 +1,48 @@
+#include "passes/LiquidLighting.h"
+
+namespace spindrift {
+
+LiquidLighting::LiquidLighting(const ShaderLibrary& shaders)
+    : layers_(shaders), shadow_(shaders), caustics_(shaders), litBackground_(shaders) {}
+
+LitBackgroundData LiquidLighting::run(const LightingPreparation& lights, const Camera& camera,
+                                      const BackgroundData& background, float particleRadius,
+                                      const Parameters& parameters, PassTimer& timer,
+                                      const std::function<void(const char*, const char*)>& skip) {
+  const int width = camera.width, height = camera.height;
+  shadow_.begin(width, height);
+  caustics_.begin(width, height);
+  bool anyCaustics = false;
+  for (const LightPreparation& light : lights.lights) {
+    const bool refracts = parameters.light.caustics && light.view.light.type != Light::Type::Point;
+    std::optional<SurfaceLayers> layers;
+    {
+      ScopedPassTimer timed(timer, "light_depth_layers");
+      layers.emplace(layers_.run(light, camera, particleRadius, parameters.liquid));
+    }
+    {
+      ScopedPassTimer timed(timer, "liquid_shadow");
+      shadow_.addLight(light.view.light, *layers, background, parameters.liquid, !refracts);
+    }
+    if (refracts) {
+      ScopedPassTimer timed(timer, "caustics");
+      caustics_.addLight(light.view.light, *layers, background, parameters.liquid, parameters.light);
+      anyCaustics = true;
+    }
+  }
+  if (!anyCaustics)
+    skip("caustics", parameters.light.caustics ? "no sun or spot light sees the liquid" : "light.caustics is off");
+  if (lights.sky) {
+    std::optional<SurfaceLayers> layers;
+    {
+      ScopedPassTimer timed(timer, "sky_depth_layers");
+      layers.emplace(layers_.run(*lights.sky, camera, particleRadius, parameters.liquid));
+    }
+    ScopedPassTimer timed(timer, "submerged_sky");
+    shadow_.setSky(*layers, background, parameters.liquid);
+  }
+  ScopedPassTimer timed(timer, "lit_background");
+  return litBackground_.run(background, shadow_.result(), caustics_.result(), parameters.light, width, height);
+}
+
+}  // namespace spindrift

@@ -1,0 +1,38 @@
+#include "passes/LitBackgroundPass.h"
+
+#include "passes/FrameUniforms.h"
+
+namespace spindrift {
+
+LitBackgroundPass::LitBackgroundPass(const ShaderLibrary& shaders)
+    : program_(shaders.program({"fullscreen.vert", "lit_background.frag"})),
+      emptyVertexArray_(createVertexArray()),
+      framebuffer_(createFramebuffer()) {}
+
+LitBackgroundData LitBackgroundPass::run(const BackgroundData& background, const LiquidShadowData& shadows,
+                                         const CausticData& caustics, const LightParameters& parameters, int width,
+                                         int height) {
+  for (Texture2D* target : {&color_, &liquidShadow_, &caustics_, &skyKept_})
+    ensureTexture(*target, GL_RGBA32F, width, height);
+  bindColorTargets(framebuffer_.id(), {&color_, &liquidShadow_, &caustics_, &skyKept_});
+  glDisable(GL_DEPTH_TEST);
+  glDisable(GL_BLEND);
+  const GLuint program = program_.id();
+  glUseProgram(program);
+  const bool hasLightPasses = background.lightPasses != nullptr;
+  glUniform1i(uniformLocation(program, "hasLightPasses"), hasLightPasses ? 1 : 0);
+  glUniform1f(uniformLocation(program, "directFraction"), parameters.direct_fraction);
+  glBindTextureUnit(0, background.color.id());
+  glBindTextureUnit(1, shadows.shadowSum.id());
+  glBindTextureUnit(2, caustics.causticSum.id());
+  glBindTextureUnit(3, shadows.skyKept.id());
+  for (int i = 0; i < 3; ++i)
+    glBindTextureUnit(GLuint(4 + i), hasLightPasses ? background.lightPasses[i].id() : 0);
+  drawFullscreenTriangle(emptyVertexArray_.id());
+  checkGlError("lighting the background");
+  return {BackgroundData{color_, background.eyeDepth, background.environment, background.fallbackColor,
+                         background.liquidEyeDepth, background.lightPasses},
+          liquidShadow_, caustics_, skyKept_};
+}
+
+}  // namespace spindrift

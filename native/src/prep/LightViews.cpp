@@ -1,0 +1,125 @@
+#include "prep/LightViews.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+
+#include <glm/geometric.hpp>
+#include <glm/trigonometric.hpp>
+
+namespace spindrift {
+namespace {
+
+// An up vector that is not parallel to the view direction.
+glm::vec3 upFor(const glm::vec3& forward) {
+  return std::abs(forward.z) < 0.9f ? glm::vec3(0.0f, 0.0f, 1.0f) : glm::vec3(0.0f, 1.0f, 0.0f);
+}
+
+// A square camera at `position` that looks at the bounds and frames them with a margin.
+Camera framingCamera(const glm::vec3& position, const LiquidBounds& bounds, int size) {
+  const glm::vec3 forward = bounds.centre - position;
+  const float distance = glm::length(forward);
+  const float halfAngle = std::asin(std::min(1.0f, 1.02f * bounds.radius / distance));
+  Camera camera = Camera::lookAt(size, size, glm::degrees(2.0f * halfAngle), position, bounds.centre, upFor(forward));
+  camera.nearClip = std::max(distance - 1.5f * bounds.radius, 1e-3f * distance);
+  camera.farClip = distance + 1.5f * bounds.radius;
+  return camera;
+}
+
+}  // namespace
+
+LiquidBounds liquidBounds(const Particles& particles, const LiquidParameters& parameters) {
+  glm::vec3 low(1e30f), high(-1e30f);
+  float largestRadius = 0.0f;
+  for (std::size_t i = 0; i < particles.size(); ++i) {
+    if (particles.kinds[i] != ParticleKind::Liquid) continue;
+    const glm::vec3& position = particles.positions[i];
+    if (!std::isfinite(position.x + position.y + position.z) || !(particles.radii[i] > 0.0f)) continue;
+    low = glm::min(low, position);
+    high = glm::max(high, position);
+    largestRadius = std::max(largestRadius, particles.radii[i]);
+  }
+  LiquidBounds bounds;
+  if (largestRadius == 0.0f) return bounds;
+  bounds.centre = 0.5f * (low + high);
+  // Anisotropy smoothing can move a drawn centre by up to lambda times the neighbourhood.
+  const float reach = std::max(1.0f, parameters.max_ellipsoid_scale) * largestRadius +
+                      parameters.anisotropy_smoothing * parameters.neighbour_radius * largestRadius;
+  bounds.radius = 0.5f * glm::length(high - low) + reach;
+  return bounds;
+}
+
+std::optional<LightView> lightViewOf(const Light& light, const LiquidBounds& bounds, int size, std::string* whyNot) {
+  LightView view;
+  view.light = light;
+  if (light.type == Light::Type::Sun) {
+    view.camera = framingCamera(bounds.centre - light.direction * (kSunDistanceInRadii * bounds.radius), bounds, size);
+    return view;
+  }
+  const glm::vec3 toLiquid = bounds.centre - light.position;
+  const float distance = glm::length(toLiquid);
+  if (distance < 1.05f * bounds.radius) {
+    *whyNot = "the light is inside the liquid's bounds";
+    return std::nullopt;
+  }
+  if (light.type == Light::Type::Spot) {
+    // The cone misses the bounding sphere when the angle to its centre exceeds the cone's half angle plus the
+    // sphere's angular radius.
+    const float angleToCentre = std::acos(std::clamp(glm::dot(toLiquid / distance, light.direction), -1.0f, 1.0f));
+    if (angleToCentre > glm::radians(0.5f * light.spotAngleDegrees) + std::asin(bounds.radius / distance)) {
+      *whyNot = "the spot's cone misses the liquid";
+      return std::nullopt;
+    }
+  }
+  view.camera = framingCamera(light.position, bounds, size);
+  return view;
+}
+
+LightView skyView(const LiquidBounds& bounds, int size) {
+  Light overhead;
+  overhead.type = Light::Type::Sun;
+  overhead.direction = {0.0f, 0.0f, -1.0f};
+  overhead.strength = 0.0f;
+  std::string unused;
+  LightView view = *lightViewOf(overhead, bounds, size, &unused);
+  view.sky = true;
+  return view;
+}
+
+LightingPreparation prepareLighting(const Particles& particles, const std::vector<Light>& lights,
+                                    const Parameters& parameters) {
+  const auto start = std::chrono::steady_clock::now();
+  LightingPreparation preparation;
+  if (lights.empty()) return preparation;
+  const LiquidBounds bounds = liquidBounds(particles, parameters.liquid);
+  if (bounds.radius == 0.0f) {
+    preparation.skipped.push_back("no liquid particles");
+    return preparation;
+  }
+  // A light sees one body: splashes and aggregates are drawn into the same layers, each shaped as the
+  // camera's preparation shapes it.
+  const auto prepareFor = [&](const LightView& view) {
+    LightPreparation light{view, prepareLiquid(particles, view.camera, parameters.liquid)};
+    std::vector<EllipsoidInstance>& body = light.liquid.aggregates;
+    body.insert(body.end(), light.liquid.splashes.begin(), light.liquid.splashes.end());
+    light.liquid.splashes.clear();
+    return light;
+  };
+  const int size = parameters.light.shadow_map_size;
+  for (std::size_t i = 0; i < lights.size(); ++i) {
+    std::string whyNot;
+    std::optional<LightView> view = lightViewOf(lights[i], bounds, size, &whyNot);
+    if (!view) {
+      preparation.skipped.push_back("lights[" + std::to_string(i) + "]: " + whyNot);
+      continue;
+    }
+    preparation.lights.push_back(prepareFor(*view));
+  }
+  const LightView sky = skyView(bounds, size);
+  preparation.sky = prepareFor(sky);
+  preparation.milliseconds =
+      std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+  return preparation;
+}
+
+}  // namespace spindrift

@@ -1,0 +1,62 @@
+#pragma once
+
+#include <optional>
+#include <string>
+#include <vector>
+
+#include <glm/vec3.hpp>
+
+#include "prep/LiquidPreparation.h"
+#include "spindrift/Camera.h"
+#include "spindrift/Parameters.h"
+#include "spindrift/Particles.h"
+#include "spindrift/Scene.h"
+
+namespace spindrift {
+
+/// A sphere around every liquid particle's drawn ellipsoid.
+struct LiquidBounds {
+  glm::vec3 centre{0.0f};
+  float radius = 0.0f;  ///< 0 when there is no liquid.
+};
+
+LiquidBounds liquidBounds(const Particles& particles, const LiquidParameters& parameters);
+
+/// How a light sees the liquid: a square camera that frames the liquid's bounds. A sun's view is a
+/// perspective camera so far away (kSunDistanceInRadii bounding radii) that its rays are parallel to within
+/// 1/kSunDistanceInRadii radians, which lets every liquid pass (impostors, smoothing) run unchanged for it.
+struct LightView {
+  Light light;
+  Camera camera;
+  bool sky = false;  ///< The view straight down that measures how deep a point lies below the surface.
+};
+
+constexpr float kSunDistanceInRadii = 1000.0f;
+
+/// The light's view of the liquid, or the reason there is none (a spot or point light inside the liquid's
+/// bounds, or a spot whose cone misses them).
+std::optional<LightView> lightViewOf(const Light& light, const LiquidBounds& bounds, int size, std::string* whyNot);
+
+/// A view of the liquid from straight above (world +Z), for the sky light that submerged points lose.
+LightView skyView(const LiquidBounds& bounds, int size);
+
+/// The liquid as one light sees it: its own culling, splashes and aggregates together in `liquid.aggregates`
+/// (a light sees one body).
+struct LightPreparation {
+  LightView view;
+  LiquidPreparation liquid;
+};
+
+/// The views and ellipsoids of every light that sees the liquid, and of the sky; lights that do not are
+/// listed in `skipped` with the reason.
+struct LightingPreparation {
+  std::vector<LightPreparation> lights;
+  std::optional<LightPreparation> sky;
+  std::vector<std::string> skipped;
+  double milliseconds = 0.0;
+};
+
+LightingPreparation prepareLighting(const Particles& particles, const std::vector<Light>& lights,
+                                    const Parameters& parameters);
+
+}  // namespace spindrift

@@ -1,0 +1,72 @@
+#version 450 core
+// The liquid's shadow on the background from one light (or, in sky mode, how much sky light a submerged point
+// keeps). Each background point, rebuilt from the background's depth, is looked up in the light's view of the
+// liquid: a point behind the liquid's front surface is in its shadow. With caustics on, the light that goes
+// through the liquid is splatted by the caustic pass and the shadow is the light that does not meet the
+// liquid (0 behind it); without, the shadow keeps the light that crosses the liquid straight, with Fresnel at
+// both surfaces and Beer-Lambert over the path. Four texels are blended bilinearly, so the edge is soft over
+// one texel. Output, added up over the lights: (weight x shadow, weight).
+#include "lib/frame.glsl"
+#include "lib/optics.glsl"
+#include "lib/light_view.glsl"
+
+layout(binding = 0) uniform sampler2D backgroundEyeDepth;
+layout(binding = 1) uniform sampler2D lightFrontDepth;
+layout(binding = 2) uniform sampler2D lightBackDepth;
+layout(binding = 3) uniform sampler2D lightFrontNormal;
+
+uniform bool skyMode;            // write the sky light a point keeps instead of a light's shadow
+uniform bool transmitStraight;   // no caustic pass: the shadow keeps the light that crosses the liquid
+uniform float indexOfRefraction;
+uniform vec3 absorptionPerUnitLength;
+
+layout(location = 0) out vec4 outShadow;
+
+const float kHemisphericalFresnel = 0.066;  // water's Fresnel reflectance averaged over a cosine-weighted sky
+const float kDiffusePathFactor = 1.194;     // mean 1 / cos of cosine-weighted sky light refracted into water
+
+// What reaches a point from the light through one light texel's column of liquid.
+vec3 shadowThroughTexel(ivec2 texel, vec3 world, float pointDepth) {
+  float front = texelFetch(lightFrontDepth, texel, 0).r;
+  float texelSize = 2.0 * lightView.tanHalfFov.y * front * lightView.viewportSize.w;
+  if (front >= kNoSurfaceDepth * 0.5 || pointDepth <= front + 2.0 * texelSize) return vec3(1.0);
+  float back = texelFetch(lightBackDepth, texel, 0).r;
+  // The path ends at the liquid's back surface, or at the point itself when the point is submerged.
+  float end = min(back, pointDepth);
+  vec2 centre = vec2(texel) + 0.5;
+  float pathLength = distance(worldFromLightTexel(centre, front), worldFromLightTexel(centre, end));
+  if (skyMode) {
+    // Sky light enters the surface above and travels down to the point; light past the liquid's bottom is
+    // unaffected (that point is under the liquid but not in it).
+    if (pointDepth > back + 2.0 * texelSize) return vec3(1.0);
+    return (1.0 - kHemisphericalFresnel) * exp(-absorptionPerUnitLength * pathLength * kDiffusePathFactor);
+  }
+  if (!transmitStraight) return vec3(0.0);
+  vec4 normal = texelFetch(lightFrontNormal, texel, 0);
+  vec3 travel = lightTravelAt(world);
+  float cosine = normal.w > 0.0 ? abs(dot(normalize(normal.xyz), travel)) : 1.0;
+  float fresnel = schlickFresnel(cosine, indexOfRefraction);
+  // Leaving through the back surface costs about as much again; a submerged point sees one surface only.
+  float exits = pointDepth > back ? 1.0 - fresnel : 1.0;
+  return (1.0 - fresnel) * exits * exp(-absorptionPerUnitLength * pathLength);
+}
+
+void main() {
+  float eyeDepth = texelFetch(backgroundEyeDepth, ivec2(gl_FragCoord.xy), 0).r;
+  outShadow = skyMode ? vec4(1.0) : vec4(0.0);
+  if (eyeDepth >= kNoSurfaceDepth * 0.5) return;  // Nothing there to shadow.
+  vec3 world = worldPositionFromFragCoord(gl_FragCoord.xy, eyeDepth);
+  float weight = skyMode ? 1.0 : lightWeightAt(world);
+  vec2 texel = lightTexelFromWorld(world);
+  vec3 shadow = vec3(1.0);
+  if (insideLightView(texel) && lightEyeDepthOf(world) > 0.0) {
+    vec2 footprint = clamp(texel - 0.5, vec2(0.0), lightView.viewportSize.xy - 1.001);
+    ivec2 base = ivec2(floor(footprint));
+    vec2 blend = footprint - vec2(base);
+    float pointDepth = lightEyeDepthOf(world);
+    vec3 s00 = shadowThroughTexel(base, world, pointDepth), s10 = shadowThroughTexel(base + ivec2(1, 0), world, pointDepth);
+    vec3 s01 = shadowThroughTexel(base + ivec2(0, 1), world, pointDepth), s11 = shadowThroughTexel(base + ivec2(1, 1), world, pointDepth);
+    shadow = mix(mix(s00, s10, blend.x), mix(s01, s11, blend.x), blend.y);
+  }
+  outShadow = skyMode ? vec4(shadow, 1.0) : vec4(weight * shadow, weight);
+}

@@ -1,0 +1,253 @@
+"""Thick bodies of water for the light benchmark (issue 10), rendered with Cycles.
+
+Run inside Blender (tests/bench/thick_report.py does this when a render is missing):
+
+    blender -b --factory-startup --python-exit-code 1 --python tests/bench/thick_bodies.py -- \
+        --output build/bench/thick [--width 480 --height 270 --samples 128]
+
+Four frames of compact water a metre across over the dam-break example's checker floor, lit by a sun and a
+sky: a block resting on the floor, a ball floating just above it, and a pool in a tank seen from above and
+from the side. The water is an exact mesh (a box, a sphere), so the references measure Spindrift's light,
+not a simulation's surface; Spindrift gets a lattice of particles filling the same shapes. For every frame it
+writes into OUTPUT/FRAME/:
+
+- background.exr: everything but the water, with planar depth and Cycles' light passes (DiffDir, DiffInd,
+  DiffCol, GlossDir, GlossInd, GlossCol), which Spindrift's lit background uses;
+- reference_noshadow.exr: the water as glass with Beer-Lambert absorption casting no shadow (the benchmark's
+  reference until now);
+- reference_full.exr: the same water casting its shadow and caustics, a full render (what a user's render
+  has), with Cycles' shadow caustics (manifold next-event estimation) on, which is what makes a sun's caustic
+  converge at all in a path tracer;
+- water_mask.exr: the water alone, one sample through each pixel's centre, alpha = coverage;
+- particles.ply and scene.json (with the sun in `lights`), and timings.json.
+"""
+
+import argparse
+import importlib.util
+import json
+import math
+import os
+import sys
+import time
+
+import bpy
+from mathutils import Vector
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+ROOT = os.path.dirname(os.path.dirname(HERE))
+
+
+def load(path, name):
+    spec = importlib.util.spec_from_file_location(name, path)
+    module = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(module)
+    return module
+
+
+dam_break = load(os.path.join(ROOT, "examples", "dam_break", "bake.py"), "dam_break_bake")
+references = load(os.path.join(HERE, "references.py"), "bench_references")
+
+SUN_ROTATION = (math.radians(35.0), 0.0, math.radians(30.0))  # elevation 55 degrees
+SUN_STRENGTH = 3.0
+SUN_ANGLE = math.radians(0.526)  # Blender's default: the real sun's disc
+PARTICLE_SPACING = 0.04
+PARTICLE_RADIUS = 0.03
+ABSORPTION_RGB = (0.9, 0.3, 0.15)  # liquid.absorption_rgb's default
+
+# Each frame: the water's shape, the tank (or none) and the camera (location, target, focal length in mm). Water
+# that rests on the floor reaches 2 cm below it, so the floor lies inside the water (no coplanar faces).
+FRAMES = {
+    "block": {"shape": ("box", (-0.5, -0.5, -0.02), (0.5, 0.5, 0.8)), "tank": False,
+              "camera": ((2.3, -2.5, 1.7), (0.0, 0.0, 0.35), 35.0)},
+    "ball": {"shape": ("sphere", (0.0, 0.0, 0.65), 0.5), "tank": False,
+             "camera": ((2.3, -2.5, 1.7), (0.0, 0.0, 0.45), 35.0)},
+    "pool_above": {"shape": ("box", (-0.8, -0.8, -0.02), (0.8, 0.8, 0.45)), "tank": True,
+                   "camera": ((1.3, -1.9, 3.2), (0.0, 0.0, 0.2), 30.0)},
+    "pool_side": {"shape": ("box", (-0.8, -0.8, -0.02), (0.8, 0.8, 0.45)), "tank": True,
+                  "camera": ((2.8, -0.6, 1.0), (0.0, 0.0, 0.3), 35.0)},
+}
+TANK_WALL = 0.08
+TANK_HEIGHT = 0.6
+
+
+def parse_arguments():
+    argv = sys.argv[sys.argv.index("--") + 1:] if "--" in sys.argv else []
+    parser = argparse.ArgumentParser(prog="thick_bodies.py", description=__doc__.split("\n")[0])
+    parser.add_argument("--output", required=True)
+    parser.add_argument("--frames", default=",".join(FRAMES))
+    parser.add_argument("--width", type=int, default=480)
+    parser.add_argument("--height", type=int, default=270)
+    parser.add_argument("--background-samples", type=int, default=32)
+    parser.add_argument("--samples", type=int, default=128)
+    return parser.parse_args(argv)
+
+
+def inside(shape, point):
+    kind = shape[0]
+    if kind == "box":
+        return all(shape[1][i] <= point[i] <= shape[2][i] for i in range(3))
+    return (Vector(point) - Vector(shape[1])).length <= shape[2]
+
+
+def lattice(shape):
+    """Particle centres filling the shape, half a spacing in from its surface."""
+    if shape[0] == "box":
+        low, high = Vector(shape[1]), Vector(shape[2])
+    else:
+        low, high = Vector(shape[1]) - Vector((shape[2],) * 3), Vector(shape[1]) + Vector((shape[2],) * 3)
+    inset = PARTICLE_SPACING / 2
+    low.z = max(low.z, 0.0)  # particles stay above the floor
+    counts = [int(math.floor((high[i] - low[i] - 2 * inset) / PARTICLE_SPACING + 1e-6)) + 1 for i in range(3)]
+    points = []
+    for k in range(counts[2]):
+        for j in range(counts[1]):
+            for i in range(counts[0]):
+                point = (low.x + inset + i * PARTICLE_SPACING, low.y + inset + j * PARTICLE_SPACING,
+                         low.z + inset + k * PARTICLE_SPACING)
+                if shape[0] == "box" or (Vector(point) - Vector(shape[1])).length <= shape[2] - inset:
+                    points.append(point)
+    return points
+
+
+def write_ply(path, points):
+    with open(path, "w", encoding="utf-8") as handle:
+        handle.write(f"ply\nformat ascii 1.0\nelement vertex {len(points)}\nproperty float x\nproperty float y\n"
+                     "property float z\nend_header\n")
+        for x, y, z in points:
+            handle.write(f"{x:.5f} {y:.5f} {z:.5f}\n")
+
+
+def add_water(shape):
+    if shape[0] == "box":
+        water = dam_break.add_box("Water", Vector(shape[1]), Vector(shape[2]))
+    else:
+        bpy.ops.mesh.primitive_uv_sphere_add(segments=96, ring_count=48, radius=shape[2], location=shape[1])
+        water = bpy.context.active_object
+        water.name = "Water"
+        bpy.ops.object.shade_smooth()
+    water.data.materials.append(references.make_water_material(ABSORPTION_RGB))
+    return water
+
+
+def add_tank(shape):
+    low, high = Vector(shape[1]), Vector(shape[2])
+    material = dam_break.make_material("TankWall", (0.72, 0.7, 0.66), roughness=0.8)
+    t = TANK_WALL
+    walls = [((low.x - t, low.y - t, 0), (high.x + t, low.y, TANK_HEIGHT)),
+             ((low.x - t, high.y, 0), (high.x + t, high.y + t, TANK_HEIGHT)),
+             ((low.x - t, low.y, 0), (low.x, high.y, TANK_HEIGHT)),
+             ((high.x, low.y, 0), (high.x + t, high.y, TANK_HEIGHT))]
+    for index, (box_min, box_max) in enumerate(walls):
+        dam_break.add_box(f"Tank{index}", Vector(box_min), Vector(box_max)).data.materials.append(material)
+
+
+def build_frame(definition, width, height):
+    dam_break.clear_scene()
+    floor = dam_break.add_plane("Floor", 24.0, (0.0, 0.0, 0.0))
+    floor.data.materials.append(dam_break.make_checker_material("FloorTiles", (0.62, 0.6, 0.56),
+                                                                (0.36, 0.35, 0.33), scale=12.0))
+    if definition["tank"]:
+        add_tank(definition["shape"])
+    water = add_water(definition["shape"])
+    camera = dam_break.build_camera()
+    location, target, lens = definition["camera"]
+    camera.location = Vector(location)
+    camera.rotation_euler = (Vector(target) - Vector(location)).to_track_quat('-Z', 'Y').to_euler()
+    camera.data.lens = lens
+    dam_break.build_lighting()
+    sun = bpy.data.objects["Sun"]
+    sun.rotation_euler = SUN_ROTATION
+    sun.data.energy = SUN_STRENGTH
+    sun.data.angle = SUN_ANGLE
+    # Shadow caustics (Cycles' manifold next-event estimation): the water casts them, everything receives.
+    for obj in bpy.context.scene.objects:
+        if obj.type == 'MESH':
+            obj.cycles.is_caustics_receiver = obj != water
+            obj.cycles.is_caustics_caster = obj == water
+    sun.data.cycles.is_caustics_light = True
+    scene = bpy.context.scene
+    scene.render.resolution_x, scene.render.resolution_y = width, height
+    bpy.context.view_layer.update()
+    return water, camera, sun
+
+
+def configure(output_directory, width, height):
+    scene = bpy.context.scene
+    dam_break.configure_background_render(scene, output_directory)
+    scene.render.resolution_x, scene.render.resolution_y = width, height
+    scene.cycles.use_adaptive_sampling = False
+    scene.cycles.max_bounces = 16
+    scene.cycles.transmission_bounces = 16
+    scene.cycles.transparent_max_bounces = 16
+    scene.cycles.volume_bounces = 0
+    layer = scene.view_layers[0]
+    for name in ("use_pass_diffuse_direct", "use_pass_diffuse_indirect", "use_pass_diffuse_color",
+                 "use_pass_glossy_direct", "use_pass_glossy_indirect", "use_pass_glossy_color"):
+        setattr(layer, name, True)
+
+
+def scene_file(camera, sun, width, height):
+    description = {
+        "version": 1,
+        "camera": dam_break.camera_description(camera),
+        "particles": [{"path": "particles.ply", "role": "liquid", "radius": PARTICLE_RADIUS}],
+        "background": {"image": "background.exr",
+                       "color": [dam_break.WORLD_COLOR[i] * dam_break.WORLD_STRENGTH for i in range(3)]},
+        "lights": [{"type": "sun",
+                    "direction": [dam_break.clean_number(-c) for c in sun.matrix_world.col[2][:3]],
+                    "color": list(sun.data.color), "strength": sun.data.energy}],
+    }
+    description["camera"]["width"], description["camera"]["height"] = width, height
+    return description
+
+
+def main():
+    arguments = parse_arguments()
+    output = os.path.abspath(arguments.output)
+    for name in arguments.frames.split(","):
+        definition = FRAMES[name]
+        directory = os.path.join(output, name)
+        os.makedirs(directory, exist_ok=True)
+        water, camera, sun = build_frame(definition, arguments.width, arguments.height)
+        configure(directory, arguments.width, arguments.height)
+        write_ply(os.path.join(directory, "particles.ply"), lattice(definition["shape"]))
+        with open(os.path.join(directory, "scene.json"), "w", encoding="utf-8") as handle:
+            json.dump(scene_file(camera, sun, arguments.width, arguments.height), handle, indent=1)
+        timings_path = os.path.join(directory, "timings.json")
+        timings = json.load(open(timings_path)) if os.path.isfile(timings_path) else {}
+
+        def missing(file_name):
+            return not os.path.isfile(os.path.join(directory, file_name))
+
+        if missing("background.exr"):
+            water.hide_render = True
+            timings["background"] = references.render(os.path.join(directory, "background.exr"),
+                                                      arguments.background_samples)
+            water.hide_render = False
+        if missing("water_mask.exr"):
+            solids = [obj for obj in bpy.context.scene.objects if obj.type == 'MESH' and obj != water]
+            references.set_visible(solids, False)
+            scene = bpy.context.scene
+            scene.render.film_transparent = True
+            scene.cycles.filter_width = 0.01
+            references.render(os.path.join(directory, "water_mask.exr"), 1)
+            scene.cycles.filter_width = 1.5
+            scene.render.film_transparent = False
+            references.set_visible(solids, True)
+        if missing("reference_noshadow.exr"):
+            water.visible_shadow = False
+            timings["reference_noshadow"] = references.render(os.path.join(directory, "reference_noshadow.exr"),
+                                                              arguments.samples)
+            water.visible_shadow = True
+        if missing("reference_full.exr"):
+            timings["reference_full"] = references.render(os.path.join(directory, "reference_full.exr"),
+                                                          arguments.samples)
+        timings["samples"] = arguments.samples
+        timings["background_samples"] = arguments.background_samples
+        with open(timings_path, "w", encoding="utf-8") as handle:
+            json.dump(timings, handle, indent=1)
+        print(f"[thick_bodies] {name}: {json.dumps(timings)}", flush=True)
+
+
+if __name__ == "__main__":
+    main()

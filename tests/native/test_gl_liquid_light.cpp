@@ -1,0 +1,309 @@
+// Light through the liquid onto the background (docs/liquid.md, "Light through the liquid"): GL tests on
+// llvmpipe against closed-form optics and CPU ray traces computed here. The camera looks straight down at a
+// floor (z = 0), so a floor pixel's position is known exactly and its background depth is the camera height.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+
+#include "BackgroundFiles.h"
+#include "LiquidTestScenes.h"
+#include "OpticsReference.h"
+#include "TempDirectory.h"
+
+using namespace spindrift;
+using namespace liquid_test;
+
+namespace {
+
+constexpr int kWidth = 160, kHeight = 120;
+constexpr float kCameraHeight = 6.0f;
+constexpr float kFovY = 40.0f;
+
+// The floor's size on the screen: world units per pixel.
+double floorPixelSize(double cameraHeight = kCameraHeight) {
+  return 2.0 * cameraHeight * std::tan(glm::radians(kFovY * 0.5)) / kHeight;
+}
+
+// World (x, y) of a floor pixel's centre (row 0 at the top; +y up the image).
+glm::dvec2 floorPoint(int column, int row, double cameraHeight = kCameraHeight) {
+  const double pixel = floorPixelSize(cameraHeight);
+  return {(column + 0.5 - kWidth * 0.5) * pixel, (kHeight * 0.5 - row - 0.5) * pixel};
+}
+
+Scene floorScene(const TempDirectory& directory, float cameraHeight = kCameraHeight) {
+  Scene scene;
+  scene.camera = Camera::lookAt(kWidth, kHeight, kFovY, {0.0f, 0.0f, cameraHeight}, {0.0f, 0.0f, 0.0f},
+                                {0.0f, 1.0f, 0.0f});
+  scene.background.image = directory.path() / "floor.exr";
+  writeBackgroundExr(scene.background.image, kWidth, kHeight, [](int, int) { return glm::vec3(0.5f); },
+                     [cameraHeight](int, int) { return cameraHeight; });
+  return scene;
+}
+
+Light sunAlong(const glm::vec3& direction, float strength = 3.0f) {
+  Light sun;
+  sun.type = Light::Type::Sun;
+  sun.direction = glm::normalize(direction);
+  sun.strength = strength;
+  return sun;
+}
+
+// The direct-light multiplier of a floor pixel: what the liquid leaves of the light plus what it refracts.
+double directMultiplier(const RenderResult& result, int column, int row, int channel) {
+  return at(*result.layer("liquid_shadow"), kWidth, column, row, channel) +
+         at(*result.layer("caustics"), kWidth, column, row, channel);
+}
+
+// A slab of water, the lattice of particles filling [low, high] with overlapping spheres.
+Particles slabParticles(const glm::vec3& low, const glm::vec3& high) {
+  return particlesOf(block(low, high, 0.05f), 0.05f);
+}
+
+// The drawn slab's top and bottom heights, measured by the camera's own layers at the image centre (its depth
+// and the path length straight through it), so the light's optics are checked against the drawn geometry.
+std::pair<double, double> slabTopAndBottom(const RenderResult& result, float cameraHeight) {
+  const double depth = at(*result.layer("depth"), kWidth, kWidth / 2, kHeight / 2, 0);
+  const double thickness = at(*result.layer("thickness"), kWidth, kWidth / 2, kHeight / 2, 0);
+  return {cameraHeight - depth, cameraHeight - depth - thickness};
+}
+
+}  // namespace
+
+// A sun at 30 degrees through a floating slab: the floor under the slab's middle keeps
+// exp(-sigma t / cos theta_t) (1 - F)^2 of the light, within 1 %.
+TEST(GLLiquidLight, SlabShadowFollowsBeerLambertAndFresnel) {
+  TempDirectory directory;
+  Scene scene = floorScene(directory);
+  scene.parameters.liquid.absorption_rgb = {0.4f, 0.8f, 1.6f};
+  const double incidence = glm::radians(30.0);
+  scene.lights.push_back(sunAlong({float(std::sin(incidence)), 0.0f, -float(std::cos(incidence))}));
+  const RenderResult result = renderer().renderParticles(scene, slabParticles({-1.5f, -1.5f, 1.0f}, {1.5f, 1.5f, 1.5f}), 1);
+  expectAllChannelsFinite(result);
+  ASSERT_NE(result.layer("liquid_shadow"), nullptr);
+  ASSERT_NE(result.layer("caustics"), nullptr);
+  const auto [top, bottom] = slabTopAndBottom(result, kCameraHeight);
+  const double thickness = top - bottom, ior = scene.parameters.liquid.ior;
+  ASSERT_GT(thickness, 0.4);
+  const double transmittedCosine = std::sqrt(1.0 - std::pow(std::sin(incidence) / ior, 2.0));
+  const double fresnel = optics::schlick(std::cos(incidence), ior);
+  // The floor under the slab's middle, away from its edges, shifted towards where the light goes.
+  const double shift = bottom * std::tan(incidence) + thickness * std::sin(incidence) / ior / transmittedCosine;
+  for (int channel = 0; channel < 3; ++channel) {
+    const double expected = std::exp(-scene.parameters.liquid.absorption_rgb[channel] * thickness / transmittedCosine) *
+                            (1.0 - fresnel) * (1.0 - fresnel);
+    double sum = 0.0;
+    int count = 0;
+    for (int row = 0; row < kHeight; ++row)
+      for (int column = 0; column < kWidth; ++column) {
+        const glm::dvec2 floor = floorPoint(column, row);
+        if (std::abs(floor.x - shift) > 0.6 || std::abs(floor.y) > 0.6) continue;
+        sum += directMultiplier(result, column, row, channel);
+        ++count;
+      }
+    ASSERT_GT(count, 500);
+    std::printf("slab, channel %d: floor keeps %.4f, expected %.4f (thickness %.3f)\n", channel, sum / count, expected,
+                thickness);
+    EXPECT_NEAR(sum / count, expected, 0.01 * expected) << "channel " << channel;
+  }
+  // Outside the slab's shadow the floor keeps all of the light and gets no caustic.
+  EXPECT_NEAR(directMultiplier(result, 2, 2, 0), 1.0, 1e-4);
+}
+
+// A sun at 45 degrees through a floating slab. The light that enters the slab's sunward wall is reflected
+// totally at its bottom, so between the floor lit past the slab's corner and the floor lit through its top lies
+// a dark gap as wide as Snell's law bends the light inside: thickness x tan(theta_t). Without refraction there
+// would be no gap.
+TEST(GLLiquidLight, SlabShadowShiftsAsSnellsLawSays) {
+  TempDirectory directory;
+  Scene scene = floorScene(directory);
+  scene.parameters.liquid.absorption = 0.0f;
+  const double incidence = glm::radians(45.0), ior = scene.parameters.liquid.ior;
+  scene.lights.push_back(sunAlong({float(std::sin(incidence)), 0.0f, -float(std::cos(incidence))}));
+  const RenderResult result = renderer().renderParticles(scene, slabParticles({-1.5f, -1.2f, 1.0f}, {1.0f, 1.2f, 1.5f}), 1);
+  expectAllChannelsFinite(result);
+  const auto [top, bottom] = slabTopAndBottom(result, kCameraHeight);
+  const double thickness = top - bottom, pixel = floorPixelSize();
+  // The slab's sunward edge from the camera's coverage of its top, on the middle row.
+  const ImageLayer& surfaceClass = *result.layer("liquid_class");
+  int firstLiquid = -1;
+  for (int column = 0; column < kWidth && firstLiquid < 0; ++column)
+    if (at(surfaceClass, kWidth, column, kHeight / 2, 0) > 0.0f) firstLiquid = column;
+  ASSERT_GE(firstLiquid, 0);
+  const double slabLeft = (floorPoint(firstLiquid, kHeight / 2).x - 0.5 * pixel) * (kCameraHeight - top) / kCameraHeight;
+
+  // The floor's profile across the shadow: the mean over the rows near y = 0.
+  std::vector<double> profile(kWidth, 0.0);
+  int rows = 0;
+  for (int row = 0; row < kHeight; ++row) {
+    if (std::abs(floorPoint(0, row).y) > 0.4) continue;
+    for (int column = 0; column < kWidth; ++column) profile[column] += directMultiplier(result, column, row, 0);
+    ++rows;
+  }
+  for (double& value : profile) value /= rows;
+  const double transmittedTangent = std::tan(std::asin(std::sin(incidence) / ior));
+  // Light through the top lands on [left + t tan theta_t + h tan theta_i, right + h tan theta_i]: x = 1 is on it.
+  const double plateau = profile[std::size_t(std::lround(1.0 / pixel + kWidth * 0.5))];
+  // Where the profile crosses a level between two columns, as a floor x.
+  auto crossing = [&](int from, double level, bool rising) {
+    for (int column = from; column + 1 < kWidth; ++column) {
+      const double a = profile[column] - level, b = profile[column + 1] - level;
+      if ((rising && a < 0.0 && b >= 0.0) || (!rising && a > 0.0 && b <= 0.0))
+        return floorPoint(column, 0).x + a / (a - b) * pixel;
+    }
+    return 1e9;
+  };
+  const double gapStart = crossing(0, 0.5, false);
+  const double gapEnd = crossing(int((gapStart / pixel) + kWidth * 0.5), 0.5 * plateau, true);
+  const double expectedStart = slabLeft + bottom * std::tan(incidence);
+  const double expectedEnd = expectedStart + thickness * transmittedTangent;
+  std::printf("slab at 45 degrees: gap %.3f..%.3f, expected %.3f..%.3f (pixel %.4f, plateau %.3f)\n", gapStart,
+              gapEnd, expectedStart, expectedEnd, pixel, plateau);
+  EXPECT_GT(plateau, 0.8);
+  EXPECT_NEAR(gapStart, expectedStart, 1.5 * pixel);
+  EXPECT_NEAR(gapEnd, expectedEnd, 1.5 * pixel);
+  EXPECT_NEAR(gapEnd - gapStart, thickness * transmittedTangent, 1.5 * pixel);
+}
+
+namespace {
+
+// CPU ray trace of a sun straight down through a water sphere (radius `radius`, centre `height` above the
+// floor): the light-weighted root-mean-square distance from the axis at which the light lands on the floor,
+// counting only light that lands within `reach` of the axis (the rest leaves the test's view).
+double causticRmsRadius(double radius, double height, double ior, double reach) {
+  const glm::dvec3 centre(0.0, 0.0, height);
+  double weighted = 0.0, total = 0.0;
+  const int samples = 20000;
+  for (int i = 0; i < samples; ++i) {
+    const double offset = (i + 0.5) / samples * radius;  // distance of the incoming ray from the axis
+    const optics::Ray ray{{offset, 0.0, height + 2.0 * radius}, {0.0, 0.0, -1.0}};
+    const auto entry = optics::sphereRoots(ray, centre, radius);
+    if (!entry) continue;
+    const glm::dvec3 p1 = ray.origin + entry->first * ray.direction, n1 = (p1 - centre) / radius;
+    const double f1 = optics::schlick(-glm::dot(ray.direction, n1), ior);
+    const glm::dvec3 t1 = *optics::refract(ray.direction, n1, 1.0 / ior);
+    const glm::dvec3 p2 = p1 + t1 * optics::sphereRoots({p1, t1}, centre, radius)->second;
+    const glm::dvec3 n2 = (p2 - centre) / radius;
+    const auto t2 = optics::refract(t1, -n2, ior);
+    if (!t2 || t2->z >= 0.0) continue;
+    const double f2 = optics::schlick(glm::dot(*t2, n2), ior);
+    const glm::dvec3 landing = p2 + (-p2.z / t2->z) * *t2;
+    const double distance = std::abs(landing.x);
+    if (distance > reach) continue;
+    const double weight = (1.0 - f1) * (1.0 - f2) * offset;  // ring area grows with the offset
+    weighted += weight * distance * distance;
+    total += weight;
+  }
+  return std::sqrt(weighted / total);
+}
+
+// The same from the rendered caustics layer.
+double renderedRmsRadius(const RenderResult& result, double reach, double cameraHeight) {
+  double weighted = 0.0, total = 0.0;
+  for (int row = 0; row < kHeight; ++row)
+    for (int column = 0; column < kWidth; ++column) {
+      const double distance = glm::length(floorPoint(column, row, cameraHeight));
+      if (distance > reach) continue;
+      const double caustic = at(*result.layer("caustics"), kWidth, column, row, 0);
+      weighted += caustic * distance * distance;
+      total += caustic;
+    }
+  return total > 0.0 ? std::sqrt(weighted / total) : 0.0;
+}
+
+}  // namespace
+
+// A water sphere under a sun straight above focuses the light below it. At three floor distances around the
+// focus the caustic's light-weighted radius matches a CPU ray trace within a pixel, and the narrowest is at
+// the same distance.
+TEST(GLLiquidLight, SphereFocusesTheSunWhereARayTraceDoes) {
+  const double radius = 0.5;
+  const float cameraHeight = 4.0f;
+  const double pixel = floorPixelSize(cameraHeight), reach = 0.6;
+  TempDirectory directory;
+  const double ior = Scene().parameters.liquid.ior;
+  double bestHeight = 0.0, bestRadius = 1e9;
+  for (double height = 0.6; height <= 1.6; height += 0.01) {
+    const double rms = causticRmsRadius(radius, height, ior, reach);
+    if (rms < bestRadius) bestRadius = rms, bestHeight = height;
+  }
+  int renderedNarrowest = -1, tracedNarrowest = -1;
+  double renderedBest = 1e9, tracedBest = 1e9;
+  const double heights[3] = {bestHeight - 0.2, bestHeight, bestHeight + 0.3};
+  for (int i = 0; i < 3; ++i) {
+    Scene scene = floorScene(directory, cameraHeight);
+    scene.parameters.liquid.absorption = 0.0f;
+    scene.parameters.liquid.smoothing = "none";
+    scene.parameters.light.max_concentration = 1e5f;
+    scene.lights.push_back(sunAlong({0.0f, 0.0f, -1.0f}));
+    const RenderResult result =
+        renderer().renderParticles(scene, particlesOf({glm::vec3(0.0f, 0.0f, float(heights[i]))}, float(radius)), 1);
+    expectAllChannelsFinite(result);
+    const double rendered = renderedRmsRadius(result, reach, cameraHeight);
+    const double traced = causticRmsRadius(radius, heights[i], ior, reach);
+    std::printf("sphere %.2f above the floor: caustic rms radius %.4f rendered, %.4f traced (pixel %.4f)\n", heights[i],
+                rendered, traced, pixel);
+    EXPECT_NEAR(rendered, traced, pixel) << "height " << heights[i];
+    if (rendered < renderedBest) renderedBest = rendered, renderedNarrowest = i;
+    if (traced < tracedBest) tracedBest = traced, tracedNarrowest = i;
+  }
+  EXPECT_EQ(renderedNarrowest, tracedNarrowest);
+}
+
+namespace {
+
+bool skipped(const RenderResult& result, const std::string& pass, std::string* reason = nullptr) {
+  for (const SkippedPass& skip : result.stats.skipped)
+    if (skip.name == pass) {
+      if (reason) *reason = skip.reason;
+      return true;
+    }
+  return false;
+}
+
+}  // namespace
+
+// Without lights nothing is shadowed: the light passes are skipped, the stats say why, and the background is
+// composited as it is.
+TEST(GLLiquidLight, NoLightNoShadowPasses) {
+  TempDirectory directory;
+  Scene scene = floorScene(directory);
+  const RenderResult result = renderer().renderParticles(scene, slabParticles({-0.5f, -0.5f, 1.0f}, {0.5f, 0.5f, 1.3f}), 1);
+  expectAllChannelsFinite(result);
+  std::string reason;
+  for (const char* pass : {"light_depth_layers", "liquid_shadow", "caustics", "lit_background"}) {
+    EXPECT_TRUE(skipped(result, pass, &reason)) << pass;
+    EXPECT_EQ(reason, "no lights in the scene") << pass;
+  }
+  EXPECT_EQ(result.layer("liquid_shadow"), nullptr);
+  EXPECT_EQ(result.layer("caustics"), nullptr);
+  EXPECT_EQ(result.stats.light.lights, 0u);
+  EXPECT_FALSE(result.stats.light.caustics);
+  // A floor pixel far from the liquid keeps the background's colour exactly.
+  EXPECT_FLOAT_EQ(at(*result.layer("composite"), kWidth, 2, 2, 0), 0.5f);
+}
+
+// A point light casts a shadow but no caustics (light.caustics covers suns and spots); the stats say so. Its
+// shadow keeps the light that crosses the liquid straight, and nothing outside the liquid's shadow changes.
+TEST(GLLiquidLight, PointLightShadowsWithoutCaustics) {
+  TempDirectory directory;
+  Scene scene = floorScene(directory);
+  Light lamp;
+  lamp.type = Light::Type::Point;
+  lamp.position = {0.0f, 0.0f, 4.0f};
+  lamp.strength = 1000.0f;
+  scene.lights.push_back(lamp);
+  const RenderResult result = renderer().renderParticles(scene, slabParticles({-0.5f, -0.5f, 1.0f}, {0.5f, 0.5f, 1.3f}), 1);
+  expectAllChannelsFinite(result);
+  std::string reason;
+  EXPECT_TRUE(skipped(result, "caustics", &reason));
+  EXPECT_EQ(reason, "no sun or spot light sees the liquid");
+  EXPECT_FALSE(skipped(result, "liquid_shadow"));
+  EXPECT_EQ(result.stats.light.lightsSeeingLiquid, 1u);
+  // Under the middle of the liquid the floor keeps part of the light; far away all of it.
+  const double under = directMultiplier(result, kWidth / 2, kHeight / 2, 2);
+  EXPECT_GT(under, 0.05);
+  EXPECT_LT(under, 0.95);
+  EXPECT_NEAR(directMultiplier(result, 2, 2, 0), 1.0, 1e-5);
+  EXPECT_EQ(at(*result.layer("caustics"), kWidth, kWidth / 2, kHeight / 2, 2), 0.0f);
+}
