@@ -22,7 +22,8 @@ layout(binding = 10) uniform sampler2D environmentMap;
 // Counts of rays by what they met, for the frame's stats (see RefractionPass::Statistics).
 layout(std430, binding = 1) buffer RayCounters {
   uint rayCounters[8];  // 0-3: paths splash>splash, splash>aggregate, aggregate>splash, aggregate>aggregate;
-                        // 4: rays with a second body; 5: total internal reflections; 6: liquid pixels; 7: unused
+                        // 4: rays with a second body; 5: total internal reflections; 6: liquid pixels;
+                        // 7: marches inside a body that left the screen before its far surface
 };
 
 uniform bool hasSplash;
@@ -298,6 +299,7 @@ void main() {
       Crossing exit = findExit(position, direction, body);
       float length = exit.t;  // Where the liquid ends, or where a march that never left it stopped.
       if (!exit.found) {
+        atomicAdd(rayCounters[7], 1u);
         // The march left the screen inside the liquid. The unseen rest of the path is estimated from the
         // body's thickness where the path entered it: a path through a body that thick along this direction
         // is (back - front) / |cos| long, of which `length` was seen.

@@ -33,6 +33,7 @@ nlohmann::json FrameStats::toJson() const {
         {"liquid_pixels", liquid.liquidPixels},
         {"rays_with_second_body", liquid.raysWithSecondBody},
         {"total_internal_reflections", liquid.totalInternalReflections},
+        {"exits_off_screen", liquid.exitsOffScreen},
         {"second_body_orders",
          {{"splash_splash", liquid.orders[0]},
           {"splash_aggregate", liquid.orders[1]},

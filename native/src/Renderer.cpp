@@ -271,6 +271,7 @@ RenderResult Renderer::renderParticles(const Scene& scene, const Particles& part
       stats.liquid.liquidPixels = rays.liquidPixels;
       stats.liquid.raysWithSecondBody = rays.raysWithSecondBody;
       stats.liquid.totalInternalReflections = rays.totalInternalReflections;
+      stats.liquid.exitsOffScreen = rays.exitsOffScreen;
       for (int i = 0; i < 4; ++i) stats.liquid.orders[i] = rays.orders[i];
       result.layers.push_back(readLayer(liquidLayer->color, "liquid", {"R", "G", "B", "A"}));
       result.layers.push_back(readLayer(liquidLayer->splashColor, "liquid_splash", {"R", "G", "B", "A"}));

@@ -40,6 +40,8 @@ struct LiquidFrameStats {
   std::size_t liquidPixels = 0;
   std::size_t raysWithSecondBody = 0;  ///< Rays that went on into a second body (third and fourth refraction).
   std::size_t totalInternalReflections = 0;
+  /// Paths whose march inside a body left the screen; their unseen rest is estimated from the thickness.
+  std::size_t exitsOffScreen = 0;
   /// Rays with a second body, by order: splash>splash, splash>aggregate, aggregate>splash, aggregate>aggregate.
   std::size_t orders[4] = {0, 0, 0, 0};
   double neighbourMilliseconds = 0.0;

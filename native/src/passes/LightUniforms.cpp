@@ -20,7 +20,8 @@ bool setUniformIfActive(GLuint program, const char* name, const glm::vec3& value
 
 void setLightUniforms(GLuint program, const Light& light) {
   const GLint type = glGetUniformLocation(program, "lightType");
-  if (type >= 0) glProgramUniform1i(program, type, int(light.type));  // The order of shaders' kSun, kSpot, kPoint.
+  if (type >= 0)
+    glProgramUniform1i(program, type, int(light.type));  // The order of shaders' kSun, kSpot, kPoint.
   setUniformIfActive(program, "lightDirection", light.direction);
   setUniformIfActive(program, "lightPosition", light.position);
   setUniformIfActive(program, "lightColor", light.color);

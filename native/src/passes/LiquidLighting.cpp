@@ -31,18 +31,23 @@ LitBackgroundData LiquidLighting::run(const LightingPreparation& lights, const C
     }
   }
   if (!anyCaustics)
-    skip("caustics", parameters.light.caustics ? "no sun or spot light sees the liquid" : "light.caustics is off");
+    skip("caustics",
+         parameters.light.caustics ? "no sun or spot light sees the liquid" : "light.caustics is off");
   if (lights.sky) {
     std::optional<SurfaceLayers> layers;
     {
       ScopedPassTimer timed(timer, "sky_depth_layers");
-      layers.emplace(layers_.run(*lights.sky, camera, particleRadius, parameters.liquid));
+      // Depth below the surface needs no normals, so the sky's layers are not smoothed.
+      LiquidParameters unsmoothed = parameters.liquid;
+      unsmoothed.smoothing = "none";
+      layers.emplace(layers_.run(*lights.sky, camera, particleRadius, unsmoothed));
     }
     ScopedPassTimer timed(timer, "submerged_sky");
     shadow_.setSky(*layers, background, parameters.liquid);
   }
   ScopedPassTimer timed(timer, "lit_background");
-  return litBackground_.run(background, shadow_.result(), caustics_.result(), parameters.light, width, height);
+  return litBackground_.run(background, shadow_.result(), caustics_.result(), parameters.light, width,
+                            height);
 }
 
 }  // namespace spindrift

@@ -20,9 +20,9 @@ namespace spindrift {
 class LiquidLighting {
  public:
   explicit LiquidLighting(const ShaderLibrary& shaders);
-  LitBackgroundData run(const LightingPreparation& lights, const Camera& camera, const BackgroundData& background,
-                        float particleRadius, const Parameters& parameters, PassTimer& timer,
-                        const std::function<void(const char*, const char*)>& skip);
+  LitBackgroundData run(const LightingPreparation& lights, const Camera& camera,
+                        const BackgroundData& background, float particleRadius, const Parameters& parameters,
+                        PassTimer& timer, const std::function<void(const char*, const char*)>& skip);
 
  private:
   LightDepthLayersPass layers_;

@@ -18,8 +18,9 @@ void LiquidShadowPass::begin(int width, int height) {
   glClearTexImage(skyKept_.id(), 0, GL_RGBA, GL_FLOAT, everything);
 }
 
-void LiquidShadowPass::addLight(const Light& light, const SurfaceLayers& layers, const BackgroundData& background,
-                                const LiquidParameters& parameters, bool transmitStraight) {
+void LiquidShadowPass::addLight(const Light& light, const SurfaceLayers& layers,
+                                const BackgroundData& background, const LiquidParameters& parameters,
+                                bool transmitStraight) {
   setLightUniforms(program_.id(), light);
   // Every light adds its weighted shadow and its weight.
   glEnable(GL_BLEND);
@@ -34,8 +35,9 @@ void LiquidShadowPass::setSky(const SurfaceLayers& layers, const BackgroundData&
   draw(skyKept_, layers, background, parameters, true, true);
 }
 
-void LiquidShadowPass::draw(const Texture2D& target, const SurfaceLayers& layers, const BackgroundData& background,
-                            const LiquidParameters& parameters, bool sky, bool transmitStraight) {
+void LiquidShadowPass::draw(const Texture2D& target, const SurfaceLayers& layers,
+                            const BackgroundData& background, const LiquidParameters& parameters, bool sky,
+                            bool transmitStraight) {
   const GLuint program = program_.id();
   bindColorTargets(framebuffer_.id(), {&target});
   glDisable(GL_DEPTH_TEST);

@@ -25,7 +25,8 @@ class LiquidShadowPass {
   /// `transmitStraight`: no caustic pass carries the light through the liquid, so the shadow does.
   void addLight(const Light& light, const SurfaceLayers& layers, const BackgroundData& background,
                 const LiquidParameters& parameters, bool transmitStraight);
-  void setSky(const SurfaceLayers& layers, const BackgroundData& background, const LiquidParameters& parameters);
+  void setSky(const SurfaceLayers& layers, const BackgroundData& background,
+              const LiquidParameters& parameters);
   LiquidShadowData result() const { return {shadowSum_, skyKept_}; }
 
  private:

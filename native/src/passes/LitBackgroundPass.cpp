@@ -10,8 +10,8 @@ LitBackgroundPass::LitBackgroundPass(const ShaderLibrary& shaders)
       framebuffer_(createFramebuffer()) {}
 
 LitBackgroundData LitBackgroundPass::run(const BackgroundData& background, const LiquidShadowData& shadows,
-                                         const CausticData& caustics, const LightParameters& parameters, int width,
-                                         int height) {
+                                         const CausticData& caustics, const LightParameters& parameters,
+                                         int width, int height) {
   for (Texture2D* target : {&color_, &liquidShadow_, &caustics_, &skyKept_})
     ensureTexture(*target, GL_RGBA32F, width, height);
   bindColorTargets(framebuffer_.id(), {&color_, &liquidShadow_, &caustics_, &skyKept_});

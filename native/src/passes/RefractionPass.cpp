@@ -84,6 +84,7 @@ RefractionStatistics RefractionPass::statistics() const {
   statistics.raysWithSecondBody = counters[4];
   statistics.totalInternalReflections = counters[5];
   statistics.liquidPixels = counters[6];
+  statistics.exitsOffScreen = counters[7];
   return statistics;
 }
 

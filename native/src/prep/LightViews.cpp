@@ -20,8 +20,11 @@ Camera framingCamera(const glm::vec3& position, const LiquidBounds& bounds, int 
   const glm::vec3 forward = bounds.centre - position;
   const float distance = glm::length(forward);
   const float halfAngle = std::asin(std::min(1.0f, 1.02f * bounds.radius / distance));
-  Camera camera = Camera::lookAt(size, size, glm::degrees(2.0f * halfAngle), position, bounds.centre, upFor(forward));
-  camera.nearClip = std::max(distance - 1.5f * bounds.radius, 1e-3f * distance);
+  Camera camera =
+      Camera::lookAt(size, size, glm::degrees(2.0f * halfAngle), position, bounds.centre, upFor(forward));
+  // Half the distance to the bounds: the impostor pass places each particle's quad at least 1 % beyond the
+  // near plane, which must still lie in front of the particle.
+  camera.nearClip = std::max(0.5f * (distance - 1.5f * bounds.radius), 1e-3f * distance);
   camera.farClip = distance + 1.5f * bounds.radius;
   return camera;
 }
@@ -49,11 +52,13 @@ LiquidBounds liquidBounds(const Particles& particles, const LiquidParameters& pa
   return bounds;
 }
 
-std::optional<LightView> lightViewOf(const Light& light, const LiquidBounds& bounds, int size, std::string* whyNot) {
+std::optional<LightView> lightViewOf(const Light& light, const LiquidBounds& bounds, int size,
+                                     std::string* whyNot) {
   LightView view;
   view.light = light;
   if (light.type == Light::Type::Sun) {
-    view.camera = framingCamera(bounds.centre - light.direction * (kSunDistanceInRadii * bounds.radius), bounds, size);
+    view.camera =
+        framingCamera(bounds.centre - light.direction * (kSunDistanceInRadii * bounds.radius), bounds, size);
     return view;
   }
   const glm::vec3 toLiquid = bounds.centre - light.position;
@@ -65,7 +70,8 @@ std::optional<LightView> lightViewOf(const Light& light, const LiquidBounds& bou
   if (light.type == Light::Type::Spot) {
     // The cone misses the bounding sphere when the angle to its centre exceeds the cone's half angle plus the
     // sphere's angular radius.
-    const float angleToCentre = std::acos(std::clamp(glm::dot(toLiquid / distance, light.direction), -1.0f, 1.0f));
+    const float angleToCentre =
+        std::acos(std::clamp(glm::dot(toLiquid / distance, light.direction), -1.0f, 1.0f));
     if (angleToCentre > glm::radians(0.5f * light.spotAngleDegrees) + std::asin(bounds.radius / distance)) {
       *whyNot = "the spot's cone misses the liquid";
       return std::nullopt;

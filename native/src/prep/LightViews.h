@@ -35,7 +35,8 @@ constexpr float kSunDistanceInRadii = 1000.0f;
 
 /// The light's view of the liquid, or the reason there is none (a spot or point light inside the liquid's
 /// bounds, or a spot whose cone misses them).
-std::optional<LightView> lightViewOf(const Light& light, const LiquidBounds& bounds, int size, std::string* whyNot);
+std::optional<LightView> lightViewOf(const Light& light, const LiquidBounds& bounds, int size,
+                                     std::string* whyNot);
 
 /// A view of the liquid from straight above (world +Z), for the sky light that submerged points lose.
 LightView skyView(const LiquidBounds& bounds, int size);
