@@ -19,6 +19,7 @@ uniform bool skyMode;            // write the sky light a point keeps instead of
 uniform bool transmitStraight;   // no caustic pass: the shadow keeps the light that crosses the liquid
 uniform float indexOfRefraction;
 uniform vec3 absorptionPerUnitLength;
+uniform float submergedTolerance;  // sky mode: how far below the liquid's drawn bottom a point still lies in it
 
 layout(location = 0) out vec4 outShadow;
 
@@ -38,7 +39,8 @@ vec3 shadowThroughTexel(ivec2 texel, vec3 world, float pointDepth) {
   if (skyMode) {
     // Sky light enters the surface above and travels down to the point; light past the liquid's bottom is
     // unaffected (that point is under the liquid but not in it).
-    if (pointDepth > back + 2.0 * texelSize) return vec3(1.0);
+    // The drawn bottom undulates by about a particle radius; a floor the liquid rests on lies within that.
+    if (pointDepth > back + max(2.0 * texelSize, submergedTolerance)) return vec3(1.0);
     return (1.0 - kHemisphericalFresnel) * exp(-absorptionPerUnitLength * pathLength * kDiffusePathFactor);
   }
   if (!transmitStraight) return vec3(0.0);

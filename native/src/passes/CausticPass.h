@@ -1,18 +1,14 @@
 #pragma once
 
+#include "framedata/BackgroundData.h"
+#include "framedata/DepthLayers.h"
+#include "framedata/LightData.h"
 #include "gl/GlObjects.h"
 #include "gl/ShaderLibrary.h"
-#include "passes/BackgroundPass.h"
-#include "passes/EllipsoidImpostorPass.h"
 #include "spindrift/Parameters.h"
 #include "spindrift/Scene.h"
 
 namespace spindrift {
-
-/// The sum over the lights of the light the liquid refracts onto the background.
-struct CausticData {
-  const Texture2D& causticSum;  ///< RGBA32F: sum of weight x caustic (weights as LiquidShadowData's).
-};
 
 /// Caustics from the light's view (Wyman and Davis 2006, in screen space): the paths of the light through a
 /// grid of the light's view of the liquid (shaders/caustic_paths.comp), then the grid's triangles splatted

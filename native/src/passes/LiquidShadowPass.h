@@ -1,23 +1,18 @@
 #pragma once
 
+#include "framedata/BackgroundData.h"
+#include "framedata/DepthLayers.h"
+#include "framedata/LightData.h"
 #include "gl/GlObjects.h"
 #include "gl/ShaderLibrary.h"
-#include "passes/BackgroundPass.h"
-#include "passes/EllipsoidImpostorPass.h"
 #include "spindrift/Parameters.h"
 #include "spindrift/Scene.h"
 
 namespace spindrift {
 
-/// The sums over the lights that the lit background is resolved from.
-struct LiquidShadowData {
-  const Texture2D& shadowSum;  ///< RGBA32F: (sum of weight x shadow, sum of weight), weight = irradiance.
-  const Texture2D& skyKept;    ///< RGBA32F: the sky light a submerged point keeps.
-};
-
 /// The liquid's shadow from each light on the background points (shaders/liquid_shadow.frag), and the sky
 /// light that points below the liquid's surface keep. `begin` clears the sums; the light's view must be
-/// bound at binding 2 (LightDepthLayersPass) when `addLight` or `setSky` runs.
+/// bound at binding 2 (LightDepthLayers) when `addLight` or `setSky` runs.
 class LiquidShadowPass {
  public:
   explicit LiquidShadowPass(const ShaderLibrary& shaders);
@@ -25,8 +20,9 @@ class LiquidShadowPass {
   /// `transmitStraight`: no caustic pass carries the light through the liquid, so the shadow does.
   void addLight(const Light& light, const SurfaceLayers& layers, const BackgroundData& background,
                 const LiquidParameters& parameters, bool transmitStraight);
-  void setSky(const SurfaceLayers& layers, const BackgroundData& background,
-              const LiquidParameters& parameters);
+  /// `particleRadius`: points up to two radii below the liquid's drawn bottom still lie in it.
+  void setSky(const SurfaceLayers& layers, const BackgroundData& background, const LiquidParameters& parameters,
+              float particleRadius);
   LiquidShadowData result() const { return {shadowSum_, skyKept_}; }
 
  private:

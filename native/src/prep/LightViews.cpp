@@ -92,6 +92,13 @@ LightView skyView(const LiquidBounds& bounds, int size) {
   return view;
 }
 
+std::size_t causticLights(const LightingPreparation& lighting) {
+  std::size_t count = 0;
+  for (const LightPreparation& light : lighting.lights)
+    count += light.view.light.type != Light::Type::Point;
+  return count;
+}
+
 LightingPreparation prepareLighting(const Particles& particles, const std::vector<Light>& lights,
                                     const Parameters& parameters) {
   const auto start = std::chrono::steady_clock::now();

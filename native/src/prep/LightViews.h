@@ -57,6 +57,9 @@ struct LightingPreparation {
   double milliseconds = 0.0;
 };
 
+/// The lights among `lighting.lights` that can cast caustics (suns and spots).
+std::size_t causticLights(const LightingPreparation& lighting);
+
 LightingPreparation prepareLighting(const Particles& particles, const std::vector<Light>& lights,
                                     const Parameters& parameters);
 

@@ -1,4 +1,4 @@
-#include "passes/LiquidLighting.h"
+#include "LiquidLighting.h"
 
 namespace spindrift {
 
@@ -7,12 +7,10 @@ LiquidLighting::LiquidLighting(const ShaderLibrary& shaders)
 
 LitBackgroundData LiquidLighting::run(const LightingPreparation& lights, const Camera& camera,
                                       const BackgroundData& background, float particleRadius,
-                                      const Parameters& parameters, PassTimer& timer,
-                                      const std::function<void(const char*, const char*)>& skip) {
+                                      const Parameters& parameters, PassTimer& timer) {
   const int width = camera.width, height = camera.height;
   shadow_.begin(width, height);
   caustics_.begin(width, height);
-  bool anyCaustics = false;
   for (const LightPreparation& light : lights.lights) {
     const bool refracts = parameters.light.caustics && light.view.light.type != Light::Type::Point;
     std::optional<SurfaceLayers> layers;
@@ -27,12 +25,8 @@ LitBackgroundData LiquidLighting::run(const LightingPreparation& lights, const C
     if (refracts) {
       ScopedPassTimer timed(timer, "caustics");
       caustics_.addLight(light.view.light, *layers, background, parameters.liquid, parameters.light);
-      anyCaustics = true;
     }
   }
-  if (!anyCaustics)
-    skip("caustics",
-         parameters.light.caustics ? "no sun or spot light sees the liquid" : "light.caustics is off");
   if (lights.sky) {
     std::optional<SurfaceLayers> layers;
     {
@@ -43,7 +37,7 @@ LitBackgroundData LiquidLighting::run(const LightingPreparation& lights, const C
       layers.emplace(layers_.run(*lights.sky, camera, particleRadius, unsmoothed));
     }
     ScopedPassTimer timed(timer, "submerged_sky");
-    shadow_.setSky(*layers, background, parameters.liquid);
+    shadow_.setSky(*layers, background, parameters.liquid, particleRadius);
   }
   ScopedPassTimer timed(timer, "lit_background");
   return litBackground_.run(background, shadow_.result(), caustics_.result(), parameters.light, width,

@@ -2,6 +2,7 @@
 
 #include <vector>
 
+#include "framedata/DepthLayers.h"
 #include "gl/GlObjects.h"
 #include "gl/ShaderLibrary.h"
 #include "passes/DepthSmoothingPass.h"
@@ -12,11 +13,12 @@
 namespace spindrift {
 
 /// The liquid as a light sees it: the front and back depth layers of its ellipsoids drawn and smoothed in the
-/// light's view, by the same passes as the camera's layers. The light's frame block is left bound at
+/// light's view, by the same passes as the camera's layers (so this composes passes, like the recipe, rather
+/// than being one). The light's frame block is left bound at
 /// binding 2 (shaders/lib/light_view.glsl) and the camera's is restored at binding 0.
-class LightDepthLayersPass {
+class LightDepthLayers {
  public:
-  explicit LightDepthLayersPass(const ShaderLibrary& shaders);
+  explicit LightDepthLayers(const ShaderLibrary& shaders);
   SurfaceLayers run(const LightPreparation& light, const Camera& camera, float particleRadius,
                     const LiquidParameters& parameters);
 

@@ -1,12 +1,12 @@
-#include "passes/LightDepthLayersPass.h"
+#include "LightDepthLayers.h"
 
 namespace spindrift {
 
-LightDepthLayersPass::LightDepthLayersPass(const ShaderLibrary& shaders)
+LightDepthLayers::LightDepthLayers(const ShaderLibrary& shaders)
     : impostors_(shaders), frontSmoothing_(shaders), backSmoothing_(shaders) {}
 
-SurfaceLayers LightDepthLayersPass::run(const LightPreparation& light, const Camera& camera,
-                                        float particleRadius, const LiquidParameters& parameters) {
+SurfaceLayers LightDepthLayers::run(const LightPreparation& light, const Camera& camera, float particleRadius,
+                                    const LiquidParameters& parameters) {
   const int size = light.view.camera.width;
   if (!noSolids_.matches(size, size, GL_R32F)) {
     ensureTexture(noSolids_, GL_R32F, size, size);

@@ -1,0 +1,57 @@
+#pragma once
+
+#include <cstddef>
+#include <string>
+#include <vector>
+
+#include "spindrift/RenderResult.h"
+
+namespace spindrift {
+
+/// Every pass a frame can run, in the order the recipe runs them.
+enum class Pass {
+  Background,
+  LightDepthLayers,
+  LiquidShadow,
+  Caustics,
+  LitBackground,
+  SplashDepthLayers,
+  AggregateDepthLayers,
+  Smoothing,
+  Refraction,
+  FoamSceneDepth,
+  FoamDepth,
+  FoamThickness,
+  FoamIntensity,
+  FoamOcclusion,
+  FoamBlur,
+  Composite,
+};
+
+/// The pass's name in the stats ("splash_depth_layers").
+const char* passName(Pass pass);
+
+/// What a frame holds, as far as choosing its passes goes: known after the CPU preparation, before any GL work.
+struct FrameContents {
+  std::size_t splashParticles = 0;     ///< Liquid particles in view drawn as splashes.
+  std::size_t aggregateParticles = 0;  ///< Liquid particles in view drawn as the aggregated body.
+  std::size_t foamParticles = 0;       ///< Secondary particles in view.
+  std::string smoothing = "plane_fit";  ///< liquid.smoothing.
+  std::size_t lights = 0;              ///< Lights in the scene.
+  std::size_t lightsSeeingLiquid = 0;  ///< Lights whose view of the liquid is drawn.
+  std::size_t causticLights = 0;       ///< Of those, suns and spots (point lights cast no caustics).
+  bool caustics = true;                ///< light.caustics.
+};
+
+/// Which passes a frame runs and, for each it does not, why. The wiring of the frame in one plain function, so
+/// it can be read and tested without a GPU.
+struct FramePlan {
+  std::vector<Pass> passes;          ///< In the order they run.
+  std::vector<SkippedPass> skipped;  ///< In pass order, with the reason.
+
+  bool runs(Pass pass) const;
+};
+
+FramePlan planFrame(const FrameContents& contents);
+
+}  // namespace spindrift

@@ -1,0 +1,27 @@
+#pragma once
+
+#include "framedata/BackgroundData.h"
+#include "gl/GlObjects.h"
+
+namespace spindrift {
+
+/// The sums over the lights that the lit background is resolved from (the liquid shadow pass's output).
+struct LiquidShadowData {
+  const Texture2D& shadowSum;  ///< RGBA32F: (sum of weight x shadow, sum of weight), weight = irradiance.
+  const Texture2D& skyKept;    ///< RGBA32F: the sky light a submerged point keeps.
+};
+
+/// The sum over the lights of the light the liquid refracts onto the background (the caustic pass's output).
+struct CausticData {
+  const Texture2D& causticSum;  ///< RGBA32F: sum of weight x caustic (weights as LiquidShadowData's).
+};
+
+/// The background as the liquid lights it, and the passes that say how (the lit background pass's output).
+struct LitBackgroundData {
+  BackgroundData background;      ///< The original with `color` replaced by the lit colour.
+  const Texture2D& liquidShadow;  ///< RGBA32F: what each point keeps of the lights' direct light (rgb).
+  const Texture2D& caustics;      ///< RGBA32F: the direct light the liquid refracts onto each point (rgb).
+  const Texture2D& skyKept;       ///< RGBA32F: what a submerged point keeps of the sky and bounced light.
+};
+
+}  // namespace spindrift
