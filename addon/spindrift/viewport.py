@@ -1,0 +1,309 @@
+"""The live preview in the 3D viewport.
+
+Main thread (the draw callback, POST_PIXEL): when the view, the frame or the scene changed and the worker is
+idle, read the viewport's depth, collect the frame's inputs and hand them to the worker; then draw the latest
+finished image (premultiplied, with the gpu module). Worker thread: calls the native renderer (which releases
+the GIL while it renders on its own GL thread), turns the liquid and foam layers into one premultiplied sRGB
+image and posts it. A timer on the main thread notices new images and redraws the viewports.
+
+What the preview refracts: the world colour, not the scene's colour: reading the scene's colour needs
+`GPUOffScreen.draw_view3d`, which costs ~0.7 s of main-thread time per redraw on llvmpipe (docs/blender.md).
+"""
+
+import threading
+import time
+
+import bpy
+import gpu
+import numpy as np
+from gpu_extras.presets import draw_texture_2d
+
+from . import export, frame as frame_inputs, native, reports, scene_json
+from .scene_json import BadInput
+
+TIMER_INTERVAL = 0.05
+
+
+class Job:
+    def __init__(self, key, inputs, offset, scale):
+        self.key, self.inputs, self.offset, self.scale = key, inputs, offset, scale
+
+
+class Image:
+    """A finished preview: premultiplied display-space RGBA rows bottom first, and where to draw it."""
+
+    def __init__(self, job, pixels, width, height, seconds, stats):
+        self.key, self.offset, self.scale = job.key, job.offset, job.scale
+        self.pixels, self.width, self.height = pixels, width, height
+        self.seconds, self.stats = seconds, stats
+        self.texture = None
+
+
+class Worker:
+    """One thread, one pending job per viewport region: a newer job replaces one not yet started."""
+
+    def __init__(self):
+        self._condition = threading.Condition()
+        self._pending = {}
+        self._busy = set()
+        self._finished = {}
+        self._stop = False
+        self._fresh = False
+        self._thread = threading.Thread(target=self._run, name="spindrift-preview", daemon=True)
+        self._thread.start()
+
+    def submit(self, region_key, job):
+        with self._condition:
+            self._pending[region_key] = job
+            self._condition.notify()
+
+    def idle(self, region_key):
+        with self._condition:
+            return region_key not in self._pending and region_key not in self._busy
+
+    def latest(self, region_key):
+        with self._condition:
+            return self._finished.get(region_key)
+
+    def take_fresh(self):
+        with self._condition:
+            fresh, self._fresh = self._fresh, False
+            return fresh
+
+    def stop(self):
+        with self._condition:
+            self._stop = True
+            self._condition.notify()
+        self._thread.join(timeout=30)
+
+    def _run(self):
+        while True:
+            with self._condition:
+                while not self._pending and not self._stop:
+                    self._condition.wait()
+                if self._stop:
+                    return
+                region_key, job = self._pending.popitem()
+                self._busy.add(region_key)
+            result = self._render(job)
+            with self._condition:
+                self._busy.discard(region_key)
+                self._finished[region_key] = result
+                self._fresh = True
+
+    @staticmethod
+    def _render(job):
+        started = time.perf_counter()
+        try:
+            inputs = job.inputs
+            result = native.renderer().render(inputs.scene_text, inputs.document["frame"],
+                                              layers=["liquid", "foam"], **inputs.kwargs)
+            pixels = premultiplied_display(result)
+            return Image(job, pixels, result["width"], result["height"], time.perf_counter() - started,
+                         result.get("stats", {}))
+        except Exception as error:  # noqa: BLE001 - shown in the panel; the viewport keeps working
+            return str(error) or type(error).__name__
+
+
+def _layer(result, name):
+    channels, data = result["layers"][name]
+    pixels = np.frombuffer(data, dtype=np.float32).reshape(result["height"], result["width"], len(channels))
+    if len(channels) != 4:
+        raise ValueError(f"layer {name} has channels {channels}, expected RGBA")
+    return pixels
+
+
+def premultiplied_display(result):
+    """Foam over liquid, premultiplied, in display sRGB (the overlay buffer shows values as they are), rows
+    bottom first as a GL texture wants them."""
+    liquid = _layer(result, "liquid")
+    foam = _layer(result, "foam")
+    over = foam + (1.0 - foam[..., 3:4]) * liquid
+    alpha = np.clip(over[..., 3:4], 0.0, 1.0)
+    with np.errstate(divide="ignore", invalid="ignore"):
+        straight = np.where(alpha > 1e-6, over[..., :3] / alpha, 0.0)
+    straight = np.clip(np.nan_to_num(straight), 0.0, 1.0)
+    srgb = np.where(straight <= 0.0031308, straight * 12.92, 1.055 * np.power(straight, 1 / 2.4) - 0.055)
+    out = np.concatenate([srgb * alpha, alpha], axis=2)[::-1]
+    return np.ascontiguousarray(out, dtype=np.float32)
+
+
+# --- State shared by the callbacks -----------------------------------------------------------------------------
+
+_state = {"worker": None, "draw_handler": None, "timer": False, "version": 0, "submitted": {}, "status": {},
+          "redraw_ms": []}
+
+
+def settings_changed():
+    _state["version"] += 1
+    _tag_redraw()
+
+
+def status(region_key=None):
+    """(message, frame ms) for the panel: the last region's status when no key is given."""
+    statuses = _state["status"]
+    if region_key is None:
+        return next(reversed(statuses.values()), ("", None)) if statuses else ("", None)
+    return statuses.get(region_key, ("", None))
+
+
+def redraw_times_ms():
+    return list(_state["redraw_ms"])
+
+
+def _tag_redraw():
+    window_manager = bpy.context.window_manager if bpy.context else None
+    if window_manager is None:
+        return
+    for window in window_manager.windows:
+        for area in window.screen.areas:
+            if area.type == "VIEW_3D":
+                area.tag_redraw()
+
+
+def _poll():
+    worker = _state["worker"]
+    if worker is None:
+        _state["timer"] = False
+        return None
+    if worker.take_fresh():
+        _tag_redraw()
+    return TIMER_INTERVAL
+
+
+# --- Building a job on the main thread -------------------------------------------------------------------------
+
+def preview_size(region_width, region_height, scale):
+    width, height = int(region_width * scale), int(region_height * scale)
+    if width < 1 or height < 1:
+        raise BadInput(f"the viewport is {region_width}x{region_height} pixels: too small to preview at scale "
+                       f"{scale:g}")
+    return width, height
+
+
+def sample_depth(depth, width, height):
+    """The region's depth (rows bottom first) at the preview's pixel centres, rows top first."""
+    rows = ((np.arange(height) + 0.5) * depth.shape[0] / height).astype(np.int64)
+    columns = ((np.arange(width) + 0.5) * depth.shape[1] / width).astype(np.int64)
+    return np.ascontiguousarray(depth[rows][:, columns][::-1])
+
+
+def read_region_depth(width, height):
+    framebuffer = gpu.state.active_framebuffer_get()
+    buffer = framebuffer.read_depth(0, 0, width, height)
+    # gpu.types.Buffer's numpy view of a 2-D buffer has wrong strides (environment notes): go through 1-D.
+    flat = np.asarray(buffer).ravel(order="F") if np.asarray(buffer).ndim > 1 else np.asarray(buffer)
+    return np.array(flat, dtype=np.float32).reshape(height, width)
+
+
+def build_job(context, region, region_data, key):
+    scene = context.scene
+    settings = scene.spindrift
+    width, height = preview_size(region.width, region.height, settings.preview_scale)
+    projection = region_data.window_matrix
+    camera, (left, bottom) = scene_json.camera_description(
+        width, height, region_data.view_matrix.inverted(), [list(row) for row in projection])
+    window_depth = read_region_depth(region.width, region.height)
+    depth = scene_json.planar_depth(window_depth, [list(row) for row in projection])
+    # The preview's camera may be larger than the region (an off-centre view): pad the depth with "far".
+    full = np.full((camera["height"], camera["width"]), scene_json.FAR_DEPTH, dtype=np.float32)
+    x0, y0 = int(round(left)), int(round(bottom))
+    sampled = sample_depth(depth, width, height)[::-1]  # back to bottom first to place it
+    full_bottom_first = full[::-1]
+    full_bottom_first[y0:y0 + height, x0:x0 + width] = sampled[:camera["height"] - y0, :camera["width"] - x0]
+    inputs = frame_inputs.collect(scene, context.evaluated_depsgraph_get(), scene.frame_current, camera,
+                                  occluders=False, quality=settings.preview_quality, for_render=False,
+                                  mode="OVER")
+    inputs.kwargs["background"] = {"depth": np.ascontiguousarray(full_bottom_first[::-1])}
+    scale = region.width / width
+    return Job(key, inputs, (-x0 * scale, -y0 * scale), scale)
+
+
+def _view_key(context, region, region_data):
+    return (tuple(tuple(round(v, 6) for v in row) for row in region_data.view_matrix),
+            tuple(tuple(round(v, 6) for v in row) for row in region_data.window_matrix),
+            region.width, region.height, context.scene.frame_current, _state["version"])
+
+
+def draw():
+    started = time.perf_counter()
+    context = bpy.context
+    region, region_data = context.region, context.region_data
+    worker = _state["worker"]
+    if worker is None or region is None or region_data is None or not context.scene.spindrift.preview:
+        return
+    region_key = region.as_pointer()
+    try:
+        key = _view_key(context, region, region_data)
+        if _state["submitted"].get(region_key) != key and worker.idle(region_key):
+            _state["submitted"][region_key] = key
+            job = build_job(context, region, region_data, key)
+            for issue in job.inputs.issues:
+                reports.warn(f"viewport: {issue}")
+            worker.submit(region_key, job)
+    except BadInput as error:
+        _state["status"][region_key] = (str(error), None)
+    except Exception as error:  # noqa: BLE001 - a draw callback must never raise into Blender's drawing
+        _state["status"][region_key] = (f"{type(error).__name__}: {error}", None)
+
+    image = worker.latest(region_key)
+    if isinstance(image, str):
+        _state["status"][region_key] = (image, None)
+    elif image is not None:
+        _draw_image(image)
+        _state["status"][region_key] = (f"{image.width}x{image.height}", image.seconds * 1000)
+    elapsed_ms = (time.perf_counter() - started) * 1000
+    _state["redraw_ms"] = (_state["redraw_ms"] + [elapsed_ms])[-200:]
+
+
+def _draw_image(image):
+    if image.texture is None:
+        buffer = gpu.types.Buffer("FLOAT", image.pixels.size, image.pixels.ravel())
+        image.texture = gpu.types.GPUTexture((image.width, image.height), format="RGBA16F", data=buffer)
+    gpu.state.blend_set("ALPHA_PREMULT")
+    gpu.state.depth_test_set("NONE")
+    draw_texture_2d(image.texture, image.offset, image.width * image.scale, image.height * image.scale)
+    gpu.state.blend_set("NONE")
+
+
+# --- Switching on and off --------------------------------------------------------------------------------------
+
+def enable(on):
+    if on:
+        if _state["worker"] is None:
+            _state["worker"] = Worker()
+        if _state["draw_handler"] is None:
+            _state["draw_handler"] = bpy.types.SpaceView3D.draw_handler_add(draw, (), "WINDOW", "POST_PIXEL")
+        if not _state["timer"]:
+            bpy.app.timers.register(_poll, first_interval=TIMER_INTERVAL, persistent=True)
+            _state["timer"] = True
+    elif not any(scene.spindrift.preview for scene in bpy.data.scenes):
+        shutdown()
+    _tag_redraw()
+
+
+def shutdown():
+    if _state["draw_handler"] is not None:
+        bpy.types.SpaceView3D.draw_handler_remove(_state["draw_handler"], "WINDOW")
+        _state["draw_handler"] = None
+    if _state["worker"] is not None:
+        _state["worker"].stop()
+        _state["worker"] = None
+    if _state["timer"] and bpy.app.timers.is_registered(_poll):
+        bpy.app.timers.unregister(_poll)
+    _state["timer"] = False
+    _state["submitted"].clear()
+
+
+def on_depsgraph_update(_scene, _depsgraph=None):
+    _state["version"] += 1
+
+
+def register():
+    bpy.app.handlers.depsgraph_update_post.append(on_depsgraph_update)
+
+
+def unregister():
+    if on_depsgraph_update in bpy.app.handlers.depsgraph_update_post:
+        bpy.app.handlers.depsgraph_update_post.remove(on_depsgraph_update)
+    shutdown()
