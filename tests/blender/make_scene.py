@@ -1,4 +1,4 @@
-"""Builds and bakes the add-on tests' scene: a tiny Mantaflow liquid (resolution 24, frames 1-4, FLIP with
+"""Builds and bakes the add-on tests' scene: a tiny Mantaflow liquid (resolution 24, frames 1-6, FLIP with
 spray, foam and bubbles, the liquid mesh), a floor, a cube between the camera and part of the liquid, a camera,
 a sun and a plain world. Saves OUTPUT/scene.blend with its cache in OUTPUT/cache.
 
@@ -12,7 +12,7 @@ import bpy
 from mathutils import Vector
 
 RESOLUTION = 24
-FRAME_END = 4
+FRAME_END = 6
 WIDTH, HEIGHT = 160, 120
 
 
@@ -72,7 +72,7 @@ def main():
     domain.display_type = "WIRE"
 
     # The occluder: a cube between the camera and the left part of the liquid.
-    bpy.ops.mesh.primitive_cube_add(size=0.6, location=(-0.55, -1.6, 0.6))
+    bpy.ops.mesh.primitive_cube_add(size=0.45, location=(-0.3, -1.6, 0.95))
     cube = bpy.context.object
     cube.name = "Occluder"
     cube.data.materials.append(material("Occluder", (0.8, 0.2, 0.1)))
