@@ -27,8 +27,15 @@ def module():
     return _module
 
 
+_table = None
+
+
 def parameter_table():
-    return module().parameter_table()
+    """The parameter table (read once: it is fixed for the module's lifetime)."""
+    global _table
+    if _table is None:
+        _table = module().parameter_table()
+    return _table
 
 
 def status():

@@ -136,6 +136,9 @@ _state = {"worker": None, "draw_handler": None, "timer": False, "version": 0, "s
 
 def settings_changed():
     _state["version"] += 1
+    scene = bpy.context.scene
+    if _state["worker"] is not None and scene is not None and scene.spindrift.preview:
+        hide_own_drawing(scene)
     _tag_redraw()
 
 
@@ -268,8 +271,46 @@ def _draw_image(image):
 
 # --- Switching on and off --------------------------------------------------------------------------------------
 
+# The preview's occlusion reads the viewport's depth, so what Blender itself draws of the liquid (a domain's
+# mesh drawn solid, its particles as points) would hide Spindrift's liquid behind its own stand-in. While the
+# preview is on, enabled objects draw as wire and their particles not at all; the originals come back after.
+SAVED_DISPLAY = "spindrift_saved_display"
+
+
+def hide_own_drawing(scene):
+    for obj in export.enabled_objects(scene):
+        if SAVED_DISPLAY in obj:
+            continue
+        saved = {"display_type": obj.display_type,
+                 "particles": {system.settings.name: system.settings.display_method
+                               for system in obj.particle_systems}}
+        obj[SAVED_DISPLAY] = repr(saved)
+        if obj.display_type in ("SOLID", "TEXTURED"):
+            obj.display_type = "WIRE"
+        for system in obj.particle_systems:
+            system.settings.display_method = "NONE"
+
+
+def restore_own_drawing():
+    import ast
+
+    for obj in bpy.data.objects:
+        if SAVED_DISPLAY not in obj:
+            continue
+        saved = ast.literal_eval(obj[SAVED_DISPLAY])
+        del obj[SAVED_DISPLAY]
+        obj.display_type = saved["display_type"]
+        for system in obj.particle_systems:
+            method = saved["particles"].get(system.settings.name)
+            if method is not None:
+                system.settings.display_method = method
+
+
 def enable(on):
     if on:
+        for scene in bpy.data.scenes:
+            if scene.spindrift.preview:
+                hide_own_drawing(scene)
         if _state["worker"] is None:
             _state["worker"] = Worker()
         if _state["draw_handler"] is None:
@@ -283,6 +324,7 @@ def enable(on):
 
 
 def shutdown():
+    restore_own_drawing()
     if _state["draw_handler"] is not None:
         bpy.types.SpaceView3D.draw_handler_remove(_state["draw_handler"], "WINDOW")
         _state["draw_handler"] = None
