@@ -2,6 +2,8 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cstdint>
+#include <filesystem>
 #include <optional>
 
 #include "gl/GlThread.h"
@@ -18,11 +20,13 @@
 #include "passes/FoamSceneDepthPass.h"
 #include "passes/FoamThicknessPass.h"
 #include "passes/FrameUniforms.h"
+#include "passes/OccluderDepthPass.h"
 #include "passes/RefractionPass.h"
 #include "prep/BackgroundCache.h"
 #include "prep/FoamPreparation.h"
 #include "prep/LiquidPreparation.h"
 #include "Readback.h"
+#include "spindrift/Error.h"
 
 namespace spindrift {
 namespace {
@@ -35,10 +39,14 @@ double millisecondsSince(Clock::time_point start) {
 
 // Every GL object of the frame; made, used and destroyed on the GL thread.
 struct FramePipeline {
-  ShaderLibrary shaders{findShaderDirectory()};
+  explicit FramePipeline(const std::filesystem::path& shaderDirectory) : shaders(shaderDirectory) {}
+
+  ShaderLibrary shaders;
   FrameUniformBuffer frameUniforms;
   PassTimer timer;
   BackgroundPass background{shaders};
+  OccluderDepthPass occluderDepth{shaders};
+  OccluderDepthPass liquidMeshDepth{shaders};
   EllipsoidImpostorPass splashImpostors{shaders};
   EllipsoidImpostorPass aggregateImpostors{shaders};
   DepthSmoothingPass frontSmoothing{shaders};
@@ -63,21 +71,42 @@ float typicalLiquidRadius(const Particles& particles) {
   return radii[radii.size() / 2];
 }
 
+// An in-memory background image must have the camera's size; BackgroundCache resamples only files.
+void requireCameraSize(const FloatImage& image, int channels, const char* what, int width, int height) {
+  if (image.width != width || image.height != height || image.channels != channels ||
+      image.pixels.size() != std::size_t(width) * height * channels)
+    throw Error(std::string(what) + ": expected " + std::to_string(width) + "x" + std::to_string(height) + "x" +
+                std::to_string(channels) + " floats (the camera's size), got " + std::to_string(image.width) + "x" +
+                std::to_string(image.height) + "x" + std::to_string(image.channels));
+}
+
 }  // namespace
+
+// In-memory inputs of a frame, by pointer, beside those loaded from the scene's files.
+struct Renderer::FrameExtras {
+  std::vector<const TriangleMesh*> occluders;
+  const TriangleMesh* liquidMesh = nullptr;
+  const FloatImage* backgroundColor = nullptr;
+  const FloatImage* backgroundDepth = nullptr;
+};
 
 struct Renderer::Impl {
   GlThread glThread;
   std::unique_ptr<FramePipeline> pipeline;  // Lives on glThread; reset there before the thread ends.
   BackgroundCache backgroundCache;
   bool intermediateLayers = false;
+  // In-memory backgrounds change every frame: each gets its own upload generation, apart from the cache's.
+  std::uint64_t hostBackgroundGeneration = std::uint64_t(1) << 63;
 
   ~Impl() {
     glThread.run([this] { pipeline.reset(); });
   }
 };
 
-Renderer::Renderer() : impl_(std::make_unique<Impl>()) {
-  impl_->glThread.run([this] { impl_->pipeline = std::make_unique<FramePipeline>(); });
+Renderer::Renderer() : Renderer(findShaderDirectory()) {}
+
+Renderer::Renderer(const std::filesystem::path& shaderDirectory) : impl_(std::make_unique<Impl>()) {
+  impl_->glThread.run([&] { impl_->pipeline = std::make_unique<FramePipeline>(shaderDirectory); });
 }
 
 Renderer::~Renderer() = default;
@@ -87,12 +116,28 @@ void Renderer::setIntermediateLayers(bool enabled) { impl_->intermediateLayers =
 std::string Renderer::glRenderer() const { return impl_->glThread.renderer(); }
 std::string Renderer::glVersion() const { return impl_->glThread.version(); }
 
-RenderResult Renderer::renderFrame(const Scene& scene, int frame) {
+RenderResult Renderer::renderFrame(const Scene& scene, int frame) { return renderFrame(scene, frame, FrameInputs{}); }
+
+RenderResult Renderer::renderFrame(const Scene& scene, int frame, const FrameInputs& inputs) {
   const Clock::time_point start = Clock::now();
   ParticleCounts counts;
-  const Particles particles = loadParticles(scene, frame, &counts);
+  Particles particles = loadParticles(scene, frame, &counts);
+  const std::size_t droppedFromFiles = counts.droppedInvalid;
+  const std::size_t droppedInMemory = appendValidParticles(particles, inputs.particles);
+  counts = countByKind(particles);
+  counts.droppedInvalid = droppedFromFiles + droppedInMemory;
+  for (std::size_t i = 0; i < inputs.occluders.size(); ++i) inputs.occluders[i].validate("occluders[" + std::to_string(i) + "]");
+  if (inputs.liquidMesh) inputs.liquidMesh->validate("liquid_mesh");
+  FrameInputs files;
+  loadMeshes(scene, frame, files);
   const double loadMilliseconds = millisecondsSince(start);
-  RenderResult result = renderParticles(scene, particles, frame);
+  FrameExtras extras;
+  for (const TriangleMesh& mesh : files.occluders) extras.occluders.push_back(&mesh);
+  for (const TriangleMesh& mesh : inputs.occluders) extras.occluders.push_back(&mesh);
+  extras.liquidMesh = inputs.liquidMesh ? &*inputs.liquidMesh : files.liquidMesh ? &*files.liquidMesh : nullptr;
+  extras.backgroundColor = inputs.backgroundColor ? &*inputs.backgroundColor : nullptr;
+  extras.backgroundDepth = inputs.backgroundDepth ? &*inputs.backgroundDepth : nullptr;
+  RenderResult result = renderPrepared(scene, particles, frame, extras);
   result.stats.counts = counts;
   result.stats.loadMilliseconds = loadMilliseconds;
   result.stats.totalMilliseconds = millisecondsSince(start);
@@ -104,6 +149,11 @@ RenderResult Renderer::renderFrame(const Scene& scene, int frame) {
 // background, the front and back depth layers of splashes and of aggregates, smoothing of the aggregate layers,
 // refraction, the foam paper's seven passes (figure 2), and the composite; then read the layers back. A pass the frame does not need is not run, and the stats say why.
 RenderResult Renderer::renderParticles(const Scene& scene, const Particles& particles, int frame) {
+  return renderPrepared(scene, particles, frame, FrameExtras{});
+}
+
+RenderResult Renderer::renderPrepared(const Scene& scene, const Particles& particles, int frame,
+                                      const FrameExtras& extras) {
   const Clock::time_point start = Clock::now();
   const Camera& camera = scene.camera;
   const LiquidParameters& liquidParameters = scene.parameters.liquid;
@@ -124,7 +174,16 @@ RenderResult Renderer::renderParticles(const Scene& scene, const Particles& part
   const LiquidPreparation liquid = prepareLiquid(particles, camera, liquidParameters);
   const float radius = typicalLiquidRadius(particles);
   const FoamPreparation foam = prepareFoam(particles, camera, foamParameters);
-  const BackgroundImages backgroundImages = impl_->backgroundCache.load(scene.background, frame, width, height);
+  BackgroundImages backgroundImages = impl_->backgroundCache.load(scene.background, frame, width, height);
+  if (extras.backgroundColor) {
+    requireCameraSize(*extras.backgroundColor, 4, "background colour", width, height);
+    backgroundImages.color = extras.backgroundColor;
+  }
+  if (extras.backgroundDepth) {
+    requireCameraSize(*extras.backgroundDepth, 1, "background depth", width, height);
+    backgroundImages.eyeDepth = extras.backgroundDepth;
+  }
+  if (extras.backgroundColor || extras.backgroundDepth) backgroundImages.generation = ++impl_->hostBackgroundGeneration;
   stats.prepareMilliseconds = millisecondsSince(prepareStart);
   stats.liquid.splashParticles = liquid.splashes.size();
   stats.liquid.aggregateParticles = liquid.aggregates.size();
@@ -147,6 +206,27 @@ RenderResult Renderer::renderParticles(const Scene& scene, const Particles& part
     {
       ScopedPassTimer timed(timer, "background");
       background.emplace(pipeline.background.run(backgroundImages, width, height));
+    }
+    // Solid geometry handed as triangles: its depth joins the background's, so every later pass that tests
+    // against solids sees it.
+    if (!extras.occluders.empty()) {
+      ScopedPassTimer timed(timer, "occluder_depth");
+      const OccluderDepthData solids = pipeline.occluderDepth.run(extras.occluders, &background->eyeDepth, width, height);
+      const BackgroundData withOccluders{background->color, solids.eyeDepth, background->environment,
+                                         background->fallbackColor, background->liquidEyeDepth};
+      background.emplace(withOccluders);
+    } else {
+      skip("occluder_depth", "no occluders");
+    }
+    if (extras.liquidMesh) {
+      ScopedPassTimer timed(timer, "liquid_mesh_depth");
+      const OccluderDepthData liquidSurface =
+          pipeline.liquidMeshDepth.run({extras.liquidMesh}, background->liquidEyeDepth, width, height);
+      const BackgroundData withLiquidMesh{background->color, background->eyeDepth, background->environment,
+                                          background->fallbackColor, &liquidSurface.eyeDepth};
+      background.emplace(withLiquidMesh);
+    } else {
+      skip("liquid_mesh_depth", "no liquid mesh");
     }
     std::vector<ImageLayer> intermediate;
     auto keep = [&](const SurfaceLayers& layers, const std::string& name) {
@@ -256,6 +336,9 @@ RenderResult Renderer::renderParticles(const Scene& scene, const Particles& part
       result.layers.push_back(readLayer(liquidLayer->frontDepth, "depth", {"Z"}));
       result.layers.push_back(readLayer(liquidLayer->frontNormal, "normal", {"X", "Y", "Z"}));
       result.layers.push_back(readLayer(liquidLayer->thickness, "thickness", {"Y"}));
+      result.layers.push_back(readLayer(liquidLayer->refractionUv, "refraction_uv", {"R", "G", "B"}));
+      result.layers.push_back(readLayer(liquidLayer->transmittance, "transmittance", {"R", "G", "B"}));
+      result.layers.push_back(readLayer(liquidLayer->reflection, "reflection", {"R", "G", "B"}));
     } else {
       // The layers stay in the file so every frame of a sequence has the same channels.
       result.layers.push_back(filledLayer(width, height, "liquid", {"R", "G", "B", "A"}, 0.0f));
@@ -264,6 +347,8 @@ RenderResult Renderer::renderParticles(const Scene& scene, const Particles& part
       result.layers.push_back(filledLayer(width, height, "depth", {"Z"}, 1e10f));
       result.layers.push_back(filledLayer(width, height, "normal", {"X", "Y", "Z"}, 0.0f));
       result.layers.push_back(filledLayer(width, height, "thickness", {"Y"}, 0.0f));
+      for (const char* split : {"refraction_uv", "transmittance", "reflection"})
+        result.layers.push_back(filledLayer(width, height, split, {"R", "G", "B"}, 0.0f));
     }
     if (foamLayer) {
       const FoamOcclusionStatistics occlusion = pipeline.foamOcclusion.statistics();
