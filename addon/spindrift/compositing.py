@@ -8,6 +8,8 @@ OVER (liquid and foam over a render without the liquid), per pixel, as the CLI c
 FOAM_ONLY (foam over a render that contains the domain's liquid mesh): out = AlphaOver(render, foam).
 """
 
+import os
+
 import bpy
 
 IMAGE_NAME = "Spindrift Layers"
@@ -51,17 +53,19 @@ def layers_image(path):
 
 
 def show_layers(scene, path):
-    """Points the Image node at the frame's EXR and reloads it, so the compositor reads this frame's file
-    (the interface would otherwise show a stale copy)."""
+    """Makes the Image node show the frame's EXR. The image is a sequence (spindrift_####.exr), so the
+    compositor picks each frame's file by itself: under -b nothing needs doing (touching the image would make
+    Blender re-read the file at once, ~0.3 s). The interface keeps a stale copy of a file it has shown, so
+    there the image is reloaded (checked in 3.4.1: docs/blender.md)."""
     tree = _tree(scene)
     node = tree.nodes.get(IMAGE_NODE) if tree else None
-    if node is None:
+    if node is None or node.image is None:
         return
-    image = node.image or layers_image(path)
-    if bpy.path.abspath(image.filepath) != path:
-        image.filepath = path
-    image.reload()
-    node.image = image
+    image = node.image
+    if os.path.dirname(bpy.path.abspath(image.filepath)) != os.path.dirname(path):
+        image.filepath = path  # the render output moved since the set-up
+    elif not bpy.app.background:
+        image.reload()
 
 
 # --- Building the nodes ----------------------------------------------------------------------------------------
@@ -173,12 +177,17 @@ def build_tree(scene, mode, layers_path):
     render_layers.location = (-300, 300)
 
     image = layers_image(layers_path)
-    image.source = "FILE"
     image.filepath = layers_path
+    image.source = "SEQUENCE"
     image.reload()
     image_node = tree.nodes.new("CompositorNodeImage")
     image_node.name = image_node.label = IMAGE_NODE
     image_node.image = image
+    # File number = scene frame: spindrift_0012.exr is frame 12's.
+    image_node.frame_start = 1
+    image_node.frame_offset = 0
+    image_node.frame_duration = 1048574
+    image_node.use_auto_refresh = True
     image_node.location = (-300, -100)
 
     group = build_over_group() if mode == "OVER" else build_foam_only_group()

@@ -86,7 +86,8 @@ def collect(scene, depsgraph, frame, camera, *, mode="OVER", occluders=True, qua
     if occluders:
         # Point and domain objects are Spindrift's to draw; an emitter that renders its own mesh is a solid.
         excluded = {obj.name for obj in objects
-                    if not any(system.settings.use_render_emitter for system in obj.particle_systems)}
+                    if not (obj.particle_systems and obj.show_instancer_for_render)
+                    or export.liquid_domain_settings(obj) is not None}
         triangles = export.occluder_triangles(depsgraph, excluded, for_render=for_render)
         if triangles is not None:
             kwargs["occluders"] = triangles

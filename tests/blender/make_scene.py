@@ -28,6 +28,19 @@ def material(name, color):
     return mat
 
 
+def checker(name, color_a, color_b, scale):
+    """Tiles in object coordinates: what the liquid refracts shows as a bent pattern."""
+    mat = material(name, color_a)
+    nodes, links = mat.node_tree.nodes, mat.node_tree.links
+    texture = nodes.new("ShaderNodeTexChecker")
+    texture.inputs["Color1"].default_value = (*color_a, 1.0)
+    texture.inputs["Color2"].default_value = (*color_b, 1.0)
+    texture.inputs["Scale"].default_value = scale
+    links.new(nodes.new("ShaderNodeTexCoord").outputs["Object"], texture.inputs["Vector"])
+    links.new(texture.outputs["Color"], nodes["Principled BSDF"].inputs["Base Color"])
+    return mat
+
+
 def main():
     output = os.path.abspath(sys.argv[sys.argv.index("--") + 1])
     cache = os.path.join(output, "cache")
@@ -38,7 +51,7 @@ def main():
 
     bpy.ops.mesh.primitive_plane_add(size=12, location=(0, 0, 0))
     bpy.context.object.name = "Floor"
-    bpy.context.object.data.materials.append(material("Floor", (0.6, 0.55, 0.5)))
+    bpy.context.object.data.materials.append(checker("Floor", (0.35, 0.3, 0.25), (0.06, 0.06, 0.07), 8.0))
 
     # The domain: a cube of size 2 standing on the floor; the liquid falls from a sphere near its top.
     bpy.ops.mesh.primitive_cube_add(size=2, location=(0, 0, 1))
@@ -85,12 +98,15 @@ def main():
     camera.rotation_euler = (Vector((0, 0, 0.6)) - camera.location).to_track_quat("-Z", "Y").to_euler()
     scene.collection.objects.link(camera)
     scene.camera = camera
-    sun = bpy.data.objects.new("Sun", bpy.data.lights.new("Sun", "SUN"))
+    sun_data = bpy.data.lights.new("Sun", "SUN")
+    sun_data.energy = 1.5
+    sun = bpy.data.objects.new("Sun", sun_data)
     sun.rotation_euler = (0.6, 0.2, -0.5)
     scene.collection.objects.link(sun)
     world = bpy.data.worlds.new("World")
     world.use_nodes = True
     world.node_tree.nodes["Background"].inputs["Color"].default_value = (0.5, 0.6, 0.75, 1)
+    world.node_tree.nodes["Background"].inputs["Strength"].default_value = 0.6
     scene.world = world
 
     scene.render.engine = "CYCLES"
