@@ -281,7 +281,8 @@ def scene_camera(scene, depsgraph):
     if camera.type != "CAMERA":
         raise BadInput(f"scene {scene.name}: the active camera {camera.name} is not a camera object")
     if camera.data.type != "PERSP":
-        raise BadInput(f"camera {camera.name}: {camera.data.type.lower()} cameras are not supported "
+        kind = {"ORTHO": "orthographic", "PANO": "panoramic"}.get(camera.data.type, camera.data.type.lower())
+        raise BadInput(f"camera {camera.name}: {kind} cameras are not supported "
                        f"(Spindrift renders perspective cameras)")
     width, height = render_size(scene)
     camera_eval = camera.evaluated_get(depsgraph)

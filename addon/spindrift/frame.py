@@ -94,7 +94,7 @@ def collect(scene, depsgraph, frame, camera, *, mode="OVER", occluders=True, qua
     if liquid_meshes:
         kwargs["liquid_mesh"] = merge_triangles(liquid_meshes)
     if not sources and particles is None:
-        issues.append(f"frame {frame}: no particles to render")
+        issues.append("no particles to render")
     return Frame(document, kwargs, issues)
 
 

