@@ -96,6 +96,7 @@ class Worker:
         started = time.perf_counter()
         try:
             inputs = job.inputs
+            inputs.kwargs["background"] = {"depth": preview_background_depth(*job.depth)}
             result = native.renderer().render(inputs.scene_text, inputs.document["frame"],
                                               layers=["liquid", "foam"], **inputs.kwargs)
             pixels = premultiplied_display(result)
@@ -151,6 +152,8 @@ def status(region_key=None):
 
 
 def redraw_times_ms():
+    """The draw callback's recent main-thread times: dicts of total_ms, and read_depth_ms, job_ms (a new
+    frame handed to the worker), texture (a new image uploaded), draw_ms where they happened."""
     return list(_state["redraw_ms"])
 
 
@@ -184,42 +187,86 @@ def preview_size(region_width, region_height, scale):
     return width, height
 
 
-def sample_depth(depth, width, height):
-    """The region's depth (rows bottom first) at the preview's pixel centres, rows top first."""
-    rows = ((np.arange(height) + 0.5) * depth.shape[0] / height).astype(np.int64)
-    columns = ((np.arange(width) + 0.5) * depth.shape[1] / width).astype(np.int64)
-    return np.ascontiguousarray(depth[rows][:, columns][::-1])
+def screen_rect(points, perspective, region_width, region_height, margin=8):
+    """The region's pixel rectangle (x, y, width, height) covering `points` (N,3 world) as seen through
+    `perspective` (window_matrix @ view_matrix), or the whole region when a point is behind the eye."""
+    if len(points) == 0:
+        return None
+    homogeneous = np.concatenate([points, np.ones((len(points), 1))], axis=1) @ np.asarray(perspective).T
+    if (homogeneous[:, 3] <= 1e-6).any():
+        return 0, 0, region_width, region_height
+    ndc = homogeneous[:, :2] / homogeneous[:, 3:4]
+    x0 = int(np.floor((ndc[:, 0].min() + 1) / 2 * region_width)) - margin
+    x1 = int(np.ceil((ndc[:, 0].max() + 1) / 2 * region_width)) + margin
+    y0 = int(np.floor((ndc[:, 1].min() + 1) / 2 * region_height)) - margin
+    y1 = int(np.ceil((ndc[:, 1].max() + 1) / 2 * region_height)) + margin
+    x0, y0 = max(x0, 0), max(y0, 0)
+    x1, y1 = min(x1, region_width), min(y1, region_height)
+    if x1 <= x0 or y1 <= y0:
+        return None
+    return x0, y0, x1 - x0, y1 - y0
 
 
-def read_region_depth(width, height):
-    framebuffer = gpu.state.active_framebuffer_get()
-    buffer = framebuffer.read_depth(0, 0, width, height)
-    # gpu.types.Buffer's numpy view of a 2-D buffer has wrong strides (environment notes): go through 1-D.
-    flat = np.asarray(buffer).ravel(order="F") if np.asarray(buffer).ndim > 1 else np.asarray(buffer)
-    return np.array(flat, dtype=np.float32).reshape(height, width)
+_depth_buffers = {}
 
 
-def build_job(context, region, region_data, key):
+def read_depth_samples(region_width, region_height, width, height, rect):
+    """The viewport's window depth at the preview's pixel centres (rows top first), read only inside `rect`
+    (the screen box of what Spindrift draws; 1.0, nothing, elsewhere). Reading the whole 1280x800 depth costs
+    llvmpipe 12-27 ms and more under load; the liquid's box is usually a fraction of it. Reads into a reused
+    1-D gpu Buffer: its numpy view is exact, multi-dimensional Buffers have wrong strides (environment notes)."""
+    samples = np.ones((height, width), dtype=np.float32)
+    if rect is None:
+        return samples
+    x0, y0, rect_width, rect_height = rect
+    buffer = _depth_buffers.get((rect_width, rect_height))
+    if buffer is None:
+        _depth_buffers.clear()
+        buffer = _depth_buffers[(rect_width, rect_height)] = gpu.types.Buffer("FLOAT", rect_width * rect_height)
+    gpu.state.active_framebuffer_get().read_depth(x0, y0, rect_width, rect_height, data=buffer)
+    depth = np.asarray(buffer).reshape(rect_height, rect_width)
+    rows = ((np.arange(height) + 0.5) * region_height / height).astype(np.int64)[::-1] - y0
+    columns = ((np.arange(width) + 0.5) * region_width / width).astype(np.int64) - x0
+    row_inside = (rows >= 0) & (rows < rect_height)
+    column_inside = (columns >= 0) & (columns < rect_width)
+    samples[np.ix_(row_inside, column_inside)] = depth[np.ix_(rows[row_inside], columns[column_inside])]
+    return samples
+
+
+def preview_background_depth(window_depth, projection, camera, left, bottom):
+    """On the worker: planar eye depth for the preview's camera, padded with 'far' where an off-centre view's
+    larger camera reaches beyond the region. Rows top first."""
+    depth = scene_json.planar_depth(window_depth, projection)
+    height, width = depth.shape
+    full = np.full((camera["height"], camera["width"]), scene_json.FAR_DEPTH, dtype=np.float32)
+    x0, y0 = int(round(left)), int(round(bottom))
+    top = camera["height"] - y0 - height
+    full[top:top + height, x0:x0 + width] = depth
+    return full
+
+
+def build_job(context, region, region_data, key, phases):
     scene = context.scene
     settings = scene.spindrift
     width, height = preview_size(region.width, region.height, settings.preview_scale)
-    projection = region_data.window_matrix
+    projection = [list(row) for row in region_data.window_matrix]
     camera, (left, bottom) = scene_json.camera_description(
-        width, height, region_data.view_matrix.inverted(), [list(row) for row in projection])
-    window_depth = read_region_depth(region.width, region.height)
-    depth = scene_json.planar_depth(window_depth, [list(row) for row in projection])
-    # The preview's camera may be larger than the region (an off-centre view): pad the depth with "far".
-    full = np.full((camera["height"], camera["width"]), scene_json.FAR_DEPTH, dtype=np.float32)
-    x0, y0 = int(round(left)), int(round(bottom))
-    sampled = sample_depth(depth, width, height)[::-1]  # back to bottom first to place it
-    full_bottom_first = full[::-1]
-    full_bottom_first[y0:y0 + height, x0:x0 + width] = sampled[:camera["height"] - y0, :camera["width"] - x0]
+        width, height, region_data.view_matrix.inverted(), projection)
+    started = time.perf_counter()
     inputs = frame_inputs.collect(scene, context.evaluated_depsgraph_get(), scene.frame_current, camera,
                                   occluders=False, quality=settings.preview_quality, for_render=False,
                                   mode="OVER")
-    inputs.kwargs["background"] = {"depth": np.ascontiguousarray(full_bottom_first[::-1])}
-    scale = region.width / width
-    return Job(key, inputs, (-x0 * scale, -y0 * scale), scale)
+    perspective = np.asarray(projection) @ np.asarray([list(row) for row in region_data.view_matrix])
+    rect = screen_rect(export.frame_bounds(scene, inputs), perspective, region.width, region.height)
+    depth_started = time.perf_counter()
+    window_depth = read_depth_samples(region.width, region.height, width, height, rect)
+    phases["read_depth_ms"] = (time.perf_counter() - depth_started) * 1000
+    phases["depth_rect"] = rect
+    job = Job(key, inputs, (-round(left) * region.width / width, -round(bottom) * region.height / height),
+              region.width / width)
+    job.depth = (window_depth, projection, camera, left, bottom)
+    phases["job_ms"] = (time.perf_counter() - started) * 1000
+    return job
 
 
 def _view_key(context, region, region_data):
@@ -236,11 +283,12 @@ def draw():
     if worker is None or region is None or region_data is None or not context.scene.spindrift.preview:
         return
     region_key = region.as_pointer()
+    phases = {}
     try:
         key = _view_key(context, region, region_data)
         if _state["submitted"].get(region_key) != key and worker.idle(region_key):
             _state["submitted"][region_key] = key
-            job = build_job(context, region, region_data, key)
+            job = build_job(context, region, region_data, key, phases)
             for issue in job.inputs.issues:
                 reports.warn(f"viewport: {issue}")
             worker.submit(region_key, job)
@@ -253,16 +301,24 @@ def draw():
     if isinstance(image, str):
         _state["status"][region_key] = (image, None)
     elif image is not None:
-        _draw_image(image)
+        drawn = time.perf_counter()
+        try:
+            _draw_image(image, phases)
+        except Exception as error:  # noqa: BLE001 - never raise into Blender's drawing
+            _state["worker"]._finished[region_key] = f"{type(error).__name__}: {error}"
+            return
+        phases["draw_ms"] = (time.perf_counter() - drawn) * 1000
         _state["status"][region_key] = (f"{image.width}x{image.height}", image.seconds * 1000)
-    elapsed_ms = (time.perf_counter() - started) * 1000
-    _state["redraw_ms"] = (_state["redraw_ms"] + [elapsed_ms])[-200:]
+    phases["total_ms"] = (time.perf_counter() - started) * 1000
+    _state["redraw_ms"] = (_state["redraw_ms"] + [phases])[-200:]
 
 
-def _draw_image(image):
+def _draw_image(image, phases):
     if image.texture is None:
+        phases["texture"] = True
+        # gpu.types.GPUTexture takes FLOAT buffers only (Blender 3.4); the overlay it is drawn into is 8-bit.
         buffer = gpu.types.Buffer("FLOAT", image.pixels.size, image.pixels.ravel())
-        image.texture = gpu.types.GPUTexture((image.width, image.height), format="RGBA16F", data=buffer)
+        image.texture = gpu.types.GPUTexture((image.width, image.height), format="RGBA8", data=buffer)
     gpu.state.blend_set("ALPHA_PREMULT")
     gpu.state.depth_test_set("NONE")
     draw_texture_2d(image.texture, image.offset, image.width * image.scale, image.height * image.scale)
