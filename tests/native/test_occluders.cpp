@@ -128,19 +128,29 @@ class PrepassHarness {
   std::unique_ptr<Pipeline> pipeline_;
 };
 
-TEST(GLOccluderDepth, NearestOfTrianglesAndStartDepthMatchesRayCasts) {
+// Two slanted triangles that cross each other, drawn over a start depth that is nearer on the left third, and
+// over nothing (the pass clears to "no surface" itself): both against ray casts of the triangles' planes.
+class GLOccluderDepth : public testing::TestWithParam<bool> {};
+
+TEST_P(GLOccluderDepth, NearestOfTrianglesAndStartDepthMatchesRayCasts) {
+  const bool withStartDepth = GetParam();
   const Camera camera = Camera::lookAt(80, 60, 45.0f, {0.3f, -6.0f, 1.0f}, {0, 0, 0}, {0, 0, 1});
-  // Two slanted triangles that cross each other, and a start depth that is nearer on the left third.
   TriangleMesh mesh;
   mesh.vertices = {{-2.0f, -1.0f, -1.5f}, {2.1f, 1.5f, -1.2f},  {0.2f, 0.0f, 2.0f},
                    {-1.8f, 1.2f, -1.0f},  {2.2f, -1.3f, -0.8f}, {-0.3f, 0.6f, 1.9f}};
   mesh.triangles = {{0, 1, 2}, {3, 4, 5}};
   std::vector<float> start(std::size_t(camera.width) * camera.height, 1e10f);
-  for (int row = 0; row < camera.height; ++row)
-    for (int column = 0; column < camera.width / 3; ++column)
-      start[std::size_t(row) * camera.width + column] = 5.5f;
+  if (withStartDepth)
+    for (int row = 0; row < camera.height; ++row)
+      for (int column = 0; column < camera.width / 3; ++column)
+        start[std::size_t(row) * camera.width + column] = 5.5f;
   PrepassHarness harness;
-  const std::vector<float> depth = harness.run(camera, {&mesh}, &start);
+  // A wall near the camera first: the frame after it must not keep its depth.
+  TriangleMesh nearWall;
+  nearWall.vertices = {{-9, -5, -9}, {9, -5, -9}, {9, -5, 9}, {-9, -5, 9}};
+  nearWall.triangles = {{0, 1, 2}, {0, 2, 3}};
+  harness.run(camera, {&nearWall}, withStartDepth ? &start : nullptr);
+  const std::vector<float> depth = harness.run(camera, {&mesh}, withStartDepth ? &start : nullptr);
   int compared = 0, covered = 0;
   for (int row = 0; row < camera.height; ++row) {
     for (int column = 0; column < camera.width; ++column) {
@@ -166,7 +176,12 @@ TEST(GLOccluderDepth, NearestOfTrianglesAndStartDepthMatchesRayCasts) {
   EXPECT_GT(covered, 800);
 }
 
-TEST(GLOccluderDepth, NoTrianglesLeavesNothingOrTheStartDepth) {
+INSTANTIATE_TEST_SUITE_P(StartDepth, GLOccluderDepth, testing::Bool(),
+                         [](const testing::TestParamInfo<bool>& info) {
+                           return info.param ? "Given" : "None";
+                         });
+
+TEST(GLOccluderDepthEdges, NoTrianglesLeavesNothingOrTheStartDepth) {
   const Camera camera = Camera::lookAt(16, 12, 45.0f, {0, -6, 0}, {0, 0, 0}, {0, 0, 1});
   PrepassHarness harness;
   const TriangleMesh empty;

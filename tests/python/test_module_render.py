@@ -192,3 +192,33 @@ def test_layers_argument_reads_back_only_those_layers(renderer):
 
 def test_gl_strings(renderer):
     assert renderer.gl_renderer and renderer.gl_version.startswith("4.")
+
+
+def test_a_liquid_mesh_acts_as_the_liquid_depth_it_would_render(renderer, tmp_path):
+    # Surface foam around a liquid surface: the plane y = 0, square to the view, so its planar eye depth is 5
+    # at every pixel. Handed as triangles it must give the foam what a liquid_depth file of 5 gives.
+    random = np.random.default_rng(5)
+    count = 3000
+    foam = {"positions": random.uniform([-1.5, -0.4, -1.0], [1.5, 0.4, 1.0], (count, 3)).astype(np.float32),
+            "radii": np.full(count, 0.04, np.float32), "kinds": np.full(count, 8, np.uint8)}
+    plane = {"vertices": np.array([[-50, 0, -50], [50, 0, -50], [50, 0, 50], [-50, 0, 50]], np.float32),
+             "triangles": np.array([[0, 1, 2], [0, 2, 3]], np.int32)}
+    depth_file = tmp_path / "liquid_depth.exr"
+    output = oiio.ImageOutput.create(str(depth_file))
+    spec = oiio.ImageSpec(WIDTH, HEIGHT, 1, oiio.FLOAT)
+    spec.channelnames = ("Z",)
+    output.open(str(depth_file), spec)
+    output.write_image(np.full((HEIGHT, WIDTH, 1), 5.0, np.float32))
+    output.close()
+    foam_layers = ["foam", "foam_surface"]
+    from_mesh = renderer.render(scene_json(), 1, particles=foam, liquid_mesh=plane, layers=foam_layers)
+    background = {"color": [0.2, 0.3, 0.4], "liquid_depth": "liquid_depth.exr"}  # scene_json's colour, and the file
+    from_file = renderer.render(scene_json(background=background), 1,
+                                base_dir=str(tmp_path), particles=foam, layers=foam_layers)
+    without = renderer.render(scene_json(), 1, particles=foam, layers=foam_layers)
+    assert any(p["name"] == "liquid_mesh_depth" for p in from_mesh["stats"]["passes"])
+    assert_all_finite(from_mesh)
+    for name in foam_layers:
+        np.testing.assert_allclose(layer(from_mesh, name), layer(from_file, name), rtol=0, atol=1e-4, err_msg=name)
+    # And the liquid's depth matters: foam behind the surface fades.
+    assert np.abs(layer(without, "foam") - layer(from_mesh, "foam")).max() > 0.05

@@ -48,11 +48,17 @@ TriangleMesh readObjMesh(const std::filesystem::path& path) {
     std::string statement;
     if (!(words >> statement) || statement[0] == '#') continue;
     if (statement == "v") {
-      glm::vec3 position;
-      if (!(words >> position.x >> position.y >> position.z)) fail(path, line, "expected 'v x y z'");
-      if (!std::isfinite(position.x) || !std::isfinite(position.y) || !std::isfinite(position.z))
+      // strtof, not >>: it reads "nan" and "inf", which are then reported as what they are.
+      float xyz[3];
+      for (float& value : xyz) {
+        std::string word;
+        char* end = nullptr;
+        if (!(words >> word) || (value = std::strtof(word.c_str(), &end), *end != '\0'))
+          fail(path, line, "expected 'v x y z'");
+      }
+      if (!std::isfinite(xyz[0]) || !std::isfinite(xyz[1]) || !std::isfinite(xyz[2]))
         fail(path, line, "the vertex is not finite");
-      mesh.vertices.push_back(position);
+      mesh.vertices.emplace_back(xyz[0], xyz[1], xyz[2]);
     } else if (statement == "f") {
       corners.clear();
       for (std::string word; words >> word;)

@@ -47,16 +47,16 @@ void OccluderDepthPass::upload(const std::vector<const TriangleMesh*>& meshes) {
 OccluderDepthData OccluderDepthPass::run(const std::vector<const TriangleMesh*>& meshes,
                                          const Texture2D* startDepth, int width, int height) {
   ensureTexture(eyeDepth_, GL_R32F, width, height);
+  bindColorTargets(framebuffer_.id(), {&eyeDepth_});
   if (startDepth) {
     glCopyImageSubData(startDepth->id(), GL_TEXTURE_2D, 0, 0, 0, 0, eyeDepth_.id(), GL_TEXTURE_2D, 0, 0, 0, 0,
                        width, height, 1);
   } else {
     const float noSurface[4] = {1e10f, 0.0f, 0.0f, 0.0f};
-    glClearTexImage(eyeDepth_.id(), 0, GL_RED, GL_FLOAT, noSurface);
+    glClearNamedFramebufferfv(framebuffer_.id(), GL_COLOR, 0, noSurface);
   }
   upload(meshes);
   if (indexCount_ > 0) {
-    bindColorTargets(framebuffer_.id(), {&eyeDepth_});
     glDisable(GL_DEPTH_TEST);
     glDisable(GL_CULL_FACE);
     // The minimum blend keeps the nearest surface without a depth buffer, and folds in the start depth.
