@@ -68,7 +68,7 @@ def render_layers_now(scene, depsgraph, frame):
     """Renders and publishes the frame's layers; on failure reports and bypasses the compositor nodes."""
     path = layer_path(scene, frame)
     try:
-        _result, inputs, times = render_frame(scene, depsgraph, frame, path)
+        result, inputs, times = render_frame(scene, depsgraph, frame, path)
     except BadInput as error:
         _fail(scene, frame, str(error))
         return False
@@ -88,12 +88,12 @@ def render_layers_now(scene, depsgraph, frame):
     message = f"frame {frame}: {times['total_s'] * 1000:.0f} ms, {os.path.basename(path)}"
     _state["frames_done"] += 1
     if reports.log_frames_enabled():
-        done, total = _state["frames_done"], max(_state["frames_total"], _state["frames_done"])
-        reports.console(f"[{done}/{total}] frame {frame}: layers written to {path} in "
+        reports.console(f"frame {frame}: layers written to {path} in "
                         f"{times['total_s'] * 1000:.0f} ms (Spindrift {times['spindrift_ms']:.0f} ms, add-on "
-                        f"overhead {times['overhead_ms']:.0f} ms)")
+                        f"overhead {times['overhead_ms']:.0f} ms; {_state['frames_done']} this render)")
     reports.record_render(frame, message, inputs.issues, times["total_s"] * 1000)
     reports.last_render["timing"] = times
+    reports.last_render["stats"] = result.get("stats", {})
     _progress_update()
     return True
 

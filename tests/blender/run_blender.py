@@ -1,7 +1,7 @@
 #!/usr/bin/python3
 """Runs one Blender test script with the add-on installed from its zip into a fresh, temporary user directory.
 
-    run_blender.py --zip build/spindrift-addon.zip [--xvfb] [--blend FILE] SCRIPT [-- ARGS...]
+    run_blender.py --zip build/spindrift-addon.zip [--xvfb [--screen WxH]] SCRIPT [-- ARGS...]
 
 Blender runs with --factory-startup and BLENDER_USER_CONFIG / BLENDER_USER_SCRIPTS pointing at a temporary
 directory, so nothing of the machine's own Blender set-up (or an add-on installed there) takes part. The
@@ -26,6 +26,7 @@ def main():
     parser.add_argument("--zip", required=True)
     parser.add_argument("--blender", default=shutil.which("blender") or "blender")
     parser.add_argument("--xvfb", action="store_true", help="run the interface under xvfb-run (1280x800)")
+    parser.add_argument("--screen", default="1280x800", help="Xvfb screen size (default 1280x800)")
     parser.add_argument("--keep", action="store_true", help="keep the scratch directory")
     parser.add_argument("script")
     parser.add_argument("args", nargs=argparse.REMAINDER)
@@ -45,7 +46,7 @@ def main():
     args = options.args[1:] if options.args[:1] == ["--"] else options.args
     command = [options.blender, "--factory-startup", "--python-exit-code", "1", "--python", script, "--", *args]
     if options.xvfb:
-        command = ["xvfb-run", "-a", "-s", "-screen 0 1280x800x24", *command]
+        command = ["xvfb-run", "-a", "-s", f"-screen 0 {options.screen}x24", *command]
     else:
         command.insert(1, "-b")
     print("run_blender:", " ".join(command), flush=True)

@@ -197,6 +197,35 @@ def case_stop_on_error(scene):
     check(outcomes["STOP"][0] == 1, f"STOP exits with code 1: {outcomes['STOP']}")
 
 
+def case_foam_only_workflow(scene):
+    """Not bad input: the second compositing mode. Foam over a render that contains the domain's liquid mesh;
+    the foam's occlusion and fade take the liquid's depth from that mesh, handed over as triangles."""
+    domain = bpy.data.objects["Domain"]
+    domain.spindrift.enabled = True
+    domain.spindrift.foam_radius_cells = 1.5  # the tiny bake's foam, large enough to cover some pixels
+    scene.frame_set(5)
+    check(bpy.ops.spindrift.setup_compositing(mode="FOAM_ONLY") == {"FINISHED"}, "setup_compositing FOAM_ONLY")
+    check(not domain.hide_render, "the domain's mesh stays in the render")
+    group = scene.node_tree.nodes["Spindrift"]
+    check(group.node_tree.name == "Spindrift Foam Only" and not group.mute, "the Foam Only group is wired")
+    bpy.ops.render.render()
+    record = spindrift().reports.last_render
+    passes = [p["name"] for p in record["stats"]["passes"]]
+    check("liquid_mesh_depth" in passes, f"the liquid mesh was drawn for the foam ({passes})")
+    check(record["stats"]["particles"]["liquid"] == 0, "no liquid particles are rendered")
+    settings = scene.render.image_settings
+    settings.file_format, settings.color_depth = "OPEN_EXR_MULTILAYER", "32"
+    result_path = scratch("foam_only_result.exr")
+    bpy.data.images["Render Result"].save_render(result_path, scene=scene)
+    result = read_exr_layers(result_path)
+    foam = read_exr_layers(layers_path(scene))["foam"]
+    render, composite = result["ViewLayer.Combined"], result["Composite.Combined"]
+    check((foam[..., 3] > 0.05).sum() > 10, f"{(foam[..., 3] > 0.05).sum()} pixels of foam")
+    expected = foam[..., :3] + (1 - foam[..., 3:4]) * render[..., :3]
+    difference = float(np.abs(composite[..., :3] - expected).max())
+    check(difference < 2e-3, f"the composite is the foam over the render (max difference {difference:.2e})")
+
+
 CASES = {name[len("case_"):]: function for name, function in globals().items() if name.startswith("case_")}
 
 

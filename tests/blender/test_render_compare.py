@@ -129,7 +129,7 @@ def animation(scene):
         check(os.path.isfile(path), f"-a wrote {os.path.basename(path)}")
         check(os.path.isfile(os.path.join(scratch("anim"), f"frame_{frame:04d}.png")), f"and frame {frame}")
     for frame in (4, 5, 6):
-        check(f"] frame {frame}: layers written" in run.stdout, f"the console reports frame {frame}")
+        check(f"Spindrift: frame {frame}: layers written" in run.stdout, f"the console reports frame {frame}")
     first, last = (read_exr_layers(layers[i]) for i in (0, 2))
     check(np.abs(first["liquid"] - last["liquid"]).max() > 0.05, "the liquid moves between frames 4 and 6")
     # The composited frames follow their own layers: the render without the liquid is the same every frame,

@@ -15,6 +15,7 @@ import traceback
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 
 import bpy  # noqa: E402
+import gpu  # noqa: E402
 import numpy as np  # noqa: E402
 from bpy_extras.view3d_utils import (location_3d_to_region_2d, region_2d_to_origin_3d,  # noqa: E402
                                      region_2d_to_vector_3d)
@@ -188,6 +189,32 @@ def measure_redraws():
         region=list(state["region_size"]), load=os.getloadavg()[0], records=moving + still)
 
 
+def measure_scene_colour_read():
+    """What refracting the scene's colour would cost the main thread: GPUOffScreen.draw_view3d at the
+    preview's size (0.5 of the region), timed in a draw callback, the framebuffer re-bound after."""
+    window, area, region = view3d()
+    space = area.spaces.active
+    width, height = region.width // 2, region.height // 2
+    offscreen = gpu.types.GPUOffScreen(width, height)
+    times = []
+
+    def draw_once():
+        if len(times) >= 3:
+            return
+        framebuffer = gpu.state.active_framebuffer_get()
+        started = time.perf_counter()
+        offscreen.draw_view3d(bpy.context.scene, bpy.context.view_layer, space, region,
+                              space.region_3d.view_matrix, space.region_3d.window_matrix, do_color_management=True)
+        times.append((time.perf_counter() - started) * 1000)
+        framebuffer.bind()
+
+    handler = bpy.types.SpaceView3D.draw_handler_add(draw_once, (), "WINDOW", "POST_PIXEL")
+    redraw(3)
+    bpy.types.SpaceView3D.draw_handler_remove(handler, "WINDOW")
+    offscreen.free()
+    state["results"]["scene_colour_read_ms"] = times
+
+
 def screenshots_for_docs(directory):
     window, area, region = view3d()
     with bpy.context.temp_override(window=window, area=area):
@@ -216,6 +243,7 @@ def step():
             analyse(with_preview, without_preview)
             bpy.context.scene.spindrift.preview = True
             measure_redraws()
+            measure_scene_colour_read()
             if len(arguments()) > 1:
                 with open(arguments()[1], "w") as file:
                     json.dump(state["results"], file, indent=1)
