@@ -6,6 +6,8 @@
 
 #include <dlfcn.h>
 
+#include <algorithm>
+
 #include <exception>
 #include <filesystem>
 #include <mutex>
@@ -128,9 +130,10 @@ PyObject* rendererExit(PyObject* object, PyObject*) {
   return rendererClose(object, nullptr);
 }
 
-std::vector<std::string> readLayerNames(PyObject* layers) {
+// The layer names asked for; nothing means every layer (None), an empty list none at all.
+std::optional<std::vector<std::string>> readLayerNames(PyObject* layers) {
   std::vector<std::string> names;
-  if (layers == Py_None) return names;
+  if (layers == Py_None) return std::nullopt;
   if (!PyList_Check(layers) && !PyTuple_Check(layers))
     throw ArgumentError(PyExc_TypeError, "layers: expected a list of layer names");
   Reference items(check(PySequence_List(layers)));
@@ -148,11 +151,11 @@ std::vector<std::string> readLayerNames(PyObject* layers) {
 }
 
 // {"width", "height", "stats", "layers": {name: (channels, float32 bytes)}}, only the layers asked for.
-PyObject* resultToPython(const RenderResult& result, const std::vector<std::string>& wanted) {
+PyObject* resultToPython(const RenderResult& result, const std::optional<std::vector<std::string>>& wanted) {
   std::set<std::string> available;
   for (const ImageLayer& layer : result.layers)
     available.insert(layer.name);
-  for (const std::string& name : wanted) {
+  for (const std::string& name : wanted.value_or(std::vector<std::string>{})) {
     if (!available.count(name)) {
       std::string names;
       for (const std::string& known : available)
@@ -163,10 +166,7 @@ PyObject* resultToPython(const RenderResult& result, const std::vector<std::stri
   }
   Reference layers(check(PyDict_New()));
   for (const ImageLayer& layer : result.layers) {
-    bool keep = wanted.empty();
-    for (const std::string& name : wanted)
-      keep = keep || name == layer.name;
-    if (!keep) continue;
+    if (wanted && std::find(wanted->begin(), wanted->end(), layer.name) == wanted->end()) continue;
     Reference channels(check(PyTuple_New(Py_ssize_t(layer.channels.size()))));
     for (std::size_t i = 0; i < layer.channels.size(); ++i)
       PyTuple_SetItem(channels.get(), Py_ssize_t(i), check(toPython(layer.channels[i])));  // Steals.
@@ -221,7 +221,7 @@ PyObject* rendererRender(PyObject* object, PyObject* args, PyObject* kwargs) {
       scene.background.depthExplicit = false;
       readBackground(background, scene.camera, inputs);
     }
-    const std::vector<std::string> layerNames = readLayerNames(layers);
+    const std::optional<std::vector<std::string>> layerNames = readLayerNames(layers);
     const std::optional<std::filesystem::path> exr =
         exrPath ? std::optional<std::filesystem::path>(exrPath) : std::nullopt;
     std::optional<RenderResult> result;

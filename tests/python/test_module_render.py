@@ -188,6 +188,9 @@ def test_layers_argument_reads_back_only_those_layers(renderer):
     assert channels == ("R", "G", "B", "A") and len(pixels) == WIDTH * HEIGHT * 4 * 4
     assert result["width"] == WIDTH and result["height"] == HEIGHT
     assert json.loads(json.dumps(result["stats"]))["resolution"] == [WIDTH, HEIGHT]
+    # An empty list reads nothing back (a frame written only to its EXR); None reads every layer.
+    assert renderer.render(scene_json(), 1, layers=[])["layers"] == {}
+    assert "refraction_uv" in renderer.render(scene_json(), 1, layers=None)["layers"]
 
 
 def test_gl_strings(renderer):
