@@ -7,6 +7,8 @@
 #include <dlfcn.h>
 
 #include <algorithm>
+#include <cstring>
+#include <utility>
 
 #include <exception>
 #include <filesystem>
@@ -150,6 +152,11 @@ std::optional<std::vector<std::string>> readLayerNames(PyObject* layers) {
   return names;
 }
 
+char* checkBytes(char* bytes) {
+  if (!bytes) throw PythonErrorSet{};
+  return bytes;
+}
+
 // {"width", "height", "stats", "layers": {name: (channels, float32 bytes)}}, only the layers asked for.
 PyObject* resultToPython(const RenderResult& result, const std::optional<std::vector<std::string>>& wanted) {
   std::set<std::string> available;
@@ -165,17 +172,23 @@ PyObject* resultToPython(const RenderResult& result, const std::optional<std::ve
     }
   }
   Reference layers(check(PyDict_New()));
+  // The bytes objects are made (uninitialised) with the GIL, and filled without it: copying a full frame's
+  // layers takes long enough on a busy machine to stall Blender's UI thread otherwise.
+  std::vector<std::pair<char*, const ImageLayer*>> copies;
   for (const ImageLayer& layer : result.layers) {
     if (wanted && std::find(wanted->begin(), wanted->end(), layer.name) == wanted->end()) continue;
     Reference channels(check(PyTuple_New(Py_ssize_t(layer.channels.size()))));
     for (std::size_t i = 0; i < layer.channels.size(); ++i)
       PyTuple_SetItem(channels.get(), Py_ssize_t(i), check(toPython(layer.channels[i])));  // Steals.
-    Reference pixels(check(PyBytes_FromStringAndSize(reinterpret_cast<const char*>(layer.pixels.data()),
-                                                     Py_ssize_t(layer.pixels.size() * sizeof(float)))));
+    Reference pixels(
+        check(PyBytes_FromStringAndSize(nullptr, Py_ssize_t(layer.pixels.size() * sizeof(float)))));
+    copies.emplace_back(checkBytes(PyBytes_AsString(pixels.get())), &layer);
     Reference entry(check(PyTuple_Pack(2, channels.get(), pixels.get())));
     setItem(layers.get(), layer.name.c_str(), std::move(entry));
   }
-  Reference dictionary(check(PyDict_New()));
+  Py_BEGIN_ALLOW_THREADS for (const auto& [target, layer] : copies)
+      std::memcpy(target, layer->pixels.data(), layer->pixels.size() * sizeof(float));
+  Py_END_ALLOW_THREADS Reference dictionary(check(PyDict_New()));
   setItem(dictionary.get(), "width", Reference(check(PyLong_FromLong(result.width))));
   setItem(dictionary.get(), "height", Reference(check(PyLong_FromLong(result.height))));
   setItem(dictionary.get(), "stats", Reference(check(toPython(result.stats.toJson()))));
