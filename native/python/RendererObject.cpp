@@ -6,6 +6,10 @@
 
 #include <dlfcn.h>
 
+#include <algorithm>
+#include <cstring>
+#include <utility>
+
 #include <exception>
 #include <filesystem>
 #include <mutex>
@@ -128,9 +132,10 @@ PyObject* rendererExit(PyObject* object, PyObject*) {
   return rendererClose(object, nullptr);
 }
 
-std::vector<std::string> readLayerNames(PyObject* layers) {
+// The layer names asked for; nothing means every layer (None), an empty list none at all.
+std::optional<std::vector<std::string>> readLayerNames(PyObject* layers) {
   std::vector<std::string> names;
-  if (layers == Py_None) return names;
+  if (layers == Py_None) return std::nullopt;
   if (!PyList_Check(layers) && !PyTuple_Check(layers))
     throw ArgumentError(PyExc_TypeError, "layers: expected a list of layer names");
   Reference items(check(PySequence_List(layers)));
@@ -147,12 +152,17 @@ std::vector<std::string> readLayerNames(PyObject* layers) {
   return names;
 }
 
+char* checkBytes(char* bytes) {
+  if (!bytes) throw PythonErrorSet{};
+  return bytes;
+}
+
 // {"width", "height", "stats", "layers": {name: (channels, float32 bytes)}}, only the layers asked for.
-PyObject* resultToPython(const RenderResult& result, const std::vector<std::string>& wanted) {
+PyObject* resultToPython(const RenderResult& result, const std::optional<std::vector<std::string>>& wanted) {
   std::set<std::string> available;
   for (const ImageLayer& layer : result.layers)
     available.insert(layer.name);
-  for (const std::string& name : wanted) {
+  for (const std::string& name : wanted.value_or(std::vector<std::string>{})) {
     if (!available.count(name)) {
       std::string names;
       for (const std::string& known : available)
@@ -162,20 +172,23 @@ PyObject* resultToPython(const RenderResult& result, const std::vector<std::stri
     }
   }
   Reference layers(check(PyDict_New()));
+  // The bytes objects are made (uninitialised) with the GIL, and filled without it: copying a full frame's
+  // layers takes long enough on a busy machine to stall Blender's UI thread otherwise.
+  std::vector<std::pair<char*, const ImageLayer*>> copies;
   for (const ImageLayer& layer : result.layers) {
-    bool keep = wanted.empty();
-    for (const std::string& name : wanted)
-      keep = keep || name == layer.name;
-    if (!keep) continue;
+    if (wanted && std::find(wanted->begin(), wanted->end(), layer.name) == wanted->end()) continue;
     Reference channels(check(PyTuple_New(Py_ssize_t(layer.channels.size()))));
     for (std::size_t i = 0; i < layer.channels.size(); ++i)
       PyTuple_SetItem(channels.get(), Py_ssize_t(i), check(toPython(layer.channels[i])));  // Steals.
-    Reference pixels(check(PyBytes_FromStringAndSize(reinterpret_cast<const char*>(layer.pixels.data()),
-                                                     Py_ssize_t(layer.pixels.size() * sizeof(float)))));
+    Reference pixels(
+        check(PyBytes_FromStringAndSize(nullptr, Py_ssize_t(layer.pixels.size() * sizeof(float)))));
+    copies.emplace_back(checkBytes(PyBytes_AsString(pixels.get())), &layer);
     Reference entry(check(PyTuple_Pack(2, channels.get(), pixels.get())));
     setItem(layers.get(), layer.name.c_str(), std::move(entry));
   }
-  Reference dictionary(check(PyDict_New()));
+  Py_BEGIN_ALLOW_THREADS for (const auto& [target, layer] : copies)
+      std::memcpy(target, layer->pixels.data(), layer->pixels.size() * sizeof(float));
+  Py_END_ALLOW_THREADS Reference dictionary(check(PyDict_New()));
   setItem(dictionary.get(), "width", Reference(check(PyLong_FromLong(result.width))));
   setItem(dictionary.get(), "height", Reference(check(PyLong_FromLong(result.height))));
   setItem(dictionary.get(), "stats", Reference(check(toPython(result.stats.toJson()))));
@@ -221,7 +234,7 @@ PyObject* rendererRender(PyObject* object, PyObject* args, PyObject* kwargs) {
       scene.background.depthExplicit = false;
       readBackground(background, scene.camera, inputs);
     }
-    const std::vector<std::string> layerNames = readLayerNames(layers);
+    const std::optional<std::vector<std::string>> layerNames = readLayerNames(layers);
     const std::optional<std::filesystem::path> exr =
         exrPath ? std::optional<std::filesystem::path>(exrPath) : std::nullopt;
     std::optional<RenderResult> result;

@@ -188,6 +188,9 @@ def test_layers_argument_reads_back_only_those_layers(renderer):
     assert channels == ("R", "G", "B", "A") and len(pixels) == WIDTH * HEIGHT * 4 * 4
     assert result["width"] == WIDTH and result["height"] == HEIGHT
     assert json.loads(json.dumps(result["stats"]))["resolution"] == [WIDTH, HEIGHT]
+    # An empty list reads nothing back (a frame written only to its EXR); None reads every layer.
+    assert renderer.render(scene_json(), 1, layers=[])["layers"] == {}
+    assert "refraction_uv" in renderer.render(scene_json(), 1, layers=None)["layers"]
 
 
 def test_gl_strings(renderer):
@@ -222,3 +225,30 @@ def test_a_liquid_mesh_acts_as_the_liquid_depth_it_would_render(renderer, tmp_pa
         np.testing.assert_allclose(layer(from_mesh, name), layer(from_file, name), rtol=0, atol=1e-4, err_msg=name)
     # And the liquid's depth matters: foam behind the surface fades.
     assert np.abs(layer(without, "foam") - layer(from_mesh, "foam")).max() > 0.05
+
+
+def test_two_threads_sharing_a_renderer_get_their_own_frames(renderer):
+    # Calls are serialised by the renderer's lock (taken without the GIL): each thread gets the frame it asked
+    # for, identical to the same frame rendered alone.
+    small, large = sphere_of_particles(count=100, seed=1), sphere_of_particles(count=400, seed=2)
+    alone = {name: layer(renderer.render(scene_json(), 1, particles=arrays, layers=["liquid"]), "liquid")
+             for name, arrays in (("small", small), ("large", large))}
+    results, errors = {}, []
+
+    def render(name, arrays):
+        try:
+            for _ in range(3):
+                results.setdefault(name, []).append(
+                    layer(renderer.render(scene_json(), 1, particles=arrays, layers=["liquid"]), "liquid"))
+        except Exception as error:  # noqa: BLE001 (reported below)
+            errors.append(error)
+
+    threads = [threading.Thread(target=render, args=item) for item in (("small", small), ("large", large))]
+    for thread in threads:
+        thread.start()
+    for thread in threads:
+        thread.join()
+    assert not errors
+    for name in ("small", "large"):
+        for frame in results[name]:
+            np.testing.assert_array_equal(frame, alone[name])

@@ -3,16 +3,12 @@
 #include <cstddef>
 #include <vector>
 
+#include "framedata/OccluderDepthData.h"
 #include "gl/GlObjects.h"
 #include "gl/ShaderLibrary.h"
 #include "spindrift/FrameInputs.h"
 
 namespace spindrift {
-
-/// The depth a mesh prepass leaves: the nearer of the triangles and the depth the pass started from.
-struct OccluderDepthData {
-  const Texture2D& eyeDepth;  ///< R32F planar eye depth; 1e10 where nothing is.
-};
 
 /// A depth prepass of triangles: rasterises meshes (world space) and keeps, per pixel, the minimum of their
 /// planar eye depth and a starting depth (the background's). Solid scene geometry drawn this way hides the
