@@ -78,7 +78,8 @@ def _socket(node, name):
                    f"(has {[s.name for s in node.outputs if s.enabled]})")
 
 
-def _new_group(mode):
+def _new_group(mode, width):
+    """An empty group of the mode's inputs; returns (group, its input node, its output node)."""
     name = GROUP_NAMES[mode]
     old = bpy.data.node_groups.get(name)
     if old is not None:
@@ -91,16 +92,16 @@ def _new_group(mode):
     for layer in GROUP_LAYERS[mode]:
         inputs.new("NodeSocketFloat" if layer == "depth" else "NodeSocketColor", layer)
     group.outputs.new("NodeSocketColor", "Image")
-    return group
+    source = group.nodes.new("NodeGroupInput")
+    source.location = (-width / 2, 0)
+    sink = group.nodes.new("NodeGroupOutput")
+    sink.location = (width / 2, 0)
+    return group, source, sink
 
 
 def build_over_group():
-    group = _new_group("OVER")
+    group, source, sink = _new_group("OVER", 1600)
     nodes, links = group.nodes, group.links
-    source = nodes.new("NodeGroupInput")
-    source.location = (-900, 0)
-    sink = nodes.new("NodeGroupOutput")
-    sink.location = (700, 0)
 
     map_uv = nodes.new("CompositorNodeMapUV")
     map_uv.location = (-600, 200)
@@ -150,13 +151,9 @@ def build_over_group():
 
 
 def build_foam_only_group():
-    group = _new_group("FOAM_ONLY")
-    nodes, links = group.nodes, group.links
-    source = nodes.new("NodeGroupInput")
-    source.location = (-400, 0)
-    sink = nodes.new("NodeGroupOutput")
-    sink.location = (300, 0)
-    over_foam = nodes.new("CompositorNodeAlphaOver")
+    group, source, sink = _new_group("FOAM_ONLY", 700)
+    links = group.links
+    over_foam = group.nodes.new("CompositorNodeAlphaOver")
     links.new(source.outputs["Image"], over_foam.inputs[1])
     links.new(source.outputs["foam"], over_foam.inputs[2])
     links.new(over_foam.outputs["Image"], sink.inputs["Image"])

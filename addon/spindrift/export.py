@@ -5,7 +5,6 @@ never on the preview's worker thread. Problems with the user's data are appended
 messages naming the object, not raised, so one bad object never stops the others from rendering.
 """
 
-import math
 import os
 
 import bpy

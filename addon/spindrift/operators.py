@@ -160,11 +160,4 @@ class SPINDRIFT_OT_export_scene(bpy.types.Operator):
 CLASSES = (SPINDRIFT_OT_setup_compositing, SPINDRIFT_OT_render_layers, SPINDRIFT_OT_export_scene)
 
 
-def register():
-    for cls in CLASSES:
-        bpy.utils.register_class(cls)
-
-
-def unregister():
-    for cls in reversed(CLASSES):
-        bpy.utils.unregister_class(cls)
+register, unregister = bpy.utils.register_classes_factory(CLASSES)

@@ -58,30 +58,20 @@ class SPINDRIFT_PT_object(bpy.types.Panel):
             layout.label(text=f"The frame uses {primary.name}'s parameters", icon="INFO")
 
 
-class SPINDRIFT_PT_object_liquid(bpy.types.Panel):
-    bl_label = "Liquid"
-    bl_parent_id = "SPINDRIFT_PT_object"
-    bl_space_type = "PROPERTIES"
-    bl_region_type = "WINDOW"
-    bl_context = "physics"
-    bl_options = {"DEFAULT_CLOSED"}
+def parameter_panel(group, label):
+    """A sub-panel of the object's Spindrift panel with every parameter of one group of the table."""
 
     def draw(self, context):
         self.layout.use_property_split = True
-        _draw_parameters(self.layout, context.object.spindrift.liquid, "liquid")
+        _draw_parameters(self.layout, getattr(context.object.spindrift, group), group)
+
+    return type(f"SPINDRIFT_PT_object_{group}", (bpy.types.Panel,), {
+        "bl_label": label, "bl_parent_id": "SPINDRIFT_PT_object", "bl_space_type": "PROPERTIES",
+        "bl_region_type": "WINDOW", "bl_context": "physics", "bl_options": {"DEFAULT_CLOSED"}, "draw": draw})
 
 
-class SPINDRIFT_PT_object_foam(bpy.types.Panel):
-    bl_label = "Foam"
-    bl_parent_id = "SPINDRIFT_PT_object"
-    bl_space_type = "PROPERTIES"
-    bl_region_type = "WINDOW"
-    bl_context = "physics"
-    bl_options = {"DEFAULT_CLOSED"}
-
-    def draw(self, context):
-        self.layout.use_property_split = True
-        _draw_parameters(self.layout, context.object.spindrift.foam, "foam")
+SPINDRIFT_PT_object_liquid = parameter_panel("liquid", "Liquid")
+SPINDRIFT_PT_object_foam = parameter_panel("foam", "Foam")
 
 
 def draw_preview_settings(layout, scene):
@@ -146,11 +136,4 @@ CLASSES = (SPINDRIFT_PT_object, SPINDRIFT_PT_object_liquid, SPINDRIFT_PT_object_
            SPINDRIFT_PT_view3d)
 
 
-def register():
-    for cls in CLASSES:
-        bpy.utils.register_class(cls)
-
-
-def unregister():
-    for cls in reversed(CLASSES):
-        bpy.utils.unregister_class(cls)
+register, unregister = bpy.utils.register_classes_factory(CLASSES)

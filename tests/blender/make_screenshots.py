@@ -36,6 +36,7 @@ def trim(pixels, keep_last_rows=None, margin=12):
     background = pixels[2, pixels.shape[1] // 2]
     content = np.abs(pixels[..., :3] - background[:3]).max(axis=2) > 0.02
     content[:, :48] = False  # the properties editor's tab column is not content
+    content[:6], content[-6:], content[:, -6:] = False, False, False  # nor the area's borders
     rows, columns = np.where(content.any(axis=1))[0], np.where(content.any(axis=0))[0]
     if len(rows) == 0:
         return pixels
