@@ -123,10 +123,7 @@ def case_no_camera(scene):
     check("has no camera" in message, f"setup_compositing reports: {message}")
     record = render_layers(scene, expect="CANCELLED")
     check("has no camera" in record["message"], f"the report names the problem: {record['message']}")
-    try:
-        bpy.ops.render.render()
-    except RuntimeError as error:
-        print(f"Blender itself refuses to render: {error}")
+    # (Blender itself refuses to render without a camera, and then exits -b with code 1: not tried here.)
     check(bpy.ops.mesh.primitive_cube_add() == {"FINISHED"}, "Blender keeps running")
 
 
