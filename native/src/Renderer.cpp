@@ -5,6 +5,7 @@
 #include <optional>
 
 #include "gl/GlThread.h"
+#include "gl/QueryGlLimits.h"
 #include "gl/PassTimer.h"
 #include "gl/ShaderLibrary.h"
 #include "passes/BackgroundPass.h"
@@ -23,6 +24,7 @@
 #include "prep/FoamPreparation.h"
 #include "prep/LiquidPreparation.h"
 #include "Readback.h"
+#include "spindrift/Limits.h"
 
 namespace spindrift {
 namespace {
@@ -69,6 +71,7 @@ struct Renderer::Impl {
   GlThread glThread;
   std::unique_ptr<FramePipeline> pipeline;  // Lives on glThread; reset there before the thread ends.
   BackgroundCache backgroundCache;
+  GlLimits glLimits;
   bool intermediateLayers = false;
 
   ~Impl() {
@@ -77,7 +80,10 @@ struct Renderer::Impl {
 };
 
 Renderer::Renderer() : impl_(std::make_unique<Impl>()) {
-  impl_->glThread.run([this] { impl_->pipeline = std::make_unique<FramePipeline>(); });
+  impl_->glThread.run([this] {
+    impl_->pipeline = std::make_unique<FramePipeline>();
+    impl_->glLimits = queryGlLimits();
+  });
 }
 
 Renderer::~Renderer() = default;
@@ -86,9 +92,23 @@ void Renderer::setIntermediateLayers(bool enabled) { impl_->intermediateLayers =
 
 std::string Renderer::glRenderer() const { return impl_->glThread.renderer(); }
 std::string Renderer::glVersion() const { return impl_->glThread.version(); }
+const GlLimits& Renderer::glLimits() const { return impl_->glLimits; }
+
+// Everything that could make a frame fail halfway or allocate without bound is checked first, with an
+// error that names the limit (docs/reliability.md, "Limits").
+void Renderer::checkFrame(const Scene& scene, std::size_t particleCount) const {
+  const Camera& camera = scene.camera;
+  validateCamera(camera);
+  checkImageFitsGl(impl_->glLimits, camera.width, camera.height, "camera: the image");
+  requireMemory(std::uint64_t(camera.width) * std::uint64_t(camera.height) * kFrameBytesPerPixel +
+                    std::uint64_t(particleCount) * kPreparationBytesPerParticle,
+                "a " + std::to_string(camera.width) + "x" + std::to_string(camera.height) + " frame of " +
+                    std::to_string(particleCount) + " particles");
+}
 
 RenderResult Renderer::renderFrame(const Scene& scene, int frame) {
   const Clock::time_point start = Clock::now();
+  checkFrame(scene, 0);  // Before any file is read; renderParticles checks again with the particle count.
   ParticleCounts counts;
   const Particles particles = loadParticles(scene, frame, &counts);
   const double loadMilliseconds = millisecondsSince(start);
@@ -109,6 +129,8 @@ RenderResult Renderer::renderParticles(const Scene& scene, const Particles& part
   const LiquidParameters& liquidParameters = scene.parameters.liquid;
   const FoamParameters& foamParameters = scene.parameters.foam;
   const int width = camera.width, height = camera.height;
+  checkFrame(scene, particles.size());
+  validateParticles(particles);
   RenderResult result;
   result.width = width;
   result.height = height;
@@ -125,6 +147,9 @@ RenderResult Renderer::renderParticles(const Scene& scene, const Particles& part
   const float radius = typicalLiquidRadius(particles);
   const FoamPreparation foam = prepareFoam(particles, camera, foamParameters);
   const BackgroundImages backgroundImages = impl_->backgroundCache.load(scene.background, frame, width, height);
+  if (backgroundImages.environment)
+    checkImageFitsGl(impl_->glLimits, backgroundImages.environment->width, backgroundImages.environment->height,
+                     "background.environment " + pathForFrame(scene.background.environment, frame).string());
   stats.prepareMilliseconds = millisecondsSince(prepareStart);
   stats.liquid.splashParticles = liquid.splashes.size();
   stats.liquid.aggregateParticles = liquid.aggregates.size();
