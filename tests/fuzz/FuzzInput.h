@@ -5,6 +5,7 @@
 #include <unistd.h>
 
 #include <cstdint>
+#include <cstdio>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
@@ -40,5 +41,15 @@ inline std::filesystem::path writeInput(const std::uint8_t* data, std::size_t si
       std::abort();                                                                 \
     }                                                                               \
   } while (0)
+
+// What every particle reader promises: each optional array is empty or has one entry per position.
+template <typename ParticleFileData>
+void checkParticleArrays(const ParticleFileData& particles) {
+  const std::size_t count = particles.positions.size();
+  FUZZ_REQUIRE(particles.radii.empty() || particles.radii.size() == count);
+  FUZZ_REQUIRE(particles.typeFlags.empty() || particles.typeFlags.size() == count);
+  FUZZ_REQUIRE(particles.life.empty() || particles.life.size() == count);
+  FUZZ_REQUIRE(particles.velocities.empty() || particles.velocities.size() == count);
+}
 
 }  // namespace fuzz

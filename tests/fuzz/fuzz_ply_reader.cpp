@@ -14,12 +14,7 @@ extern "C" int LLVMFuzzerInitialize(int*, char***) {
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   const std::filesystem::path path = fuzz::writeInput(data, size, "input.ply");
   try {
-    const spindrift::ParticleFileData particles = spindrift::readPly(path);
-    const std::size_t count = particles.positions.size();
-    FUZZ_REQUIRE(particles.radii.empty() || particles.radii.size() == count);
-    FUZZ_REQUIRE(particles.typeFlags.empty() || particles.typeFlags.size() == count);
-    FUZZ_REQUIRE(particles.life.empty() || particles.life.size() == count);
-    FUZZ_REQUIRE(particles.velocities.empty() || particles.velocities.size() == count);
+    fuzz::checkParticleArrays(spindrift::readPly(path));
   } catch (const spindrift::Error&) {
   }
   return 0;

@@ -36,7 +36,7 @@ float anyFloat(FuzzedDataProvider& input) {
 }
 
 template <typename Value>
-void appendAttribute(PointDataGrid& grid, const std::string& name, FuzzedDataProvider& input, bool truncate) {
+void addAttribute(PointDataGrid& grid, const std::string& name, FuzzedDataProvider& input, bool truncate) {
   const NamePair type = truncate ? TypedAttributeArray<Value, TruncateCodec>::attributeType()
                                  : TypedAttributeArray<Value>::attributeType();
   appendAttribute(grid.tree(), name, type);
@@ -64,16 +64,8 @@ extern "C" int LLVMFuzzerInitialize(int*, char***) {
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   FuzzedDataProvider input(data, size);
-  // The transform: a voxel size, possibly tiny or huge, and a translation.
-  const double voxelSize = input.ConsumeBool() ? input.ConsumeFloatingPointInRange<double>(1e-6, 1e6) : 0.1;
-  math::Transform::Ptr transform;
-  try {
-    transform = math::Transform::createLinearTransform(voxelSize);
-  } catch (const std::exception&) {
-    return 0;
-  }
-  transform->postTranslate(Vec3d(anyFloat(input), anyFloat(input), anyFloat(input)));
-
+  // The points are placed with a sane transform; the fuzzed one (any voxel size, translation, even NaN or
+  // infinite) replaces it afterwards, so only the reader meets it.
   std::vector<Vec3f> positions(input.ConsumeIntegralInRange<std::size_t>(0, 48));
   for (Vec3f& p : positions) p = Vec3f(input.ConsumeFloatingPointInRange<float>(-50.0f, 50.0f),
                                        input.ConsumeFloatingPointInRange<float>(-50.0f, 50.0f),
@@ -81,11 +73,20 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   PointDataGrid::Ptr grid;
   const bool withPositions = input.ConsumeBool() || positions.empty();
   if (withPositions) {
-    grid = createPointDataGrid<NullCodec, PointDataGrid>(positions, *transform);
+    grid = createPointDataGrid<NullCodec, PointDataGrid>(positions, *math::Transform::createLinearTransform(0.1));
   } else {
     grid = PointDataGrid::create();  // An empty tree: a frame where Mantaflow wrote no particles.
-    grid->setTransform(transform);
   }
+  const double voxelSize = input.ConsumeBool() ? input.ConsumeFloatingPointInRange<double>(1e-6, 1e6) : 0.1;
+  math::Transform::Ptr transform;
+  try {
+    transform = math::Transform::createLinearTransform(voxelSize);
+    transform->postTranslate(Vec3d(anyFloat(input), anyFloat(input), anyFloat(input)));
+    if (input.ConsumeBool()) transform->postScale(Vec3d(anyFloat(input), anyFloat(input), anyFloat(input)));
+  } catch (const std::exception&) {
+    return 0;  // OpenVDB refuses the transform (a zero scale): no file to read.
+  }
+  grid->setTransform(transform);
   grid->setName(kGridNames[input.ConsumeIntegralInRange<int>(0, 3)]);
 
   const int attributeCount = input.ConsumeIntegralInRange<int>(0, 5);
@@ -94,12 +95,12 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     if (grid->tree().cbeginLeaf()->attributeSet().find(name) != AttributeSet::INVALID_POS) continue;
     const bool truncate = input.ConsumeBool();
     switch (input.ConsumeIntegralInRange<int>(0, 5)) {
-      case 0: appendAttribute<std::int32_t>(*grid, name, input, truncate); break;
-      case 1: appendAttribute<float>(*grid, name, input, truncate); break;
-      case 2: appendAttribute<Vec3f>(*grid, name, input, truncate); break;
-      case 3: appendAttribute<double>(*grid, name, input, false); break;
-      case 4: appendAttribute<std::int64_t>(*grid, name, input, false); break;
-      default: appendAttribute<std::int16_t>(*grid, name, input, false); break;
+      case 0: addAttribute<std::int32_t>(*grid, name, input, truncate); break;
+      case 1: addAttribute<float>(*grid, name, input, truncate); break;
+      case 2: addAttribute<Vec3f>(*grid, name, input, truncate); break;
+      case 3: addAttribute<double>(*grid, name, input, false); break;
+      case 4: addAttribute<std::int64_t>(*grid, name, input, false); break;
+      default: addAttribute<std::int16_t>(*grid, name, input, false); break;
     }
   }
   GridPtrVec grids;
@@ -115,12 +116,8 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   io::File(path.string()).write(grids);
   try {
     const spindrift::ParticleFileData particles = spindrift::readVdbPoints(path, requested);
-    const std::size_t count = particles.positions.size();
-    FUZZ_REQUIRE(count == positions.size() || !withPositions);
-    FUZZ_REQUIRE(particles.radii.empty() || particles.radii.size() == count);
-    FUZZ_REQUIRE(particles.typeFlags.empty() || particles.typeFlags.size() == count);
-    FUZZ_REQUIRE(particles.life.empty() || particles.life.size() == count);
-    FUZZ_REQUIRE(particles.velocities.empty() || particles.velocities.size() == count);
+    FUZZ_REQUIRE(particles.positions.size() == positions.size() || !withPositions);
+    fuzz::checkParticleArrays(particles);
   } catch (const spindrift::Error&) {
   }
   return 0;

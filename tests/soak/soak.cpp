@@ -54,7 +54,7 @@ long liveGlObjects() {
 
 // A liquid column and spray with the given number of particles, moving with the frame.
 Particles particlesFor(int count, int frame) {
-  std::mt19937 random(unsigned(frame));
+  std::mt19937 random{unsigned(frame)};
   std::uniform_real_distribution<float> unit(-1.0f, 1.0f);
   Particles particles;
   particles.reserve(std::size_t(count));
