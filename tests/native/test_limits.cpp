@@ -5,6 +5,8 @@
 #include <cmath>
 #include <limits>
 
+#include <OpenImageIO/imageio.h>
+
 #include "TempDirectory.h"
 #include "io/ImageFiles.h"
 #include "io/ParticleFile.h"

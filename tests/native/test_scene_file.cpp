@@ -179,6 +179,6 @@ INSTANTIATE_TEST_SUITE_P(
         BadScene{"ZeroNear", sceneWith(kLookAt + R"(, "near": 0)"), "camera.near"},
         BadScene{"WiderThanTheLimit", R"({"version": 1, "camera": {"width": 16385, "height": 8, "fov_y_deg": 40)" + kLookAt + "}, \"particles\": []}", "16384"},
         BadScene{"ZeroRadius", R"({"version": 1, "camera": {"width": 8, "height": 8, "fov_y_deg": 40)" + kLookAt + R"(}, "particles": [{"path": "p.ply", "radius": 0}]})", "particles[0].radius"},
-        BadScene{"InfiniteMatrixElement", sceneWith(R"(, "world_from_camera": [1,0,0,0,0,1,0,0,0,0,1,1e999,0,0,0,1])"), "camera.world_from_camera"},
+        BadScene{"InfiniteMatrixElement", sceneWith(R"(, "world_from_camera": [1,0,0,0,0,1,0,0,0,0,1,1e999,0,0,0,1])"), "number overflow parsing '1e999'"},
         BadScene{"NaNInMatrix", sceneWith(R"(, "world_from_camera": [1,0,0,0,0,1,0,0,0,0,1,0,0,0,0,"x"])"), "camera.world_from_camera"}),
     [](const testing::TestParamInfo<BadScene>& info) { return info.param.name; });
