@@ -37,8 +37,10 @@ float anyFloat(FuzzedDataProvider& input) {
 
 template <typename Value>
 void addAttribute(PointDataGrid& grid, const std::string& name, FuzzedDataProvider& input, bool truncate) {
-  const NamePair type = truncate ? TypedAttributeArray<Value, TruncateCodec>::attributeType()
-                                 : TypedAttributeArray<Value>::attributeType();
+  NamePair type = TypedAttributeArray<Value>::attributeType();
+  // Mantaflow's half-precision storage exists for the types it writes.
+  if constexpr (std::is_same_v<Value, float> || std::is_same_v<Value, Vec3f> || std::is_same_v<Value, std::int32_t>)
+    if (truncate) type = TypedAttributeArray<Value, TruncateCodec>::attributeType();
   appendAttribute(grid.tree(), name, type);
   for (auto leaf = grid.tree().beginLeaf(); leaf; ++leaf) {
     AttributeWriteHandle<Value> handle(leaf->attributeArray(name));
