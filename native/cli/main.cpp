@@ -1,17 +1,21 @@
 // `spindrift`: renders scene files from a shell, lists parameters, and reports the OpenGL it finds.
-// Exit codes: 0 success, 1 a scene, file or rendering error (one line on stderr), 2 a usage error.
+// Exit codes (cli/Sequence.h, docs/reliability.md): 0 success, 1 a scene, file or rendering error (one line on
+// stderr), 2 a usage error, 3 frames failed under --keep-going, 128 + signal when stopped by SIGINT or SIGTERM.
 
 #include <chrono>
 #include <cstdio>
 #include <fstream>
 #include <iostream>
+#include <optional>
 
 #include <CLI/CLI.hpp>
 
 #include "Progress.h"
+#include "Sequence.h"
 #include "spindrift/Error.h"
 #include "spindrift/Output.h"
 #include "spindrift/Renderer.h"
+#include "spindrift/Threads.h"
 
 namespace {
 
@@ -26,6 +30,9 @@ struct RenderOptions {
   std::vector<std::string> assignments;
   bool quiet = false;
   bool intermediate = false;
+  bool skipExisting = false;
+  bool keepGoing = false;
+  int threads = 0;  // 0: all cores
 };
 
 void applyAssignments(Scene& scene, const std::vector<std::string>& assignments) {
@@ -56,27 +63,56 @@ int runRender(const RenderOptions& options) {
       if (!path->empty() && !hasFramePattern(*path))
         throw Error(*path + ": several frames need #### in the output name");
 
+  std::optional<WorkerThreadLimit> threadLimit;
+  if (options.threads > 0) threadLimit.emplace(options.threads);
   Renderer renderer;
   renderer.setIntermediateLayers(options.intermediate);
   if (!options.quiet) std::fprintf(stderr, "spindrift: rendering on %s\n", renderer.glRenderer().c_str());
   cli::Progress progress(int(frames.size()), options.quiet);
   nlohmann::json allStats = nlohmann::json::array();
+  cli::StopSignals stopSignals;
+  std::vector<int> failedFrames;
   for (int frame : frames) {
-    const auto start = std::chrono::steady_clock::now();
-    const RenderResult result = renderer.renderFrame(scene, frame);
-    if (!options.exrPath.empty()) writeExr(result, pathForFrame(options.exrPath, frame));
-    if (!options.pngPath.empty()) writePng(result, pathForFrame(options.pngPath, frame));
-    if (!options.statsPath.empty() && hasFramePattern(options.statsPath)) {
-      std::ofstream(pathForFrame(options.statsPath, frame)) << result.stats.toJson().dump(2) << "\n";
+    if (cli::StopSignals::received()) break;
+    const std::vector<std::filesystem::path> outputs = cli::perFrameOutputs(
+        {options.exrPath, options.pngPath, options.statsPath}, frame, frames.size() == 1);
+    if (options.skipExisting && cli::allExist(outputs)) {
+      progress.frameSkipped(frame);
+      continue;
     }
-    allStats.push_back(result.stats.toJson());
+    for (const std::filesystem::path& output : outputs) cli::removeStaleTemporaries(output);
+    const auto start = std::chrono::steady_clock::now();
+    try {
+      const RenderResult result = renderer.renderFrame(scene, frame);
+      if (cli::StopSignals::received()) break;  // The frame in flight is dropped before any of it is written.
+      if (!options.exrPath.empty()) writeExr(result, pathForFrame(options.exrPath, frame));
+      if (!options.pngPath.empty()) writePng(result, pathForFrame(options.pngPath, frame));
+      if (!options.statsPath.empty() && hasFramePattern(options.statsPath))
+        cli::writeTextFile(pathForFrame(options.statsPath, frame), result.stats.toJson().dump(2) + "\n");
+      allStats.push_back(result.stats.toJson());
+    } catch (const std::exception& error) {
+      if (frames.size() == 1) throw;
+      std::fprintf(stderr, "\nspindrift: error: frame %d: %s\n", frame, error.what());
+      if (!options.keepGoing) return cli::kExitError;
+      failedFrames.push_back(frame);
+      continue;
+    }
     progress.frameDone(frame, std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
   }
   progress.finish();
-  if (!options.statsPath.empty() && !hasFramePattern(options.statsPath)) {
-    std::ofstream stats(options.statsPath);
-    stats << (frames.size() == 1 ? allStats[0] : nlohmann::json{{"frames", allStats}}).dump(2) << "\n";
-    if (!stats) throw Error(options.statsPath + ": cannot write the stats");
+  if (!options.statsPath.empty() && !hasFramePattern(options.statsPath) && !allStats.empty())
+    cli::writeTextFile(options.statsPath,
+                       (frames.size() == 1 ? allStats[0] : nlohmann::json{{"frames", allStats}}).dump(2) + "\n");
+  if (const int signalNumber = cli::StopSignals::received()) {
+    std::fprintf(stderr, "spindrift: stopped by signal %d; every file written is complete\n", signalNumber);
+    return 128 + signalNumber;
+  }
+  if (!failedFrames.empty()) {
+    std::string list;
+    for (int frame : failedFrames) list += (list.empty() ? "" : ",") + std::to_string(frame);
+    std::fprintf(stderr, "spindrift: error: %zu of %zu frames failed: %s\n", failedFrames.size(), frames.size(),
+                 list.c_str());
+    return cli::kExitFramesFailed;
   }
   return 0;
 }
@@ -119,6 +155,12 @@ int main(int argc, char** argv) {
   renderCommand->add_flag("-q,--quiet", render.quiet, "No progress output");
   renderCommand->add_flag("--intermediate", render.intermediate,
                           "Also write the depth layers before and after smoothing into the EXR");
+  renderCommand->add_flag("--skip-existing", render.skipExisting,
+                          "Skip frames whose output files all exist (resume a stopped sequence)");
+  renderCommand->add_flag("--keep-going", render.keepGoing,
+                          "Go on after a frame fails; exit with 3 at the end if any did");
+  renderCommand->add_option("--threads", render.threads, "Worker threads of the CPU preparation (default: all)")
+      ->check(CLI::PositiveNumber);
 
   bool markdown = false;
   CLI::App* paramsCommand = app.add_subcommand("params", "List every parameter with its default (JSON)");

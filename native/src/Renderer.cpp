@@ -7,6 +7,7 @@
 #include <optional>
 
 #include "gl/GlThread.h"
+#include "gl/QueryGlLimits.h"
 #include "gl/PassTimer.h"
 #include "gl/ShaderLibrary.h"
 #include "passes/BackgroundPass.h"
@@ -29,6 +30,7 @@
 #include "FrameStatsRecording.h"
 #include "Readback.h"
 #include "spindrift/Error.h"
+#include "spindrift/Limits.h"
 
 namespace spindrift {
 namespace {
@@ -109,6 +111,7 @@ struct Renderer::Impl {
   GlThread glThread;
   std::unique_ptr<FramePipeline> pipeline;  // Lives on glThread; reset there before the thread ends.
   BackgroundCache backgroundCache;
+  GlLimits glLimits;
   bool intermediateLayers = false;
   // In-memory backgrounds change every frame: each gets its own upload generation, apart from the cache's.
   std::uint64_t hostBackgroundGeneration = std::uint64_t(1) << 63;
@@ -121,7 +124,10 @@ struct Renderer::Impl {
 Renderer::Renderer() : Renderer(findShaderDirectory()) {}
 
 Renderer::Renderer(const std::filesystem::path& shaderDirectory) : impl_(std::make_unique<Impl>()) {
-  impl_->glThread.run([&] { impl_->pipeline = std::make_unique<FramePipeline>(shaderDirectory); });
+  impl_->glThread.run([&] {
+    impl_->pipeline = std::make_unique<FramePipeline>(shaderDirectory);
+    impl_->glLimits = queryGlLimits();
+  });
 }
 
 Renderer::~Renderer() = default;
@@ -130,6 +136,19 @@ void Renderer::setIntermediateLayers(bool enabled) { impl_->intermediateLayers =
 
 std::string Renderer::glRenderer() const { return impl_->glThread.renderer(); }
 std::string Renderer::glVersion() const { return impl_->glThread.version(); }
+const GlLimits& Renderer::glLimits() const { return impl_->glLimits; }
+
+// Everything that could make a frame fail halfway or allocate without bound is checked first, with an
+// error that names the limit (docs/reliability.md, "Limits").
+void Renderer::checkFrame(const Scene& scene, std::size_t particleCount) const {
+  const Camera& camera = scene.camera;
+  validateCamera(camera);
+  checkImageFitsGl(impl_->glLimits, camera.width, camera.height, "camera: the image");
+  requireMemory(std::uint64_t(camera.width) * std::uint64_t(camera.height) * kFrameBytesPerPixel +
+                    std::uint64_t(particleCount) * kPreparationBytesPerParticle,
+                "a " + std::to_string(camera.width) + "x" + std::to_string(camera.height) + " frame of " +
+                    std::to_string(particleCount) + " particles");
+}
 
 RenderResult Renderer::renderFrame(const Scene& scene, int frame) {
   return renderFrame(scene, frame, FrameInputs{});
@@ -137,6 +156,7 @@ RenderResult Renderer::renderFrame(const Scene& scene, int frame) {
 
 RenderResult Renderer::renderFrame(const Scene& scene, int frame, const FrameInputs& inputs) {
   const Clock::time_point start = Clock::now();
+  checkFrame(scene, 0);  // Before any file is read; renderParticles checks again with the particle count.
   ParticleCounts counts;
   Particles particles = loadParticles(scene, frame, &counts);
   const std::size_t droppedFromFiles = counts.droppedInvalid;
@@ -182,6 +202,8 @@ RenderResult Renderer::renderPrepared(const Scene& scene, const Particles& parti
   const LiquidParameters& liquidParameters = scene.parameters.liquid;
   const FoamParameters& foamParameters = scene.parameters.foam;
   const int width = camera.width, height = camera.height;
+  checkFrame(scene, particles.size());
+  validateParticles(particles);
   RenderResult result = emptyResult(frame, width, height, particles);
   result.stats.glRenderer = glRenderer();
   result.stats.glVersion = glVersion();
@@ -202,6 +224,9 @@ RenderResult Renderer::renderPrepared(const Scene& scene, const Particles& parti
   }
   if (extras.backgroundColor || extras.backgroundDepth)
     backgroundImages.generation = ++impl_->hostBackgroundGeneration;
+  if (backgroundImages.environment)
+    checkImageFitsGl(impl_->glLimits, backgroundImages.environment->width, backgroundImages.environment->height,
+                     "background.environment " + pathForFrame(scene.background.environment, frame).string());
   stats.prepareMilliseconds = millisecondsSince(prepareStart);
   recordPreparation(liquid, foam, stats);
   const FramePlan plan =

@@ -12,25 +12,10 @@
 #include <OpenImageIO/imageio.h>
 #include <nlohmann/json.hpp>
 
+#include "CliCommand.h"
 #include "TempDirectory.h"
 
 namespace {
-
-struct CommandResult {
-  int exitCode;
-  std::string stderrText;
-};
-
-CommandResult runCli(const std::string& arguments, const std::string& environment = "") {
-  TempDirectory directory;
-  const std::string errorsFile = (directory.path() / "stderr.txt").string();
-  const std::string command = environment + " " + SPINDRIFT_CLI_PATH + " " + arguments + " 2>" + errorsFile;
-  const int status = std::system(command.c_str());
-  std::ifstream errors(errorsFile);
-  std::stringstream text;
-  text << errors.rdbuf();
-  return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, text.str()};
-}
 
 // Eight particles around the origin, one of them NaN, seen by a camera on -Y.
 std::filesystem::path writeScene(const TempDirectory& directory, const std::string& extra = "") {

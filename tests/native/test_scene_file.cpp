@@ -174,5 +174,11 @@ INSTANTIATE_TEST_SUITE_P(
         BadScene{"NegativeBackgroundColor", sceneWith(kLookAt, R"(, "background": {"color": [0, -1, 0]})"), "background.color"},
         BadScene{"UnknownParameter", sceneWith(kLookAt, R"(, "liquid": {"absorption_colour": [1, 1, 1]})"), "liquid.absorption_colour"},
         BadScene{"ParameterOutOfRange", sceneWith(kLookAt, R"(, "liquid": {"ior": 7})"), "liquid.ior"},
+        BadScene{"ZeroFov", R"({"version": 1, "camera": {"width": 8, "height": 8, "fov_y_deg": 0)" + kLookAt + "}, \"particles\": []}", "camera.fov_y_deg"},
+        BadScene{"NearEqualsFar", sceneWith(kLookAt + R"(, "near": 2, "far": 2)"), "camera.far"},
+        BadScene{"ZeroNear", sceneWith(kLookAt + R"(, "near": 0)"), "camera.near"},
+        BadScene{"WiderThanTheLimit", R"({"version": 1, "camera": {"width": 16385, "height": 8, "fov_y_deg": 40)" + kLookAt + "}, \"particles\": []}", "16384"},
+        BadScene{"ZeroRadius", R"({"version": 1, "camera": {"width": 8, "height": 8, "fov_y_deg": 40)" + kLookAt + R"(}, "particles": [{"path": "p.ply", "radius": 0}]})", "particles[0].radius"},
+        BadScene{"InfiniteMatrixElement", sceneWith(R"(, "world_from_camera": [1,0,0,0,0,1,0,0,0,0,1,1e999,0,0,0,1])"), "number overflow parsing '1e999'"},
         BadScene{"NaNInMatrix", sceneWith(R"(, "world_from_camera": [1,0,0,0,0,1,0,0,0,0,1,0,0,0,0,"x"])"), "camera.world_from_camera"}),
     [](const testing::TestParamInfo<BadScene>& info) { return info.param.name; });

@@ -5,6 +5,7 @@
 #include <string>
 
 #include "spindrift/FrameInputs.h"
+#include "spindrift/Limits.h"
 #include "spindrift/RenderResult.h"
 #include "spindrift/Scene.h"
 
@@ -40,6 +41,13 @@ class Renderer {
   /// GL_RENDERER and GL_VERSION of the renderer's context, e.g. "llvmpipe (LLVM 15.0.6, 256 bits)".
   std::string glRenderer() const;
   std::string glVersion() const;
+  /// The texture and framebuffer limits of the renderer's context.
+  const GlLimits& glLimits() const;
+
+  /// Throws Error naming the limit when the scene's camera is invalid or its image, with `particleCount`
+  /// particles, exceeds the GL limits or the memory available (spindrift/Limits.h). renderFrame and
+  /// renderParticles call it before allocating anything for the frame.
+  void checkFrame(const Scene& scene, std::size_t particleCount) const;
 
  private:
   struct Impl;

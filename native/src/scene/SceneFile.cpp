@@ -126,7 +126,8 @@ Scene parseScene(const std::string& jsonText, const std::filesystem::path& scene
   json document;
   try {
     document = json::parse(jsonText);
-  } catch (const json::parse_error& error) {
+  } catch (const json::exception& error) {
+    // parse_error for bad syntax, out_of_range for a number beyond double (1e999): both are bad JSON here.
     throw Error(fileLabel + ": not valid JSON: " + error.what());
   }
   const JsonFields root(document, fileLabel, "");
