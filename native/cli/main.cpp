@@ -1,6 +1,7 @@
 // `spindrift`: renders scene files from a shell, lists parameters, and reports the OpenGL it finds.
 // Exit codes: 0 success, 1 a scene, file or rendering error (one line on stderr), 2 a usage error.
 
+#include <algorithm>
 #include <chrono>
 #include <cstdio>
 #include <fstream>
@@ -24,6 +25,7 @@ struct RenderOptions {
   std::string statsPath;
   std::string frames;
   std::vector<std::string> assignments;
+  std::vector<std::string> layers;
   bool quiet = false;
   bool intermediate = false;
 };
@@ -58,6 +60,11 @@ int runRender(const RenderOptions& options) {
 
   Renderer renderer;
   renderer.setIntermediateLayers(options.intermediate);
+  std::vector<std::string> layers = options.layers;
+  if (!layers.empty() && !options.pngPath.empty() &&
+      std::find(layers.begin(), layers.end(), "composite") == layers.end())
+    layers.push_back("composite");  // The PNG is the composite.
+  renderer.setLayers(layers);
   if (!options.quiet) std::fprintf(stderr, "spindrift: rendering on %s\n", renderer.glRenderer().c_str());
   cli::Progress progress(int(frames.size()), options.quiet);
   nlohmann::json allStats = nlohmann::json::array();
@@ -116,6 +123,11 @@ int main(int argc, char** argv) {
   renderCommand->add_option("--frames", render.frames, "Frames to render: 12, 1-240, 1-240:2 or a comma list "
                                                        "(default: the scene's `frame`, else 1)");
   renderCommand->add_option("--set", render.assignments, "Override a parameter: key=value (value is JSON)");
+  renderCommand->add_option("--layers", render.layers,
+                            "Layers to compute and write, comma-separated (default: all): composite, liquid, "
+                            "liquid_splash, liquid_class, depth, normal, thickness, foam, foam_spray, "
+                            "foam_surface, foam_bubble, foam_shadow, foam_irradiance, foam_thickness")
+      ->delimiter(',');
   renderCommand->add_flag("-q,--quiet", render.quiet, "No progress output");
   renderCommand->add_flag("--intermediate", render.intermediate,
                           "Also write the depth layers before and after smoothing into the EXR");

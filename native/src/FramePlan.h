@@ -33,6 +33,11 @@ struct FrameContents {
   std::size_t aggregateParticles = 0;  ///< Liquid particles in view drawn as the aggregated body.
   std::size_t foamParticles = 0;       ///< Secondary particles in view.
   std::string smoothing = "plane_fit";  ///< liquid.smoothing.
+  // What the caller reads back (`--layers`): a pass whose result reaches no wanted layer is not run.
+  bool compositeWanted = true;
+  bool liquidLayersWanted = true;  ///< Any of liquid, liquid_splash, liquid_class, depth, normal, thickness.
+  bool foamLayersWanted = true;    ///< Any foam layer.
+  bool intermediateWanted = false;  ///< The depth layers before and after smoothing (`--intermediate`).
 };
 
 /// Which passes a frame runs and, for each it does not, why. The wiring of the frame in one plain function, so

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <chrono>
 #include <optional>
+#include <utility>
 
 #include "gl/GlThread.h"
 #include "gl/PassTimer.h"
@@ -37,7 +38,7 @@ double millisecondsSince(Clock::time_point start) {
 
 // Every GL object of the frame; made, used and destroyed on the GL thread.
 struct FramePipeline {
-  ShaderLibrary shaders{findShaderDirectory()};
+  ShaderLibrary shaders{findShaderDirectory(), ProgramCache::forCurrentContext()};
   FrameUniformBuffer frameUniforms;
   PassTimer timer;
   BackgroundPass background{shaders};
@@ -84,19 +85,32 @@ struct Renderer::Impl {
   std::unique_ptr<FramePipeline> pipeline;  // Lives on glThread; reset there before the thread ends.
   BackgroundCache backgroundCache;
   bool intermediateLayers = false;
+  LayerSelection layers;
+  bool firstFrame = true;
+  SetupStats setup;
 
   ~Impl() {
     glThread.run([this] { pipeline.reset(); });
   }
 };
 
-Renderer::Renderer() : impl_(std::make_unique<Impl>()) {
-  impl_->glThread.run([this] { impl_->pipeline = std::make_unique<FramePipeline>(); });
+Renderer::Renderer() {
+  const Clock::time_point start = Clock::now();
+  impl_ = std::make_unique<Impl>();
+  impl_->glThread.run([this] {
+    impl_->pipeline = std::make_unique<FramePipeline>();
+    const ProgramCacheCounts& programs = impl_->pipeline->shaders.cacheCounts();
+    impl_->setup.programsCompiled = programs.compiled;
+    impl_->setup.programsFromCache = programs.loaded;
+    impl_->setup.programsRejected = programs.rejected;
+  });
+  impl_->setup.milliseconds = millisecondsSince(start);
 }
 
 Renderer::~Renderer() = default;
 
 void Renderer::setIntermediateLayers(bool enabled) { impl_->intermediateLayers = enabled; }
+void Renderer::setLayers(const std::vector<std::string>& names) { impl_->layers = LayerSelection(names); }
 
 std::string Renderer::glRenderer() const { return impl_->glThread.renderer(); }
 std::string Renderer::glVersion() const { return impl_->glThread.version(); }
@@ -127,6 +141,8 @@ RenderResult Renderer::renderParticles(const Scene& scene, const Particles& part
   RenderResult result = emptyResult(frame, width, height, particles);
   result.stats.glRenderer = glRenderer();
   result.stats.glVersion = glVersion();
+  result.stats.firstFrame = std::exchange(impl_->firstFrame, false);
+  if (result.stats.firstFrame) result.stats.setup = impl_->setup;
   FrameStats& stats = result.stats;
 
   const Clock::time_point prepareStart = Clock::now();
@@ -136,8 +152,10 @@ RenderResult Renderer::renderParticles(const Scene& scene, const Particles& part
   const BackgroundImages backgroundImages = impl_->backgroundCache.load(scene.background, frame, width, height);
   stats.prepareMilliseconds = millisecondsSince(prepareStart);
   recordPreparation(liquid, foam, stats);
-  const FramePlan plan = planFrame(
-      {liquid.splashes.size(), liquid.aggregates.size(), foam.instances.size(), liquidParameters.smoothing});
+  const LayerSelection& layers = impl_->layers;
+  const FramePlan plan = planFrame({liquid.splashes.size(), liquid.aggregates.size(), foam.instances.size(),
+                                    liquidParameters.smoothing, layers.wantsComposite(), layers.wantsLiquidLayers(),
+                                    layers.wantsFoamLayers(), impl_->intermediateLayers});
   stats.skipped = plan.skipped;
 
   impl_->glThread.run([&] {
@@ -200,17 +218,19 @@ RenderResult Renderer::renderParticles(const Scene& scene, const Particles& part
                                      width, height);
       }));
     }
-    const CompositeData composite = timed(Pass::Composite, [&] {
-      return pipeline.composite.run(background, liquidLayer ? &*liquidLayer : nullptr,
-                                    foamLayer ? &*foamLayer : nullptr, width, height);
-    });
+    std::optional<CompositeData> composite;
+    if (plan.runs(Pass::Composite))
+      composite.emplace(timed(Pass::Composite, [&] {
+        return pipeline.composite.run(background, liquidLayer ? &*liquidLayer : nullptr,
+                                      foamLayer ? &*foamLayer : nullptr, width, height);
+      }));
     stats.passes = pipeline.timer.collect();
 
     const Clock::time_point readbackStart = Clock::now();
     if (liquidLayer) recordRefraction(pipeline.refraction.statistics(), stats.liquid);
     if (foamLayer) recordFoamOcclusion(pipeline.foamOcclusion.statistics(), stats.foam);
-    readFrameLayers(composite, liquidLayer ? &*liquidLayer : nullptr, foamLayer ? &*foamLayer : nullptr, width,
-                    height, result.layers);
+    readFrameLayers(composite ? &*composite : nullptr, liquidLayer ? &*liquidLayer : nullptr,
+                    foamLayer ? &*foamLayer : nullptr, width, height, layers, result.layers);
     intermediate.appendTo(result.layers);
     stats.readbackMilliseconds = millisecondsSince(readbackStart);
   });
