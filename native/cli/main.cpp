@@ -5,6 +5,8 @@
 #include <chrono>
 #include <cstdio>
 #include <fstream>
+#include <future>
+#include <memory>
 #include <iostream>
 
 #include <CLI/CLI.hpp>
@@ -68,17 +70,26 @@ int runRender(const RenderOptions& options) {
   if (!options.quiet) std::fprintf(stderr, "spindrift: rendering on %s\n", renderer.glRenderer().c_str());
   cli::Progress progress(int(frames.size()), options.quiet);
   nlohmann::json allStats = nlohmann::json::array();
+  // Frame N's files are written on another thread while frame N+1 renders; a write's error surfaces when the
+  // next frame waits for it (or at the end), and stops the sequence there.
+  std::future<void> pendingWrite;
+  auto finishPendingWrite = [&pendingWrite] {
+    if (pendingWrite.valid()) pendingWrite.get();
+  };
   for (int frame : frames) {
     const auto start = std::chrono::steady_clock::now();
-    const RenderResult result = renderer.renderFrame(scene, frame);
-    if (!options.exrPath.empty()) writeExr(result, pathForFrame(options.exrPath, frame));
-    if (!options.pngPath.empty()) writePng(result, pathForFrame(options.pngPath, frame));
-    if (!options.statsPath.empty() && hasFramePattern(options.statsPath)) {
-      std::ofstream(pathForFrame(options.statsPath, frame)) << result.stats.toJson().dump(2) << "\n";
-    }
-    allStats.push_back(result.stats.toJson());
+    auto result = std::make_shared<RenderResult>(renderer.renderFrame(scene, frame));
+    finishPendingWrite();
+    allStats.push_back(result->stats.toJson());
+    pendingWrite = std::async(std::launch::async, [&options, result, frame] {
+      if (!options.exrPath.empty()) writeExr(*result, pathForFrame(options.exrPath, frame));
+      if (!options.pngPath.empty()) writePng(*result, pathForFrame(options.pngPath, frame));
+      if (!options.statsPath.empty() && hasFramePattern(options.statsPath))
+        std::ofstream(pathForFrame(options.statsPath, frame)) << result->stats.toJson().dump(2) << "\n";
+    });
     progress.frameDone(frame, std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
   }
+  finishPendingWrite();
   progress.finish();
   if (!options.statsPath.empty() && !hasFramePattern(options.statsPath)) {
     std::ofstream stats(options.statsPath);
