@@ -26,6 +26,9 @@ import numpy as np
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 import runs  # noqa: E402
 
+# What the numbers mean and what was measured by hand (A/B of shader directories), kept beside the script.
+NOTES_FILE = os.path.join(os.path.dirname(os.path.abspath(__file__)), "frame_cost_notes.md")
+
 
 def parse_arguments():
     parser = argparse.ArgumentParser(description=__doc__.split("\n")[0])
@@ -137,6 +140,7 @@ def write_page(arguments, rows, load_start, load_end, renderer):
         lines.append(f"| {row['variant']} | {row['process_ms']:.0f} | {row['setup_ms']:.0f} | {row['compiled']} / "
                      f"{row['from_cache']} | {row['frame_ms']:.0f} | {row['readback_ms']:.1f} | {later} | "
                      f"{row['channels']} | {row['max_difference']:.3g} |")
+    lines += ["", open(NOTES_FILE).read().strip()]
     os.makedirs(arguments.output, exist_ok=True)
     with open(os.path.join(arguments.output, "frame-cost.md"), "w") as handle:
         handle.write("\n".join(lines) + "\n")
