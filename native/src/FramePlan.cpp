@@ -6,23 +6,41 @@ namespace spindrift {
 
 const char* passName(Pass pass) {
   switch (pass) {
-    case Pass::Background: return "background";
-    case Pass::SplashDepthLayers: return "splash_depth_layers";
-    case Pass::AggregateDepthLayers: return "aggregate_depth_layers";
-    case Pass::Smoothing: return "smoothing";
-    case Pass::Refraction: return "refraction";
-    case Pass::FoamSceneDepth: return "foam_scene_depth";
-    case Pass::FoamDepth: return "foam_depth";
-    case Pass::FoamThickness: return "foam_thickness";
-    case Pass::FoamIntensity: return "foam_intensity";
-    case Pass::FoamOcclusion: return "foam_occlusion";
-    case Pass::FoamBlur: return "foam_blur";
-    case Pass::Composite: return "composite";
+    case Pass::Background:
+      return "background";
+    case Pass::OccluderDepth:
+      return "occluder_depth";
+    case Pass::LiquidMeshDepth:
+      return "liquid_mesh_depth";
+    case Pass::SplashDepthLayers:
+      return "splash_depth_layers";
+    case Pass::AggregateDepthLayers:
+      return "aggregate_depth_layers";
+    case Pass::Smoothing:
+      return "smoothing";
+    case Pass::Refraction:
+      return "refraction";
+    case Pass::FoamSceneDepth:
+      return "foam_scene_depth";
+    case Pass::FoamDepth:
+      return "foam_depth";
+    case Pass::FoamThickness:
+      return "foam_thickness";
+    case Pass::FoamIntensity:
+      return "foam_intensity";
+    case Pass::FoamOcclusion:
+      return "foam_occlusion";
+    case Pass::FoamBlur:
+      return "foam_blur";
+    case Pass::Composite:
+      return "composite";
   }
   return "unknown";
 }
 
-bool FramePlan::runs(Pass pass) const { return std::find(passes.begin(), passes.end(), pass) != passes.end(); }
+bool FramePlan::runs(Pass pass) const {
+  return std::find(passes.begin(), passes.end(), pass) != passes.end();
+}
 
 FramePlan planFrame(const FrameContents& contents) {
   FramePlan plan;
@@ -42,13 +60,15 @@ FramePlan planFrame(const FrameContents& contents) {
   const bool layersShown = liquidShown || contents.intermediateWanted;
   const char* noLiquidOutput = "no liquid layer, composite or foam asked for (--layers)";
   decide(Pass::Background, nullptr);
+  decide(Pass::OccluderDepth, contents.occluderMeshes > 0 ? nullptr : "no occluders");
+  decide(Pass::LiquidMeshDepth, contents.liquidMesh ? nullptr : "no liquid mesh");
   decide(Pass::SplashDepthLayers, !splashes      ? "no splash particles in view"
                                   : !layersShown ? noLiquidOutput
                                                  : nullptr);
   decide(Pass::AggregateDepthLayers, !aggregates    ? "no aggregate particles in view"
                                      : !layersShown ? noLiquidOutput
                                                     : nullptr);
-  decide(Pass::Smoothing, !aggregates                      ? "no aggregate particles in view"
+  decide(Pass::Smoothing, !aggregates                    ? "no aggregate particles in view"
                           : contents.smoothing == "none" ? "liquid.smoothing is none"
                           : !layersShown                 ? noLiquidOutput
                                                          : nullptr);
@@ -56,8 +76,8 @@ FramePlan planFrame(const FrameContents& contents) {
                            : !liquidShown            ? noLiquidOutput
                                                      : nullptr);
   const char* foamReason = contents.foamParticles == 0 ? "no foam particles in view"
-                           : !foamShown ? "no foam layer or composite asked for (--layers)"
-                                        : nullptr;
+                           : !foamShown                ? "no foam layer or composite asked for (--layers)"
+                                                       : nullptr;
   for (Pass pass : {Pass::FoamSceneDepth, Pass::FoamDepth, Pass::FoamThickness, Pass::FoamIntensity,
                     Pass::FoamOcclusion, Pass::FoamBlur})
     decide(pass, foamReason);

@@ -8,8 +8,9 @@ namespace spindrift {
 
 namespace {
 
-const std::vector<std::string> kLiquidLayers = {"liquid", "liquid_splash", "liquid_class", "depth", "normal",
-                                                "thickness"};
+const std::vector<std::string> kLiquidLayers = {"liquid",    "liquid_splash", "liquid_class",  "depth",
+                                                "normal",    "thickness",     "refraction_uv", "transmittance",
+                                                "reflection"};
 const std::vector<std::string> kFoamLayers = {"foam",        "foam_spray",      "foam_surface",  "foam_bubble",
                                               "foam_shadow", "foam_irradiance", "foam_thickness"};
 
@@ -112,7 +113,8 @@ void readFoamLayers(const FoamLayerData* foam, int width, int height, const Laye
 
 void readLiquidLayers(const LiquidData* liquid, int width, int height, const LayerSelection& selection,
                       std::vector<ImageLayer>& layers) {
-  const std::vector<std::string> rgba = {"R", "G", "B", "A"}, y = {"Y"}, z = {"Z"}, xyz = {"X", "Y", "Z"};
+  const std::vector<std::string> rgba = {"R", "G", "B", "A"}, rgb = {"R", "G", "B"}, y = {"Y"}, z = {"Z"},
+                                 xyz = {"X", "Y", "Z"};
   struct Part {
     const char* name;
     const Texture2D* texture;
@@ -124,7 +126,12 @@ void readLiquidLayers(const LiquidData* liquid, int width, int height, const Lay
                         {"liquid_class", liquid ? &liquid->surfaceClass : nullptr, y, 0.0f},
                         {"depth", liquid ? &liquid->frontDepth : nullptr, z, 1e10f},
                         {"normal", liquid ? &liquid->frontNormal : nullptr, xyz, 0.0f},
-                        {"thickness", liquid ? &liquid->thickness : nullptr, y, 0.0f}};
+                        {"thickness", liquid ? &liquid->thickness : nullptr, y, 0.0f},
+                        // The refraction split for a compositor that refracts another render
+                        // (docs/python-module.md).
+                        {"refraction_uv", liquid ? &liquid->refractionUv : nullptr, rgb, 0.0f},
+                        {"transmittance", liquid ? &liquid->transmittance : nullptr, rgb, 0.0f},
+                        {"reflection", liquid ? &liquid->reflection : nullptr, rgb, 0.0f}};
   for (const Part& part : parts) {
     if (!selection.wants(part.name)) continue;
     layers.push_back(part.texture ? readLayer(*part.texture, part.name, part.channels)
