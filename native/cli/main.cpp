@@ -2,9 +2,12 @@
 // Exit codes (cli/Sequence.h, docs/reliability.md): 0 success, 1 a scene, file or rendering error (one line on
 // stderr), 2 a usage error, 3 frames failed under --keep-going, 128 + signal when stopped by SIGINT or SIGTERM.
 
+#include <algorithm>
 #include <chrono>
 #include <cstdio>
 #include <fstream>
+#include <future>
+#include <memory>
 #include <iostream>
 #include <optional>
 
@@ -28,6 +31,7 @@ struct RenderOptions {
   std::string statsPath;
   std::string frames;
   std::vector<std::string> assignments;
+  std::vector<std::string> layers;
   bool quiet = false;
   bool intermediate = false;
   bool skipExisting = false;
@@ -67,11 +71,33 @@ int runRender(const RenderOptions& options) {
   if (options.threads > 0) threadLimit.emplace(options.threads);
   Renderer renderer;
   renderer.setIntermediateLayers(options.intermediate);
+  std::vector<std::string> layers = options.layers;
+  if (!layers.empty() && !options.pngPath.empty() &&
+      std::find(layers.begin(), layers.end(), "composite") == layers.end())
+    layers.push_back("composite");  // The PNG is the composite.
+  renderer.setLayers(layers);
   if (!options.quiet) std::fprintf(stderr, "spindrift: rendering on %s\n", renderer.glRenderer().c_str());
   cli::Progress progress(int(frames.size()), options.quiet);
   nlohmann::json allStats = nlohmann::json::array();
   cli::StopSignals stopSignals;
   std::vector<int> failedFrames;
+  // Frame N's files are written on another thread while frame N+1 renders. A write's error is reported with its
+  // frame when the next frame (or the end) waits for it; a stop signal waits for the write in flight, so every
+  // file the sequence leaves is complete.
+  std::future<void> pendingWrite;
+  int pendingFrame = 0;
+  auto finishPendingWrite = [&]() -> bool {  // False: the sequence stops.
+    if (!pendingWrite.valid()) return true;
+    try {
+      pendingWrite.get();
+      return true;
+    } catch (const std::exception& error) {
+      if (frames.size() == 1) throw;
+      std::fprintf(stderr, "\nspindrift: error: frame %d: %s\n", pendingFrame, error.what());
+      failedFrames.push_back(pendingFrame);
+      return options.keepGoing;
+    }
+  };
   for (int frame : frames) {
     if (cli::StopSignals::received()) break;
     const std::vector<std::filesystem::path> outputs = cli::perFrameOutputs(
@@ -82,23 +108,32 @@ int runRender(const RenderOptions& options) {
     }
     for (const std::filesystem::path& output : outputs) cli::removeStaleTemporaries(output);
     const auto start = std::chrono::steady_clock::now();
+    std::shared_ptr<const RenderResult> result;
     try {
-      const RenderResult result = renderer.renderFrame(scene, frame);
-      if (cli::StopSignals::received()) break;  // The frame in flight is dropped before any of it is written.
-      if (!options.exrPath.empty()) writeExr(result, pathForFrame(options.exrPath, frame));
-      if (!options.pngPath.empty()) writePng(result, pathForFrame(options.pngPath, frame));
-      if (!options.statsPath.empty() && hasFramePattern(options.statsPath))
-        cli::writeTextFile(pathForFrame(options.statsPath, frame), result.stats.toJson().dump(2) + "\n");
-      allStats.push_back(result.stats.toJson());
+      result = std::make_shared<const RenderResult>(renderer.renderFrame(scene, frame));
     } catch (const std::exception& error) {
       if (frames.size() == 1) throw;
       std::fprintf(stderr, "\nspindrift: error: frame %d: %s\n", frame, error.what());
-      if (!options.keepGoing) return cli::kExitError;
+      if (!options.keepGoing) {
+        finishPendingWrite();
+        return cli::kExitError;
+      }
       failedFrames.push_back(frame);
       continue;
     }
+    if (!finishPendingWrite()) return cli::kExitError;
+    if (cli::StopSignals::received()) break;  // The frame in flight is dropped before any of it is written.
+    allStats.push_back(result->stats.toJson());
+    pendingFrame = frame;
+    pendingWrite = std::async(std::launch::async, [&options, result, frame] {
+      if (!options.exrPath.empty()) writeExr(*result, pathForFrame(options.exrPath, frame));
+      if (!options.pngPath.empty()) writePng(*result, pathForFrame(options.pngPath, frame));
+      if (!options.statsPath.empty() && hasFramePattern(options.statsPath))
+        cli::writeTextFile(pathForFrame(options.statsPath, frame), result->stats.toJson().dump(2) + "\n");
+    });
     progress.frameDone(frame, std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
   }
+  if (!finishPendingWrite()) return cli::kExitError;
   progress.finish();
   if (!options.statsPath.empty() && !hasFramePattern(options.statsPath) && !allStats.empty())
     cli::writeTextFile(options.statsPath,
@@ -152,6 +187,11 @@ int main(int argc, char** argv) {
   renderCommand->add_option("--frames", render.frames, "Frames to render: 12, 1-240, 1-240:2 or a comma list "
                                                        "(default: the scene's `frame`, else 1)");
   renderCommand->add_option("--set", render.assignments, "Override a parameter: key=value (value is JSON)");
+  renderCommand->add_option("--layers", render.layers,
+                            "Layers to compute and write, comma-separated (default: all): composite, liquid, "
+                            "liquid_splash, liquid_class, depth, normal, thickness, foam, foam_spray, "
+                            "foam_surface, foam_bubble, foam_shadow, foam_irradiance, foam_thickness")
+      ->delimiter(',');
   renderCommand->add_flag("-q,--quiet", render.quiet, "No progress output");
   renderCommand->add_flag("--intermediate", render.intermediate,
                           "Also write the depth layers before and after smoothing into the EXR");

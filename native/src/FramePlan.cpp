@@ -53,20 +53,35 @@ FramePlan planFrame(const FrameContents& contents) {
   };
   const bool splashes = contents.splashParticles > 0;
   const bool aggregates = contents.aggregateParticles > 0;
+  const bool foamShown = contents.compositeWanted || contents.foamLayersWanted;
+  const bool foamRuns = contents.foamParticles > 0 && foamShown;
+  // The foam reads the liquid's first surface, so foam that is drawn needs the liquid too.
+  const bool liquidShown = contents.compositeWanted || contents.liquidLayersWanted || foamRuns;
+  const bool layersShown = liquidShown || contents.intermediateWanted;
+  const char* noLiquidOutput = "no liquid layer, composite or foam asked for (--layers)";
   decide(Pass::Background, nullptr);
   decide(Pass::OccluderDepth, contents.occluderMeshes > 0 ? nullptr : "no occluders");
   decide(Pass::LiquidMeshDepth, contents.liquidMesh ? nullptr : "no liquid mesh");
-  decide(Pass::SplashDepthLayers, splashes ? nullptr : "no splash particles in view");
-  decide(Pass::AggregateDepthLayers, aggregates ? nullptr : "no aggregate particles in view");
+  decide(Pass::SplashDepthLayers, !splashes      ? "no splash particles in view"
+                                  : !layersShown ? noLiquidOutput
+                                                 : nullptr);
+  decide(Pass::AggregateDepthLayers, !aggregates    ? "no aggregate particles in view"
+                                     : !layersShown ? noLiquidOutput
+                                                    : nullptr);
   decide(Pass::Smoothing, !aggregates                    ? "no aggregate particles in view"
                           : contents.smoothing == "none" ? "liquid.smoothing is none"
+                          : !layersShown                 ? noLiquidOutput
                                                          : nullptr);
-  decide(Pass::Refraction, splashes || aggregates ? nullptr : "no liquid particles in view");
-  const char* noFoam = contents.foamParticles > 0 ? nullptr : "no foam particles in view";
+  decide(Pass::Refraction, !(splashes || aggregates) ? "no liquid particles in view"
+                           : !liquidShown            ? noLiquidOutput
+                                                     : nullptr);
+  const char* foamReason = contents.foamParticles == 0 ? "no foam particles in view"
+                           : !foamShown                ? "no foam layer or composite asked for (--layers)"
+                                                       : nullptr;
   for (Pass pass : {Pass::FoamSceneDepth, Pass::FoamDepth, Pass::FoamThickness, Pass::FoamIntensity,
                     Pass::FoamOcclusion, Pass::FoamBlur})
-    decide(pass, noFoam);
-  decide(Pass::Composite, nullptr);
+    decide(pass, foamReason);
+  decide(Pass::Composite, contents.compositeWanted ? nullptr : "composite not asked for (--layers)");
   return plan;
 }
 

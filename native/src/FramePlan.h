@@ -38,6 +38,11 @@ struct FrameContents {
   std::string smoothing = "plane_fit";  ///< liquid.smoothing.
   std::size_t occluderMeshes = 0;       ///< Triangle meshes of solid geometry (files and in memory).
   bool liquidMesh = false;              ///< The liquid's own surface given as triangles.
+  // What the caller reads back (`--layers`): a pass whose result reaches no wanted layer is not run.
+  bool compositeWanted = true;
+  bool liquidLayersWanted = true;   ///< Any liquid layer: liquid, depth, normal, thickness, refraction split ...
+  bool foamLayersWanted = true;     ///< Any foam layer.
+  bool intermediateWanted = false;  ///< The depth layers before and after smoothing (`--intermediate`).
 };
 
 /// Which passes a frame runs and, for each it does not, why. The wiring of the frame in one plain function,

@@ -6,6 +6,49 @@
 
 namespace spindrift {
 
+namespace {
+
+const std::vector<std::string> kLiquidLayers = {"liquid",    "liquid_splash", "liquid_class",  "depth",
+                                                "normal",    "thickness",     "refraction_uv", "transmittance",
+                                                "reflection"};
+const std::vector<std::string> kFoamLayers = {"foam",        "foam_spray",      "foam_surface",  "foam_bubble",
+                                              "foam_shadow", "foam_irradiance", "foam_thickness"};
+
+bool contains(const std::vector<std::string>& names, const std::string& name) {
+  return std::find(names.begin(), names.end(), name) != names.end();
+}
+
+}  // namespace
+
+const std::vector<std::string>& LayerSelection::allNames() {
+  static const std::vector<std::string> names = [] {
+    std::vector<std::string> all = {"composite"};
+    all.insert(all.end(), kLiquidLayers.begin(), kLiquidLayers.end());
+    all.insert(all.end(), kFoamLayers.begin(), kFoamLayers.end());
+    return all;
+  }();
+  return names;
+}
+
+LayerSelection::LayerSelection(const std::vector<std::string>& names) : names_(names) {
+  for (const std::string& name : names_)
+    if (!contains(allNames(), name)) {
+      std::string valid;
+      for (const std::string& known : allNames()) valid += (valid.empty() ? "" : ", ") + known;
+      throw Error("unknown layer \"" + name + "\" (layers: " + valid + ")");
+    }
+}
+
+bool LayerSelection::wants(const std::string& layer) const { return names_.empty() || contains(names_, layer); }
+
+bool LayerSelection::wantsLiquidLayers() const {
+  return std::any_of(kLiquidLayers.begin(), kLiquidLayers.end(), [this](const auto& name) { return wants(name); });
+}
+
+bool LayerSelection::wantsFoamLayers() const {
+  return std::any_of(kFoamLayers.begin(), kFoamLayers.end(), [this](const auto& name) { return wants(name); });
+}
+
 ImageLayer readLayer(const Texture2D& texture, const std::string& name,
                      const std::vector<std::string>& channels) {
   const std::size_t channelCount = channels.size();
@@ -44,55 +87,64 @@ ImageLayer totalThickness(const Texture2D& thicknessByType) {
 
 }  // namespace
 
-void readFoamLayers(const FoamLayerData* foam, int width, int height, std::vector<ImageLayer>& layers) {
+void readFoamLayers(const FoamLayerData* foam, int width, int height, const LayerSelection& selection,
+                    std::vector<ImageLayer>& layers) {
   const std::vector<std::string> rgba = {"R", "G", "B", "A"}, rgb = {"R", "G", "B"};
-  if (!foam) {
-    for (const char* name : {"foam", "foam_spray", "foam_surface", "foam_bubble"})
-      layers.push_back(filledLayer(width, height, name, rgba, 0.0f));
-    layers.push_back(filledLayer(width, height, "foam_shadow", rgb, 0.0f));
-    layers.push_back(filledLayer(width, height, "foam_irradiance", rgb, 0.0f));
-    layers.push_back(filledLayer(width, height, "foam_thickness", {"Y"}, 0.0f));
-    return;
+  struct Part {
+    const char* name;
+    const Texture2D* texture;
+    const std::vector<std::string>& channels;
+  };
+  const Part parts[] = {{"foam", foam ? &foam->foam : nullptr, rgba},
+                        {"foam_spray", foam ? &foam->spray : nullptr, rgba},
+                        {"foam_surface", foam ? &foam->surface : nullptr, rgba},
+                        {"foam_bubble", foam ? &foam->bubble : nullptr, rgba},
+                        {"foam_shadow", foam ? &foam->shadow : nullptr, rgb},
+                        {"foam_irradiance", foam ? &foam->irradiance : nullptr, rgb}};
+  for (const Part& part : parts) {
+    if (!selection.wants(part.name)) continue;
+    layers.push_back(part.texture ? readLayer(*part.texture, part.name, part.channels)
+                                  : filledLayer(width, height, part.name, part.channels, 0.0f));
   }
-  layers.push_back(readLayer(foam->foam, "foam", rgba));
-  layers.push_back(readLayer(foam->spray, "foam_spray", rgba));
-  layers.push_back(readLayer(foam->surface, "foam_surface", rgba));
-  layers.push_back(readLayer(foam->bubble, "foam_bubble", rgba));
-  layers.push_back(readLayer(foam->shadow, "foam_shadow", rgb));
-  layers.push_back(readLayer(foam->irradiance, "foam_irradiance", rgb));
-  layers.push_back(totalThickness(foam->thickness));
+  if (selection.wants("foam_thickness"))
+    layers.push_back(foam ? totalThickness(foam->thickness)
+                          : filledLayer(width, height, "foam_thickness", {"Y"}, 0.0f));
 }
 
-void readLiquidLayers(const LiquidData* liquid, int width, int height, std::vector<ImageLayer>& layers) {
-  const std::vector<std::string> rgba = {"R", "G", "B", "A"};
-  if (!liquid) {
-    layers.push_back(filledLayer(width, height, "liquid", rgba, 0.0f));
-    layers.push_back(filledLayer(width, height, "liquid_splash", rgba, 0.0f));
-    layers.push_back(filledLayer(width, height, "liquid_class", {"Y"}, 0.0f));
-    layers.push_back(filledLayer(width, height, "depth", {"Z"}, 1e10f));
-    layers.push_back(filledLayer(width, height, "normal", {"X", "Y", "Z"}, 0.0f));
-    layers.push_back(filledLayer(width, height, "thickness", {"Y"}, 0.0f));
-    for (const char* split : {"refraction_uv", "transmittance", "reflection"})
-      layers.push_back(filledLayer(width, height, split, {"R", "G", "B"}, 0.0f));
-    return;
+void readLiquidLayers(const LiquidData* liquid, int width, int height, const LayerSelection& selection,
+                      std::vector<ImageLayer>& layers) {
+  const std::vector<std::string> rgba = {"R", "G", "B", "A"}, rgb = {"R", "G", "B"}, y = {"Y"}, z = {"Z"},
+                                 xyz = {"X", "Y", "Z"};
+  struct Part {
+    const char* name;
+    const Texture2D* texture;
+    const std::vector<std::string>& channels;
+    float empty;  // The value where no liquid is.
+  };
+  const Part parts[] = {{"liquid", liquid ? &liquid->color : nullptr, rgba, 0.0f},
+                        {"liquid_splash", liquid ? &liquid->splashColor : nullptr, rgba, 0.0f},
+                        {"liquid_class", liquid ? &liquid->surfaceClass : nullptr, y, 0.0f},
+                        {"depth", liquid ? &liquid->frontDepth : nullptr, z, 1e10f},
+                        {"normal", liquid ? &liquid->frontNormal : nullptr, xyz, 0.0f},
+                        {"thickness", liquid ? &liquid->thickness : nullptr, y, 0.0f},
+                        // The refraction split for a compositor that refracts another render
+                        // (docs/python-module.md).
+                        {"refraction_uv", liquid ? &liquid->refractionUv : nullptr, rgb, 0.0f},
+                        {"transmittance", liquid ? &liquid->transmittance : nullptr, rgb, 0.0f},
+                        {"reflection", liquid ? &liquid->reflection : nullptr, rgb, 0.0f}};
+  for (const Part& part : parts) {
+    if (!selection.wants(part.name)) continue;
+    layers.push_back(part.texture ? readLayer(*part.texture, part.name, part.channels)
+                                  : filledLayer(width, height, part.name, part.channels, part.empty));
   }
-  layers.push_back(readLayer(liquid->color, "liquid", rgba));
-  layers.push_back(readLayer(liquid->splashColor, "liquid_splash", rgba));
-  layers.push_back(readLayer(liquid->surfaceClass, "liquid_class", {"Y"}));
-  layers.push_back(readLayer(liquid->frontDepth, "depth", {"Z"}));
-  layers.push_back(readLayer(liquid->frontNormal, "normal", {"X", "Y", "Z"}));
-  layers.push_back(readLayer(liquid->thickness, "thickness", {"Y"}));
-  // The refraction split for a compositor that refracts another render (docs/python-module.md).
-  layers.push_back(readLayer(liquid->refractionUv, "refraction_uv", {"R", "G", "B"}));
-  layers.push_back(readLayer(liquid->transmittance, "transmittance", {"R", "G", "B"}));
-  layers.push_back(readLayer(liquid->reflection, "reflection", {"R", "G", "B"}));
 }
 
-void readFrameLayers(const CompositeData& composite, const LiquidData* liquid, const FoamLayerData* foam,
-                     int width, int height, std::vector<ImageLayer>& layers) {
-  layers.push_back(readLayer(composite.color, "composite", {"R", "G", "B", "A"}));
-  readLiquidLayers(liquid, width, height, layers);
-  readFoamLayers(foam, width, height, layers);
+void readFrameLayers(const CompositeData* composite, const LiquidData* liquid, const FoamLayerData* foam,
+                     int width, int height, const LayerSelection& selection, std::vector<ImageLayer>& layers) {
+  if (composite && selection.wantsComposite())
+    layers.push_back(readLayer(composite->color, "composite", {"R", "G", "B", "A"}));
+  readLiquidLayers(liquid, width, height, selection, layers);
+  readFoamLayers(foam, width, height, selection, layers);
 }
 
 void IntermediateLayers::keep(const SurfaceLayers& layers, const std::string& name) {
@@ -104,8 +156,7 @@ void IntermediateLayers::keep(const SurfaceLayers& layers, const std::string& na
 }
 
 void IntermediateLayers::appendTo(std::vector<ImageLayer>& layers) {
-  for (ImageLayer& layer : kept_)
-    layers.push_back(std::move(layer));
+  for (ImageLayer& layer : kept_) layers.push_back(std::move(layer));
   kept_.clear();
 }
 

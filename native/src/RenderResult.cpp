@@ -53,6 +53,12 @@ nlohmann::json FrameStats::toJson() const {
       {"prepare_ms", prepareMilliseconds},
       {"readback_ms", readbackMilliseconds},
       {"total_ms", totalMilliseconds},
+      {"first_frame", firstFrame},
+      {"setup",
+       {{"ms", setup.milliseconds},
+        {"programs_compiled", setup.programsCompiled},
+        {"programs_from_cache", setup.programsFromCache},
+        {"programs_rejected", setup.programsRejected}}},
   };
 }
 

@@ -5,6 +5,7 @@
 #include <cstdint>
 #include <filesystem>
 #include <optional>
+#include <utility>
 
 #include "gl/GlThread.h"
 #include "gl/QueryGlLimits.h"
@@ -43,7 +44,8 @@ double millisecondsSince(Clock::time_point start) {
 
 // Every GL object of the frame; made, used and destroyed on the GL thread.
 struct FramePipeline {
-  explicit FramePipeline(const std::filesystem::path& shaderDirectory) : shaders(shaderDirectory) {}
+  explicit FramePipeline(const std::filesystem::path& shaderDirectory)
+      : shaders(shaderDirectory, ProgramCache::forCurrentContext()) {}
 
   ShaderLibrary shaders;
   FrameUniformBuffer frameUniforms;
@@ -113,6 +115,9 @@ struct Renderer::Impl {
   BackgroundCache backgroundCache;
   GlLimits glLimits;
   bool intermediateLayers = false;
+  LayerSelection layers;
+  bool firstFrame = true;
+  SetupStats setup;
   // In-memory backgrounds change every frame: each gets its own upload generation, apart from the cache's.
   std::uint64_t hostBackgroundGeneration = std::uint64_t(1) << 63;
 
@@ -123,16 +128,24 @@ struct Renderer::Impl {
 
 Renderer::Renderer() : Renderer(findShaderDirectory()) {}
 
-Renderer::Renderer(const std::filesystem::path& shaderDirectory) : impl_(std::make_unique<Impl>()) {
+Renderer::Renderer(const std::filesystem::path& shaderDirectory) {
+  const Clock::time_point start = Clock::now();
+  impl_ = std::make_unique<Impl>();
   impl_->glThread.run([&] {
     impl_->pipeline = std::make_unique<FramePipeline>(shaderDirectory);
     impl_->glLimits = queryGlLimits();
+    const ProgramCacheCounts& programs = impl_->pipeline->shaders.cacheCounts();
+    impl_->setup.programsCompiled = programs.compiled;
+    impl_->setup.programsFromCache = programs.loaded;
+    impl_->setup.programsRejected = programs.rejected;
   });
+  impl_->setup.milliseconds = millisecondsSince(start);
 }
 
 Renderer::~Renderer() = default;
 
 void Renderer::setIntermediateLayers(bool enabled) { impl_->intermediateLayers = enabled; }
+void Renderer::setLayers(const std::vector<std::string>& names) { impl_->layers = LayerSelection(names); }
 
 std::string Renderer::glRenderer() const { return impl_->glThread.renderer(); }
 std::string Renderer::glVersion() const { return impl_->glThread.version(); }
@@ -207,6 +220,8 @@ RenderResult Renderer::renderPrepared(const Scene& scene, const Particles& parti
   RenderResult result = emptyResult(frame, width, height, particles);
   result.stats.glRenderer = glRenderer();
   result.stats.glVersion = glVersion();
+  result.stats.firstFrame = std::exchange(impl_->firstFrame, false);
+  if (result.stats.firstFrame) result.stats.setup = impl_->setup;
   FrameStats& stats = result.stats;
 
   const Clock::time_point prepareStart = Clock::now();
@@ -229,9 +244,11 @@ RenderResult Renderer::renderPrepared(const Scene& scene, const Particles& parti
                      "background.environment " + pathForFrame(scene.background.environment, frame).string());
   stats.prepareMilliseconds = millisecondsSince(prepareStart);
   recordPreparation(liquid, foam, stats);
-  const FramePlan plan =
-      planFrame({liquid.splashes.size(), liquid.aggregates.size(), foam.instances.size(),
-                 liquidParameters.smoothing, extras.occluders.size(), extras.liquidMesh != nullptr});
+  const LayerSelection& layers = impl_->layers;
+  const FramePlan plan = planFrame({liquid.splashes.size(), liquid.aggregates.size(), foam.instances.size(),
+                                    liquidParameters.smoothing, extras.occluders.size(), extras.liquidMesh != nullptr,
+                                    layers.wantsComposite(), layers.wantsLiquidLayers(), layers.wantsFoamLayers(),
+                                    impl_->intermediateLayers});
   stats.skipped = plan.skipped;
 
   impl_->glThread.run([&] {
@@ -307,17 +324,19 @@ RenderResult Renderer::renderPrepared(const Scene& scene, const Particles& parti
                                      width, height);
       }));
     }
-    const CompositeData composite = timed(Pass::Composite, [&] {
-      return pipeline.composite.run(background, liquidLayer ? &*liquidLayer : nullptr,
-                                    foamLayer ? &*foamLayer : nullptr, width, height);
-    });
+    std::optional<CompositeData> composite;
+    if (plan.runs(Pass::Composite))
+      composite.emplace(timed(Pass::Composite, [&] {
+        return pipeline.composite.run(background, liquidLayer ? &*liquidLayer : nullptr,
+                                      foamLayer ? &*foamLayer : nullptr, width, height);
+      }));
     stats.passes = pipeline.timer.collect();
 
     const Clock::time_point readbackStart = Clock::now();
     if (liquidLayer) recordRefraction(pipeline.refraction.statistics(), stats.liquid);
     if (foamLayer) recordFoamOcclusion(pipeline.foamOcclusion.statistics(), stats.foam);
-    readFrameLayers(composite, liquidLayer ? &*liquidLayer : nullptr, foamLayer ? &*foamLayer : nullptr, width,
-                    height, result.layers);
+    readFrameLayers(composite ? &*composite : nullptr, liquidLayer ? &*liquidLayer : nullptr,
+                    foamLayer ? &*foamLayer : nullptr, width, height, layers, result.layers);
     intermediate.appendTo(result.layers);
     stats.readbackMilliseconds = millisecondsSince(readbackStart);
   });

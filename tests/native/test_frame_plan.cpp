@@ -97,7 +97,13 @@ TEST(FramePlan, EveryPassIsEitherRunOrSkippedExactlyOnce) {
     for (std::size_t aggregate : {0, 1})
       for (std::size_t foam : {0, 1})
         for (const char* smoothing : {"plane_fit", "none"}) {
-          const FramePlan plan = planFrame({splash, aggregate, foam, smoothing, splash, aggregate > 0});
+          for (int wanted = 0; wanted < 16; ++wanted) {
+          FrameContents contents{splash, aggregate, foam, smoothing, splash, aggregate > 0};
+          contents.compositeWanted = wanted & 1;
+          contents.liquidLayersWanted = wanted & 2;
+          contents.foamLayersWanted = wanted & 4;
+          contents.intermediateWanted = wanted & 8;
+          const FramePlan plan = planFrame(contents);
           std::vector<std::string> all = names(plan.passes);
           for (const SkippedPass& skipped : plan.skipped) {
             EXPECT_FALSE(skipped.reason.empty());
@@ -106,7 +112,54 @@ TEST(FramePlan, EveryPassIsEitherRunOrSkippedExactlyOnce) {
           std::sort(all.begin(), all.end());
           EXPECT_EQ(std::adjacent_find(all.begin(), all.end()), all.end());
           EXPECT_EQ(all.size(), 14u);
+          // A pass runs only when what it reads runs.
+          if (plan.runs(Pass::Smoothing)) EXPECT_TRUE(plan.runs(Pass::AggregateDepthLayers));
+          if (plan.runs(Pass::FoamSceneDepth) && (splash || aggregate)) EXPECT_TRUE(plan.runs(Pass::Refraction));
+          }
         }
+}
+
+FrameContents withLayers(bool composite, bool liquid, bool foam) {
+  FrameContents contents{100, 1000, 50, "plane_fit"};
+  contents.compositeWanted = composite;
+  contents.liquidLayersWanted = liquid;
+  contents.foamLayersWanted = foam;
+  return contents;
+}
+
+TEST(FramePlan, LiquidLayersAloneSkipFoamAndComposite) {
+  const FramePlan plan = planFrame(withLayers(false, true, false));
+  EXPECT_TRUE(plan.runs(Pass::Refraction));
+  EXPECT_TRUE(plan.runs(Pass::Smoothing));
+  EXPECT_FALSE(plan.runs(Pass::Composite));
+  EXPECT_EQ(reasonFor(plan, "composite"), "composite not asked for (--layers)");
+  for (const std::string& pass : kFoamPasses)
+    EXPECT_EQ(reasonFor(plan, pass), "no foam layer or composite asked for (--layers)");
+}
+
+TEST(FramePlan, FoamLayersAloneStillNeedTheLiquidThatCoversTheFoam) {
+  const FramePlan plan = planFrame(withLayers(false, false, true));
+  EXPECT_TRUE(plan.runs(Pass::Refraction));
+  EXPECT_TRUE(plan.runs(Pass::FoamBlur));
+  EXPECT_FALSE(plan.runs(Pass::Composite));
+}
+
+TEST(FramePlan, FoamLayersAloneWithoutFoamInViewNeedNoLiquid) {
+  FrameContents contents = withLayers(false, false, true);
+  contents.foamParticles = 0;
+  const FramePlan plan = planFrame(contents);
+  EXPECT_EQ(names(plan.passes), (std::vector<std::string>{"background"}));
+  EXPECT_EQ(reasonFor(plan, "refraction"), "no liquid layer, composite or foam asked for (--layers)");
+  EXPECT_EQ(reasonFor(plan, "aggregate_depth_layers"), "no liquid layer, composite or foam asked for (--layers)");
+}
+
+TEST(FramePlan, IntermediateLayersKeepTheDepthLayers) {
+  FrameContents contents = withLayers(false, false, false);
+  contents.intermediateWanted = true;
+  const FramePlan plan = planFrame(contents);
+  EXPECT_TRUE(plan.runs(Pass::AggregateDepthLayers));
+  EXPECT_TRUE(plan.runs(Pass::Smoothing));
+  EXPECT_FALSE(plan.runs(Pass::Refraction));
 }
 
 }  // namespace

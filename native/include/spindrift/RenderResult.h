@@ -56,6 +56,14 @@ struct FoamFrameStats {
   double aoSamplesPerPixel = 0.0;    ///< Mean SSAO samples per foam pixel, all passes together.
 };
 
+/// The cost a Renderer pays once, before its first frame: the GL context and the shader programs.
+struct SetupStats {
+  double milliseconds = 0.0;  ///< Wall time of the Renderer's construction: GL context and shader programs.
+  int programsCompiled = 0;   ///< Shader programs compiled from source.
+  int programsFromCache = 0;  ///< Loaded from the program binary cache (docs/architecture.md).
+  int programsRejected = 0;   ///< Cache files that were corrupt or refused by the driver, then rebuilt.
+};
+
 /// What a frame cost and contained; `--stats` writes it as JSON.
 struct FrameStats {
   int frame = 0;
@@ -70,6 +78,10 @@ struct FrameStats {
   double prepareMilliseconds = 0.0;      ///< CPU preparation: culling and packing.
   double readbackMilliseconds = 0.0;
   double totalMilliseconds = 0.0;  ///< Wall time of the whole frame, loading included.
+  /// The first frame of a Renderer also carries its one-time setup (not part of totalMilliseconds); later
+  /// frames carry zeros, so a sequence's per-frame cost is its frames' totals.
+  bool firstFrame = true;
+  SetupStats setup;
   std::vector<PassTiming> passes;
   std::vector<SkippedPass> skipped;
 

@@ -3,6 +3,7 @@
 #include <filesystem>
 #include <memory>
 #include <string>
+#include <vector>
 
 #include "spindrift/FrameInputs.h"
 #include "spindrift/Limits.h"
@@ -37,6 +38,10 @@ class Renderer {
   /// Also return the intermediate textures (the four depth layers before and after smoothing) as layers
   /// named like "aggregate_front_depth_smoothed", for documentation and debugging. Off by default.
   void setIntermediateLayers(bool enabled);
+  /// Reads back only these layers (names as in the EXR: composite, liquid, depth, foam, ...); empty, the
+  /// default, reads all. Passes whose results reach no chosen layer are not run (`FrameStats::skipped` says
+  /// so). Throws Error naming the valid layers when a name is unknown.
+  void setLayers(const std::vector<std::string>& names);
 
   /// GL_RENDERER and GL_VERSION of the renderer's context, e.g. "llvmpipe (LLVM 15.0.6, 256 bits)".
   std::string glRenderer() const;
