@@ -18,10 +18,12 @@
 #include "passes/FoamSceneDepthPass.h"
 #include "passes/FoamThicknessPass.h"
 #include "passes/FrameUniforms.h"
+#include "passes/RaymarchSurface.h"
 #include "passes/RefractionPass.h"
 #include "prep/BackgroundCache.h"
 #include "prep/FoamPreparation.h"
 #include "prep/LiquidPreparation.h"
+#include "prep/RaymarchPreparation.h"
 #include "Readback.h"
 
 namespace spindrift {
@@ -43,6 +45,7 @@ struct FramePipeline {
   EllipsoidImpostorPass aggregateImpostors{shaders};
   DepthSmoothingPass frontSmoothing{shaders};
   DepthSmoothingPass backSmoothing{shaders};
+  RaymarchSurface raymarch{shaders};
   RefractionPass refraction{shaders};
   FoamSceneDepthPass foamSceneDepth{shaders};
   FoamDepthPass foamDepth{shaders};
@@ -124,6 +127,9 @@ RenderResult Renderer::renderParticles(const Scene& scene, const Particles& part
   const LiquidPreparation liquid = prepareLiquid(particles, camera, liquidParameters);
   const float radius = typicalLiquidRadius(particles);
   const FoamPreparation foam = prepareFoam(particles, camera, foamParameters);
+  const bool raymarched = liquidParameters.surface == "raymarch";
+  std::optional<RaymarchPreparation> raymarch;
+  if (raymarched) raymarch.emplace(prepareRaymarch(particles, camera, radius, liquidParameters));
   const BackgroundImages backgroundImages = impl_->backgroundCache.load(scene.background, frame, width, height);
   stats.prepareMilliseconds = millisecondsSince(prepareStart);
   stats.liquid.splashParticles = liquid.splashes.size();
@@ -175,7 +181,8 @@ RenderResult Renderer::renderParticles(const Scene& scene, const Particles& part
       keep(*aggregates, "aggregate");
       if (liquidParameters.smoothing != "none") {
         ScopedPassTimer timed(timer, "smoothing");
-        const DepthLayer front = pipeline.frontSmoothing.run(aggregates->front, radius, false, liquidParameters, width, height);
+        // A ray-marched surface replaces the front layer: only the back layer is smoothed then.
+        const DepthLayer front = raymarched ? aggregates->front : pipeline.frontSmoothing.run(aggregates->front, radius, false, liquidParameters, width, height);
         const DepthLayer back = pipeline.backSmoothing.run(aggregates->back, radius, true, liquidParameters, width, height);
         aggregates.emplace(SurfaceLayers{front, back});
         keep(*aggregates, "aggregate_smoothed");
@@ -185,6 +192,13 @@ RenderResult Renderer::renderParticles(const Scene& scene, const Particles& part
     } else {
       skip("aggregate_depth_layers", "no aggregate particles in view");
       skip("smoothing", "no aggregate particles in view");
+    }
+    if (raymarch && (splashes || aggregates)) {
+      RaymarchSurface& surface = pipeline.raymarch;
+      replaceFrontLayers(surface.run(*raymarch, splashes, aggregates, *background, liquidParameters, timer, width, height), splashes, aggregates);
+      if (impl_->intermediateLayers)
+        for (ImageLayer& layer : surface.intermediateLayers()) intermediate.push_back(std::move(layer));
+      stats.raymarch = surface.statistics();
     }
     std::optional<LiquidData> liquidLayer;
     if (splashes || aggregates) {

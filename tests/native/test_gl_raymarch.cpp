@@ -1,0 +1,163 @@
+// The ray-marched surface (liquid.surface = raymarch, docs/raymarch.md) on llvmpipe-sized scenes: the binary
+// density grid against a brute-force CPU density, adaptive against uniform stepping, tile resolutions of flat
+// and splashing water, a one-particle-thick sheet, a lone particle against the analytic sphere, and degenerate
+// frames.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <random>
+
+#include "LiquidTestScenes.h"
+#include "RaymarchGridCheck.h"
+
+using namespace spindrift;
+using liquid_test::at;
+using liquid_test::block;
+using liquid_test::particlesOf;
+
+namespace {
+
+constexpr float kRadius = 0.05f;  // particle radius r; the blocks' spacing is r, as in Mantaflow's caches
+constexpr int kWidth = 96, kHeight = 72;
+
+Scene raymarchScene(const glm::vec3& eye, const glm::vec3& target) {
+  Scene scene;
+  scene.camera = Camera::lookAt(kWidth, kHeight, 40.0f, eye, target, {0, 0, 1});
+  scene.background.color = {0.2f, 0.3f, 0.4f};
+  scene.parameters.liquid.surface = "raymarch";
+  return scene;
+}
+
+std::vector<glm::vec3> randomPoints(std::size_t count, const glm::vec3& low, const glm::vec3& high, unsigned seed) {
+  std::mt19937 generator(seed);
+  std::uniform_real_distribution<float> unit(0.0f, 1.0f);
+  std::vector<glm::vec3> points;
+  for (std::size_t i = 0; i < count; ++i)
+    points.push_back(low + (high - low) * glm::vec3(unit(generator), unit(generator), unit(generator)));
+  return points;
+}
+
+// A pool 1 x 1 x 0.15 and droplets above it, so that rays pass splashes on their way to the body.
+std::vector<glm::vec3> poolWithDroplets() {
+  std::vector<glm::vec3> positions = block({-0.5f, -0.5f, -0.15f}, {0.5f, 0.5f, 0.0f}, kRadius);
+  for (const glm::vec3& p : randomPoints(60, {-0.4f, -0.4f, 0.15f}, {0.4f, 0.4f, 0.6f}, 7)) positions.push_back(p);
+  return positions;
+}
+
+RenderResult render(const Scene& scene, const std::vector<glm::vec3>& positions) {
+  return liquid_test::renderer().renderParticles(scene, particlesOf(positions, kRadius), 1);
+}
+
+float depthAt(const RenderResult& result, int column, int row) {
+  return at(*result.layer("depth"), result.width, column, row, 0);
+}
+
+std::vector<glm::vec4> withRadius(const std::vector<glm::vec3>& positions) {
+  std::vector<glm::vec4> particles;
+  for (const glm::vec3& p : positions) particles.emplace_back(p, kRadius);
+  return particles;
+}
+
+}  // namespace
+
+TEST(GLRaymarch, DensityGridIsConservativeOnRandomParticles) {
+  LiquidParameters parameters;
+  const float h = parameters.raymarch_smoothing_radius * kRadius;
+  // Sparse enough that many cells hold one or two particles, where a too-small kernel weight shows.
+  const auto particles = withRadius(randomPoints(1500, glm::vec3(0.0f), glm::vec3(1.2f), 3));
+  const raymarch_test::GridCheck check = raymarch_test::checkDensityGrid(particles, h, parameters);
+  EXPECT_GT(check.crossingCells, 500u) << "the iso-surface crosses many cells";
+  EXPECT_LT(check.markedCells, check.cells) << "some cells are empty, else the grid skips nothing";
+  EXPECT_EQ(check.missedCells, 0u) << "a cell marked 0 holds density at or above the iso-value";
+
+  // The check has teeth: with b^3 below the iso-value, lone particles near a cell's corner are missed.
+  parameters.raymarch_kernel_side = 0.5f;
+  EXPECT_GT(raymarch_test::checkDensityGrid(particles, h, parameters).missedCells, 0u);
+}
+
+TEST(GLRaymarch, AdaptiveSteppingFindsTheUniformSurfaceInFewerSteps) {
+  Scene scene = raymarchScene({0.0f, -1.6f, 1.0f}, {0.0f, 0.0f, 0.1f});
+  scene.parameters.liquid.raymarch_resolution = "full";
+  const std::vector<glm::vec3> positions = poolWithDroplets();
+  scene.parameters.liquid.raymarch_stepping = "uniform";
+  const RenderResult uniform = render(scene, positions);
+  scene.parameters.liquid.raymarch_stepping = "adaptive";
+  const RenderResult adaptive = render(scene, positions);
+
+  int both = 0, onlyOne = 0, far = 0;
+  for (int row = 0; row < kHeight; ++row)
+    for (int column = 0; column < kWidth; ++column) {
+      const float a = depthAt(adaptive, column, row), u = depthAt(uniform, column, row);
+      const bool hitA = a < 1e9f, hitU = u < 1e9f;
+      if (hitA != hitU) ++onlyOne;
+      if (!hitA || !hitU) continue;
+      ++both;
+      far += std::abs(a - u) > 0.25f * kRadius;
+    }
+  ASSERT_GT(both, 2000);
+  // The adaptive ray jumps to D_agg after max_skip_steps, and a uniform step may pass the grazing edge of a
+  // droplet: a few pixels may differ, no more.
+  EXPECT_LT(far, both / 100) << "pixels whose depths differ by more than 0.25 r";
+  EXPECT_LT(onlyOne, both / 100) << "pixels where only one of the two found the surface";
+  const RaymarchFrameStats& a = adaptive.stats.raymarch;
+  const RaymarchFrameStats& u = uniform.stats.raymarch;
+  ASSERT_TRUE(a.enabled && u.enabled);
+  EXPECT_EQ(a.raysCast, u.raysCast) << "full resolution: the same rays";
+  EXPECT_LT(a.totalSteps * 2, u.totalSteps) << "adaptive " << a.averageStepsPerRay << " steps per ray, uniform "
+                                            << u.averageStepsPerRay;
+}
+
+TEST(GLRaymarch, FlatWaterUsesLowerTileResolutionsThanASplash) {
+  // The same camera over a flat pool and over a rough, splashing one: both cover the whole frame.
+  const Scene scene = raymarchScene({0.0f, -0.5f, 1.0f}, {0.0f, 0.0f, 0.0f});
+  const RenderResult flat = render(scene, block({-1.0f, -1.0f, -0.1f}, {1.0f, 1.0f, 0.0f}, kRadius));
+  std::vector<glm::vec3> rough = block({-1.0f, -1.0f, -0.1f}, {1.0f, 1.0f, 0.0f}, kRadius);
+  for (const glm::vec3& p : randomPoints(1500, {-1.0f, -1.0f, 0.0f}, {1.0f, 1.0f, 0.25f}, 11)) rough.push_back(p);
+  const RenderResult splash = render(scene, rough);
+  auto raysPerLiquidTile = [](const RaymarchFrameStats& stats) {
+    const double tiles = double(stats.tiles[0] + stats.tiles[1] + stats.tiles[2]);
+    return (stats.tiles[0] + stats.tiles[1] / 4.0 + stats.tiles[2] / 16.0) / tiles;
+  };
+  const RaymarchFrameStats& f = flat.stats.raymarch;
+  const RaymarchFrameStats& s = splash.stats.raymarch;
+  EXPECT_EQ(f.tiles[3], 0u) << "the pool fills the frame";
+  EXPECT_GT(f.tiles[2], f.tiles[0]) << "flat water: more quarter- than full-resolution tiles";
+  EXPECT_GT(s.tiles[0], f.tiles[0]);
+  EXPECT_LT(raysPerLiquidTile(f), 0.5 * raysPerLiquidTile(s));
+  EXPECT_LT(f.raysCast, s.raysCast);
+}
+
+TEST(GLRaymarch, LoneParticleIsASphereOfItsRadius) {
+  // liquid.raymarch_iso = 0.42 with h = 2 r puts a lone particle's surface at r: (1 - 0.5^2)^3 = 0.42.
+  Scene scene = raymarchScene({0.0f, -1.0f, 0.0f}, {0.0f, 0.0f, 0.0f});
+  liquid_test::renderer().setIntermediateLayers(true);
+  const RenderResult result = render(scene, {glm::vec3(0.0f)});
+  liquid_test::renderer().setIntermediateLayers(false);
+  liquid_test::expectAllChannelsFinite(result);
+  for (const char* layer : {"raymarch_steps", "raymarch_ray_spacing", "raymarch_entry_depth"})
+    EXPECT_NE(result.layer(layer), nullptr) << layer;
+  // The pixel centres around the image centre look straight at the particle: depth 1 - r, within the
+  // bisection's resolution (step / 2^6) plus the iso-value's rounding.
+  double worst = 0.0;
+  for (int row = kHeight / 2 - 1; row <= kHeight / 2; ++row)
+    for (int column = kWidth / 2 - 1; column <= kWidth / 2; ++column)
+      worst = std::max(worst, std::abs(double(depthAt(result, column, row)) - (1.0 - kRadius)));
+  EXPECT_LT(worst, 0.03 * kRadius);
+  // D_all is the drawn sphere of radius r, and the iso-surface lies 0.2 % outside it: every ray hits.
+  EXPECT_GT(result.stats.raymarch.raysCast, 100u);
+  EXPECT_EQ(result.stats.raymarch.hits, result.stats.raymarch.raysCast);
+}
+
+TEST(GLRaymarch, EmptyFrameAndCulledParticlesRenderWithoutNaN) {
+  const Scene scene = raymarchScene({0.0f, -1.0f, 0.0f}, {0.0f, 0.0f, 0.0f});
+  liquid_test::renderer().setIntermediateLayers(true);
+  const RenderResult empty = render(scene, {});
+  const RenderResult behind = render(scene, {glm::vec3(0.0f, -3.0f, 0.0f)});
+  liquid_test::renderer().setIntermediateLayers(false);
+  for (const RenderResult* result : {&empty, &behind}) {
+    liquid_test::expectAllChannelsFinite(*result);
+    EXPECT_EQ(result->stats.raymarch.raysCast, 0u);
+    const ImageLayer& depth = *result->layer("depth");
+    for (float value : depth.pixels) ASSERT_EQ(value, 1e10f);
+  }
+}
