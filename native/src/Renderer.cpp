@@ -182,7 +182,9 @@ RenderResult Renderer::renderParticles(const Scene& scene, const Particles& part
       if (liquidParameters.smoothing != "none") {
         ScopedPassTimer timed(timer, "smoothing");
         // A ray-marched surface replaces the front layer: only the back layer is smoothed then.
-        const DepthLayer front = raymarched ? aggregates->front : pipeline.frontSmoothing.run(aggregates->front, radius, false, liquidParameters, width, height);
+        const DepthLayer front =
+            raymarched ? aggregates->front
+                       : pipeline.frontSmoothing.run(aggregates->front, radius, false, liquidParameters, width, height);
         const DepthLayer back = pipeline.backSmoothing.run(aggregates->back, radius, true, liquidParameters, width, height);
         aggregates.emplace(SurfaceLayers{front, back});
         keep(*aggregates, "aggregate_smoothed");
@@ -195,7 +197,9 @@ RenderResult Renderer::renderParticles(const Scene& scene, const Particles& part
     }
     if (raymarch && (splashes || aggregates)) {
       RaymarchSurface& surface = pipeline.raymarch;
-      replaceFrontLayers(surface.run(*raymarch, splashes, aggregates, *background, liquidParameters, timer, width, height), splashes, aggregates);
+      replaceFrontLayers(
+          surface.run(*raymarch, splashes, aggregates, *background, liquidParameters, timer, width, height),
+          splashes, aggregates);
       if (impl_->intermediateLayers)
         for (ImageLayer& layer : surface.intermediateLayers()) intermediate.push_back(std::move(layer));
       stats.raymarch = surface.statistics();

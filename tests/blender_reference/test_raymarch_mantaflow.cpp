@@ -1,5 +1,6 @@
-// The ray-marched surface's binary density grid on real Mantaflow particles (the fixture's tiny bake): no cell
-// the GPU marks empty may hold density at or above the iso-value (brute-force CPU check, RaymarchGridCheck.h).
+// The ray-marched surface's binary density grid on real Mantaflow particles (the fixture's tiny bake): no
+// cell the GPU marks empty may hold density at or above the iso-value (brute-force CPU check,
+// RaymarchGridCheck.h).
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -21,7 +22,8 @@ float cacheCellSize(const nlohmann::json& domain) {
   }
   const glm::vec3 size = (high - low) * glm::abs(test::vec3(domain.at("scale")));
   const nlohmann::json& resolution = domain.at("domain_resolution");
-  const int longest = std::max({resolution.at(0).get<int>(), resolution.at(1).get<int>(), resolution.at(2).get<int>()});
+  const int longest =
+      std::max({resolution.at(0).get<int>(), resolution.at(1).get<int>(), resolution.at(2).get<int>()});
   return std::max({size.x, size.y, size.z}) / float(longest);
 }
 
@@ -35,10 +37,11 @@ TEST(RaymarchMantaflow, DensityGridIsConservative) {
       const ParticleFileData data = readVdbPoints(record.at("files").at("liquid").get<std::string>(), "");
       if (data.positions.empty()) continue;
       std::vector<glm::vec4> particles;
-      for (const glm::vec3& p : data.positions) particles.emplace_back(p, radius);
+      for (const glm::vec3& p : data.positions)
+        particles.emplace_back(p, radius);
       LiquidParameters parameters;
-      const raymarch_test::GridCheck check =
-          raymarch_test::checkDensityGrid(particles, parameters.raymarch_smoothing_radius * radius, parameters);
+      const raymarch_test::GridCheck check = raymarch_test::checkDensityGrid(
+          particles, parameters.raymarch_smoothing_radius * radius, parameters);
       EXPECT_GT(check.crossingCells, 0u);
       EXPECT_LT(check.markedCells, check.cells);
       EXPECT_EQ(check.missedCells, 0u) << "cells marked 0 that hold density at or above the iso-value";

@@ -37,7 +37,8 @@ class CpuDensity {
     }
     size_ = glm::ivec3(glm::floor((high - low_) / h)) + 1;
     buckets_.resize(std::size_t(size_.x) * size_.y * size_.z);
-    for (const glm::vec4& p : particles) buckets_[index(bucketOf(glm::vec3(p)))].push_back(glm::vec3(p));
+    for (const glm::vec4& p : particles)
+      buckets_[index(bucketOf(glm::vec3(p)))].push_back(glm::vec3(p));
   }
   float operator()(const glm::vec3& x) const {
     const glm::ivec3 centre = bucketOf(x);
@@ -46,7 +47,8 @@ class CpuDensity {
       for (int dy = -1; dy <= 1; ++dy)
         for (int dx = -1; dx <= 1; ++dx) {
           const glm::ivec3 b = centre + glm::ivec3(dx, dy, dz);
-          if (glm::any(glm::lessThan(b, glm::ivec3(0))) || glm::any(glm::greaterThanEqual(b, size_))) continue;
+          if (glm::any(glm::lessThan(b, glm::ivec3(0))) || glm::any(glm::greaterThanEqual(b, size_)))
+            continue;
           for (const glm::vec3& p : buckets_[index(b)]) {
             const float q2 = glm::dot(x - p, x - p) / (h_ * h_);
             if (q2 < 1.0f) density += (1.0f - q2) * (1.0f - q2) * (1.0f - q2);

@@ -57,7 +57,8 @@ std::vector<std::uint8_t> DensityMaskPass::readCells() const {
     for (int y = 0; y < cells.y; ++y)
       for (int x = 0; x < cells.x; ++x) {
         const std::uint8_t bits = packed[(std::size_t(z / 2) * texels_.y + y / 2) * texels_.x + x / 2];
-        unpacked[(std::size_t(z) * cells.y + y) * cells.x + x] = (bits >> ((x & 1) | (y & 1) << 1 | (z & 1) << 2)) & 1;
+        unpacked[(std::size_t(z) * cells.y + y) * cells.x + x] =
+            (bits >> ((x & 1) | (y & 1) << 1 | (z & 1) << 2)) & 1;
       }
   return unpacked;
 }

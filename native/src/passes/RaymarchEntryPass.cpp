@@ -6,9 +6,9 @@ RaymarchEntryPass::RaymarchEntryPass(const ShaderLibrary& shaders)
     : program_(shaders.program({"raymarch_entry.comp"})), bilateral_(shaders), normals_(shaders) {}
 
 RaymarchEntryData RaymarchEntryPass::run(const std::optional<SurfaceLayers>& splashes,
-                                         const std::optional<SurfaceLayers>& aggregates, const DepthLayer& emptyLayer,
-                                         float particleRadius, const LiquidParameters& parameters, int width,
-                                         int height) {
+                                         const std::optional<SurfaceLayers>& aggregates,
+                                         const DepthLayer& emptyLayer, float particleRadius,
+                                         const LiquidParameters& parameters, int width, int height) {
   ensureTexture(allDepth_, GL_R32F, width, height);
   ensureTexture(allNormal_, GL_RGBA16F, width, height);
   const DepthLayer& splashFront = splashes ? splashes->front : emptyLayer;
@@ -25,7 +25,8 @@ RaymarchEntryData RaymarchEntryPass::run(const std::optional<SurfaceLayers>& spl
   checkGlError("finding where the rays enter (D_all)");
 
   smoothingTargets_.resize(width, height);
-  const Texture2D& smoothed = bilateral_.run(allDepth_, particleRadius, parameters, smoothingTargets_).eyeDepth;
+  const Texture2D& smoothed =
+      bilateral_.run(allDepth_, particleRadius, parameters, smoothingTargets_).eyeDepth;
   const Texture2D& normal = normals_.run(smoothed, allNormal_, false, width, height).normal;
   return {allDepth_, normal};
 }

@@ -24,9 +24,9 @@ class RaymarchEntryPass {
  public:
   explicit RaymarchEntryPass(const ShaderLibrary& shaders);
   /// `emptyLayer` stands in for an absent splash or aggregate set.
-  RaymarchEntryData run(const std::optional<SurfaceLayers>& splashes, const std::optional<SurfaceLayers>& aggregates,
-                        const DepthLayer& emptyLayer, float particleRadius, const LiquidParameters& parameters,
-                        int width, int height);
+  RaymarchEntryData run(const std::optional<SurfaceLayers>& splashes,
+                        const std::optional<SurfaceLayers>& aggregates, const DepthLayer& emptyLayer,
+                        float particleRadius, const LiquidParameters& parameters, int width, int height);
 
  private:
   ProgramObject program_;

@@ -8,11 +8,14 @@ namespace {
 constexpr GLuint kGroupSize = 64;
 constexpr std::size_t kBlockCells = 1024;  // cells summed per invocation of the scan (raymarch_grid.comp)
 
-GLuint groupsFor(std::size_t invocations) { return GLuint((invocations + kGroupSize - 1) / kGroupSize); }
+GLuint groupsFor(std::size_t invocations) {
+  return GLuint((invocations + kGroupSize - 1) / kGroupSize);
+}
 
 BufferObject storageBuffer(std::size_t bytes) {
   BufferObject buffer = createBuffer();
-  glNamedBufferStorage(buffer.id(), GLsizeiptr(std::max<std::size_t>(bytes, 16)), nullptr, GL_DYNAMIC_STORAGE_BIT);
+  glNamedBufferStorage(buffer.id(), GLsizeiptr(std::max<std::size_t>(bytes, 16)), nullptr,
+                       GL_DYNAMIC_STORAGE_BIT);
   return buffer;
 }
 
@@ -58,9 +61,10 @@ RaymarchGridData RaymarchGridPass::run(const RaymarchPreparation& preparation) {
     glNamedBufferSubData(particles_.id(), 0, GLsizeiptr(particleCount * sizeof(glm::vec4)),
                          preparation.particles.data());
   const std::uint32_t zero = 0;
-  glClearNamedBufferSubData(cellCounts_.id(), GL_R32UI, 0, GLsizeiptr(cells * sizeof(std::uint32_t)), GL_RED_INTEGER,
-                            GL_UNSIGNED_INT, &zero);
-  RaymarchGridData data{cellCounts_, cellStarts_, sortedParticles_, preparation.grid, preparation.smoothingRadius};
+  glClearNamedBufferSubData(cellCounts_.id(), GL_R32UI, 0, GLsizeiptr(cells * sizeof(std::uint32_t)),
+                            GL_RED_INTEGER, GL_UNSIGNED_INT, &zero);
+  RaymarchGridData data{cellCounts_, cellStarts_, sortedParticles_, preparation.grid,
+                        preparation.smoothingRadius};
   const GLuint program = program_.id();
   glUseProgram(program);
   bindRaymarchGrid(program, data);

@@ -22,7 +22,8 @@ RaymarchSamples RaymarchPass::run(const RaymarchInputs& in, float particleRadius
                              in.splashBack.eyeDepth.id(), in.aggregateBack.eyeDepth.id(),
                              in.background.eyeDepth.id(), in.entry.screenNormal.id(),
                              in.tiles.levels.id(),        in.mask.mask.id()};
-  for (GLuint unit = 0; unit < 8; ++unit) glBindTextureUnit(unit, textures[unit]);
+  for (GLuint unit = 0; unit < 8; ++unit)
+    glBindTextureUnit(unit, textures[unit]);
   glBindImageTexture(0, depth_.id(), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_R32F);
   glBindImageTexture(1, normal_.id(), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA16F);
   glBindImageTexture(2, steps_.id(), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_R32F);
@@ -36,13 +37,15 @@ RaymarchSamples RaymarchPass::run(const RaymarchInputs& in, float particleRadius
   // The iso-surface of several particles bulges out of their drawn shapes by up to h - r: rays start there.
   glUniform1f(uniformLocation(program, "entryBackoff"), std::max(smoothingRadius - particleRadius, 0.0f));
   glUniform1f(uniformLocation(program, "particleRadius"), particleRadius);
-  glUniform1f(uniformLocation(program, "distanceWeight"), parameters.raymarch_normal_distance_weight / particleRadius);
+  glUniform1f(uniformLocation(program, "distanceWeight"),
+              parameters.raymarch_normal_distance_weight / particleRadius);
   glUniform1f(uniformLocation(program, "sizeWeight"), parameters.raymarch_normal_size_weight);
   glUniform1i(uniformLocation(program, "tileSize"), in.tiles.tileSize);
   glUniform1i(uniformLocation(program, "hasSplash"), in.hasSplash ? 1 : 0);
   glUniform1i(uniformLocation(program, "hasAggregate"), in.hasAggregate ? 1 : 0);
   glDispatchCompute(GLuint((width + 7) / 8), GLuint((height + 7) / 8), 1);
-  glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_STORAGE_BARRIER_BIT | GL_TEXTURE_UPDATE_BARRIER_BIT);
+  glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_STORAGE_BARRIER_BIT |
+                  GL_TEXTURE_UPDATE_BARRIER_BIT);
   checkGlError("ray marching the iso-surface");
   return {depth_, normal_, steps_};
 }

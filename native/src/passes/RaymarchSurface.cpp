@@ -34,8 +34,9 @@ const DepthLayer& RaymarchSurface::emptyLayer(int width, int height) {
 
 MarchedFronts RaymarchSurface::run(const RaymarchPreparation& preparation,
                                    const std::optional<SurfaceLayers>& splashes,
-                                   const std::optional<SurfaceLayers>& aggregates, const BackgroundData& background,
-                                   const LiquidParameters& parameters, PassTimer& timer, int width, int height) {
+                                   const std::optional<SurfaceLayers>& aggregates,
+                                   const BackgroundData& background, const LiquidParameters& parameters,
+                                   PassTimer& timer, int width, int height) {
   const float radius = preparation.particleRadius;
   const DepthLayer& empty = emptyLayer(width, height);
   std::optional<RaymarchGridData> grid;
@@ -83,8 +84,8 @@ MarchedFronts RaymarchSurface::run(const RaymarchPreparation& preparation,
   lastStats_.densityParticles = preparation.particles.size();
   lastStats_.gridCells = preparation.grid.cellCount();
   lastStats_.adaptiveStepping = parameters.raymarch_stepping == "adaptive";
-  return upsample_.run(*samples, *tiles, splashes ? splashes->front : empty, aggregates ? aggregates->front : empty,
-                       width, height);
+  return upsample_.run(*samples, *tiles, splashes ? splashes->front : empty,
+                       aggregates ? aggregates->front : empty, width, height);
 }
 
 RaymarchFrameStats RaymarchSurface::statistics() const {
@@ -97,7 +98,8 @@ RaymarchFrameStats RaymarchSurface::statistics() const {
   stats.totalSteps = counters.steps;
   stats.averageStepsPerRay = counters.rays ? double(counters.steps) / counters.rays : 0.0;
   stats.densityEvaluationsPerRay = counters.rays ? double(counters.densities) / counters.rays : 0.0;
-  for (int i = 0; i < 4; ++i) stats.tiles[i] = histogram[i];
+  for (int i = 0; i < 4; ++i)
+    stats.tiles[i] = histogram[i];
   return stats;
 }
 
@@ -110,7 +112,8 @@ std::vector<ImageLayer> RaymarchSurface::intermediateLayers() const {
   const Texture2D& levels = *lastLevels_;
   std::vector<std::uint8_t> tileLevels(std::size_t(levels.width) * levels.height);
   glPixelStorei(GL_PACK_ALIGNMENT, 1);
-  glGetTextureImage(levels.id(), 0, GL_RED_INTEGER, GL_UNSIGNED_BYTE, GLsizei(tileLevels.size()), tileLevels.data());
+  glGetTextureImage(levels.id(), 0, GL_RED_INTEGER, GL_UNSIGNED_BYTE, GLsizei(tileLevels.size()),
+                    tileLevels.data());
   checkGlError("reading the ray-marching tiles");
   const int width = lastSteps_->width, height = lastSteps_->height;
   ImageLayer spacing{"raymarch_ray_spacing", {"Y"}, std::vector<float>(std::size_t(width) * height)};

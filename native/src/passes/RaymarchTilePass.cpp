@@ -4,7 +4,9 @@
 
 namespace spindrift {
 
-int raymarchTileSize(const LiquidParameters& parameters) { return (std::max(parameters.raymarch_tile_size, 4) + 3) / 4 * 4; }
+int raymarchTileSize(const LiquidParameters& parameters) {
+  return (std::max(parameters.raymarch_tile_size, 4) + 3) / 4 * 4;
+}
 
 RaymarchTilePass::RaymarchTilePass(const ShaderLibrary& shaders)
     : program_(shaders.program({"raymarch_tiles.comp"})), histogram_(createBuffer()) {
@@ -21,7 +23,10 @@ RaymarchTileData RaymarchTilePass::run(const RaymarchEntryData& entry, float par
   const GLuint program = program_.id();
   glUseProgram(program);
   const std::string& resolution = parameters.raymarch_resolution;
-  const int forcedLevel = resolution == "full" ? 0 : resolution == "half" ? 1 : resolution == "quarter" ? 2 : -1;
+  const int forcedLevel = resolution == "full"      ? 0
+                          : resolution == "half"    ? 1
+                          : resolution == "quarter" ? 2
+                                                    : -1;
   const float squaredRadius = particleRadius * particleRadius;
   const float low = parameters.raymarch_variance_low, high = std::max(low, parameters.raymarch_variance_high);
   glUniform1i(uniformLocation(program, "tileSize"), tileSize);

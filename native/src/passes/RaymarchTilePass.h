@@ -24,8 +24,8 @@ using TileHistogram = std::array<std::uint32_t, 4>;
 class RaymarchTilePass {
  public:
   explicit RaymarchTilePass(const ShaderLibrary& shaders);
-  RaymarchTileData run(const RaymarchEntryData& entry, float particleRadius, const LiquidParameters& parameters,
-                       int width, int height);
+  RaymarchTileData run(const RaymarchEntryData& entry, float particleRadius,
+                       const LiquidParameters& parameters, int width, int height);
   /// How many tiles of the last run got each level (waits for the GPU).
   TileHistogram histogram() const;
 

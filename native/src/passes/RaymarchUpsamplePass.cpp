@@ -6,18 +6,19 @@ RaymarchUpsamplePass::RaymarchUpsamplePass(const ShaderLibrary& shaders)
     : program_(shaders.program({"raymarch_upsample.comp"})) {}
 
 MarchedFronts RaymarchUpsamplePass::run(const RaymarchSamples& samples, const RaymarchTileData& tiles,
-                                        const DepthLayer& splashFront, const DepthLayer& aggregateFront, int width,
-                                        int height) {
+                                        const DepthLayer& splashFront, const DepthLayer& aggregateFront,
+                                        int width, int height) {
   ensureTexture(splashDepth_, GL_R32F, width, height);
   ensureTexture(splashNormal_, GL_RGBA16F, width, height);
   ensureTexture(aggregateDepth_, GL_R32F, width, height);
   ensureTexture(aggregateNormal_, GL_RGBA16F, width, height);
   const GLuint program = program_.id();
   glUseProgram(program);
-  const GLuint textures[] = {samples.depth.id(),       samples.normal.id(),          tiles.levels.id(),
-                             splashFront.eyeDepth.id(), splashFront.normal.id(),      aggregateFront.eyeDepth.id(),
+  const GLuint textures[] = {samples.depth.id(),        samples.normal.id(),     tiles.levels.id(),
+                             splashFront.eyeDepth.id(), splashFront.normal.id(), aggregateFront.eyeDepth.id(),
                              aggregateFront.normal.id()};
-  for (GLuint unit = 0; unit < 7; ++unit) glBindTextureUnit(unit, textures[unit]);
+  for (GLuint unit = 0; unit < 7; ++unit)
+    glBindTextureUnit(unit, textures[unit]);
   glBindImageTexture(0, splashDepth_.id(), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_R32F);
   glBindImageTexture(1, splashNormal_.id(), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA16F);
   glBindImageTexture(2, aggregateDepth_.id(), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_R32F);

@@ -19,9 +19,10 @@ struct MarchedFronts {
 class RaymarchUpsamplePass {
  public:
   explicit RaymarchUpsamplePass(const ShaderLibrary& shaders);
-  /// `splashFront` and `aggregateFront` are the impostor layers: kept where they lie behind the marched surface.
-  MarchedFronts run(const RaymarchSamples& samples, const RaymarchTileData& tiles, const DepthLayer& splashFront,
-                    const DepthLayer& aggregateFront, int width, int height);
+  /// `splashFront` and `aggregateFront` are the impostor layers: kept where they lie behind the marched
+  /// surface.
+  MarchedFronts run(const RaymarchSamples& samples, const RaymarchTileData& tiles,
+                    const DepthLayer& splashFront, const DepthLayer& aggregateFront, int width, int height);
 
  private:
   ProgramObject program_;

@@ -16,9 +16,9 @@ namespace spindrift {
 /// support h, so every particle that reaches a point lies in the 3x3x3 cells around the point's cell. Each
 /// side has an even number of cells, so that 2x2x2 cells pack into one texel of the density mask.
 struct RaymarchGrid {
-  glm::vec3 origin{0.0f};      ///< World position of the grid's minimum corner.
-  float cellSize = 1.0f;       ///< At least h; larger only where the grid would exceed kMaximumCells.
-  glm::ivec3 size{2, 2, 2};    ///< Cells per axis, even.
+  glm::vec3 origin{0.0f};    ///< World position of the grid's minimum corner.
+  float cellSize = 1.0f;     ///< At least h; larger only where the grid would exceed kMaximumCells.
+  glm::ivec3 size{2, 2, 2};  ///< Cells per axis, even.
   std::size_t cellCount() const { return std::size_t(size.x) * size.y * size.z; }
   static constexpr std::size_t kMaximumCells = std::size_t(1) << 23;
 };
