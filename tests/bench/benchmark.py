@@ -1,13 +1,14 @@
 #!/usr/bin/python3
 """Spindrift's speed-against-error benchmark: one command that regenerates docs/benchmarks.md and its plots.
 
-    tests/bench/benchmark.py [--quick] [--output docs] [--work build/bench]
+    tests/bench/benchmark.py [--quick] [--output DIR] [--work build/bench]
 
 Bakes the examples and renders the Cycles references where they are missing (git-ignored, under --work),
 runs every configuration of the sweep through `build/bin/spindrift render --set ... --stats`, VTK's fluid
 mapper and Cycles at increasing sample counts on the same frames, measures the scaling with particle count and
 resolution, runs the stability suite, and writes OUTPUT/benchmarks.md and OUTPUT/images/bench_*.png.
-`--quick` is a smoke run of a tiny subset (one example, one camera, few settings, one repeat).
+`--quick` is a smoke run of a tiny subset (one example, one camera, few settings, one repeat); it writes its page
+to WORK/quick/ (and its results to WORK/results_quick.json), never over the committed docs/benchmarks.md.
 """
 
 import argparse
@@ -30,7 +31,8 @@ EXAMPLES = ("dam_break", "drop")
 def parse_arguments():
     parser = argparse.ArgumentParser(description=__doc__.split("\n")[0])
     parser.add_argument("--quick", action="store_true", help="a smoke run of a tiny subset")
-    parser.add_argument("--output", default=os.path.join(runs.REPOSITORY, "docs"))
+    parser.add_argument("--output", help="where the page and its images go (default: docs, or WORK/quick with "
+                                           "--quick)")
     parser.add_argument("--work", default=os.path.join(runs.REPOSITORY, "build", "bench"))
     parser.add_argument("--blender", default="blender")
     parser.add_argument("--examples", help="comma-separated subset of the plan's examples")
@@ -39,7 +41,17 @@ def parse_arguments():
                         help="the Spindrift sweep and Cycles' sample points only: no VTK, scaling or stability suite")
     parser.add_argument("--report-only", action="store_true",
                         help="rewrite the page and plots from WORK/results.json without running anything")
-    return parser.parse_args()
+    arguments = parser.parse_args()
+    if arguments.output is None:
+        arguments.output = (os.path.join(arguments.work, "quick") if arguments.quick
+                            else os.path.join(runs.REPOSITORY, "docs"))
+    os.makedirs(os.path.join(arguments.output, "images"), exist_ok=True)
+    return arguments
+
+
+def results_path(arguments):
+    """A quick run keeps its results apart, so it never replaces a full run's for --report-only."""
+    return os.path.join(arguments.work, "results_quick.json" if arguments.quick else "results.json")
 
 
 def log(message):
@@ -117,7 +129,7 @@ def main():
     arguments = parse_arguments()
     os.makedirs(arguments.work, exist_ok=True)
     if arguments.report_only:
-        results = json.load(open(os.path.join(arguments.work, "results.json")))
+        results = json.load(open(results_path(arguments)))
         report.write(results, arguments.output, results["plan"].get("quick", False))
         return
     started = time.perf_counter()
@@ -177,9 +189,9 @@ def finish(results, arguments, started):
     results["runtime_s"] = time.perf_counter() - started
     results["machine"]["load_average_at_end"] = os.getloadavg()
     # A subset's results stay beside its page, so they never replace a full run's under WORK.
-    directory = arguments.output if results["plan"].get("subset") else arguments.work
-    os.makedirs(directory, exist_ok=True)
-    with open(os.path.join(directory, "results.json"), "w") as handle:
+    path = (os.path.join(arguments.output, "results.json") if results["plan"].get("subset")
+            else results_path(arguments))
+    with open(path, "w") as handle:
         json.dump(results, handle, indent=1, default=str)
     report.write(results, arguments.output, results["plan"]["quick"])
     log(f"done in {results['runtime_s'] / 60:.1f} min: {os.path.join(arguments.output, 'benchmarks.md')}")

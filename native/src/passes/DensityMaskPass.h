@@ -3,19 +3,13 @@
 #include <cstdint>
 #include <vector>
 
+#include "framedata/DensityMaskData.h"
+#include "framedata/RaymarchGridData.h"
 #include "gl/GlObjects.h"
 #include "gl/ShaderLibrary.h"
-#include "passes/RaymarchGridPass.h"
 #include "spindrift/Parameters.h"
 
 namespace spindrift {
-
-/// The compact 3D density mask: an R8UI texture of gridSize / 2 texels, bit (x & 1) | (y & 1) << 1 |
-/// (z & 1) << 2 of texel cell / 2 set where cell may hold the iso-surface.
-struct DensityMaskData {
-  const TextureObject& mask;
-  glm::ivec3 texels;
-};
 
 /// The binary density grid M of the adaptive ray marching paper (4.1), made on the GPU from the neighbour
 /// grid's counts (shaders/raymarch_density_mask.comp): separable (b, a, b) convolution, threshold, packing.

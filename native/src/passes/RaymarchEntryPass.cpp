@@ -1,9 +1,24 @@
 #include "passes/RaymarchEntryPass.h"
 
+#include "passes/BilateralFilterPass.h"
+#include "passes/DepthPingPong.h"
+#include "passes/NormalsFromDepthPass.h"
+
 namespace spindrift {
 
+// Like DepthSmoothingPass, a pass made of passes: D_all is smoothed and its normals recomputed by the liquid
+// pipeline's own bilateral filter and normals passes.
+struct RaymarchEntryPass::Smoothing {
+  explicit Smoothing(const ShaderLibrary& shaders) : bilateral(shaders), normals(shaders) {}
+  BilateralFilterPass bilateral;
+  NormalsFromDepthPass normals;
+  DepthPingPong targets;
+};
+
 RaymarchEntryPass::RaymarchEntryPass(const ShaderLibrary& shaders)
-    : program_(shaders.program({"raymarch_entry.comp"})), bilateral_(shaders), normals_(shaders) {}
+    : program_(shaders.program({"raymarch_entry.comp"})), smoothing_(std::make_unique<Smoothing>(shaders)) {}
+
+RaymarchEntryPass::~RaymarchEntryPass() = default;
 
 RaymarchEntryData RaymarchEntryPass::run(const std::optional<SurfaceLayers>& splashes,
                                          const std::optional<SurfaceLayers>& aggregates,
@@ -24,10 +39,10 @@ RaymarchEntryData RaymarchEntryPass::run(const std::optional<SurfaceLayers>& spl
   glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_FRAMEBUFFER_BARRIER_BIT);
   checkGlError("finding where the rays enter (D_all)");
 
-  smoothingTargets_.resize(width, height);
+  smoothing_->targets.resize(width, height);
   const Texture2D& smoothed =
-      bilateral_.run(allDepth_, particleRadius, parameters, smoothingTargets_).eyeDepth;
-  const Texture2D& normal = normals_.run(smoothed, allNormal_, false, width, height).normal;
+      smoothing_->bilateral.run(allDepth_, particleRadius, parameters, smoothing_->targets).eyeDepth;
+  const Texture2D& normal = smoothing_->normals.run(smoothed, allNormal_, false, width, height).normal;
   return {allDepth_, normal};
 }
 

@@ -1,34 +1,17 @@
 #pragma once
 
-#include <cstdint>
-#include <optional>
-
+#include "framedata/BackgroundData.h"
+#include "framedata/DensityMaskData.h"
+#include "framedata/DepthLayers.h"
+#include "framedata/RaymarchEntryData.h"
+#include "framedata/RaymarchGridData.h"
+#include "framedata/RaymarchSamples.h"
+#include "framedata/RaymarchTileData.h"
 #include "gl/GlObjects.h"
 #include "gl/ShaderLibrary.h"
-#include "passes/BackgroundPass.h"
-#include "passes/DensityMaskPass.h"
-#include "passes/EllipsoidImpostorPass.h"
-#include "passes/RaymarchEntryPass.h"
-#include "passes/RaymarchGridPass.h"
-#include "passes/RaymarchTilePass.h"
 #include "spindrift/Parameters.h"
 
 namespace spindrift {
-
-/// The rays cast, at the pixels of each tile's lattice (other pixels hold no surface and zero steps).
-struct RaymarchSamples {
-  const Texture2D& depth;   ///< R32F eye depth of the iso-surface; 1e10 where the ray found none.
-  const Texture2D& normal;  ///< RGBA16F blended world normal; w: 0 miss, 1 splash, 2 aggregate.
-  const Texture2D& steps;   ///< R32F marching steps of the pixel's ray (0 where none was cast).
-};
-
-/// What the rays did, counted on the GPU.
-struct RaymarchCounters {
-  std::uint32_t rays = 0;
-  std::uint32_t steps = 0;      ///< Loop iterations: skips through empty cells and density samples.
-  std::uint32_t densities = 0;  ///< Density evaluations, bisection included.
-  std::uint32_t hits = 0;
-};
 
 /// Everything a ray reads besides the particles.
 struct RaymarchInputs {

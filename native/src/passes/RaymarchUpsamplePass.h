@@ -1,18 +1,13 @@
 #pragma once
 
+#include "framedata/DepthLayers.h"
+#include "framedata/MarchedFronts.h"
+#include "framedata/RaymarchSamples.h"
+#include "framedata/RaymarchTileData.h"
 #include "gl/GlObjects.h"
 #include "gl/ShaderLibrary.h"
-#include "passes/EllipsoidImpostorPass.h"
-#include "passes/RaymarchPass.h"
-#include "passes/RaymarchTilePass.h"
 
 namespace spindrift {
-
-/// The marched first surface at full resolution, written into the front layers the refraction pass reads.
-struct MarchedFronts {
-  DepthLayer splashFront;
-  DepthLayer aggregateFront;
-};
 
 /// Interpolates the rays of half- and quarter-resolution tiles back to every pixel and splits the surface by
 /// class into the splash and aggregate fronts (shaders/raymarch_upsample.comp).

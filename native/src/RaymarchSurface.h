@@ -3,6 +3,8 @@
 #include <optional>
 #include <vector>
 
+#include "framedata/BackgroundData.h"
+#include "framedata/DepthLayers.h"
 #include "gl/PassTimer.h"
 #include "passes/DensityMaskPass.h"
 #include "passes/RaymarchEntryPass.h"

@@ -1,4 +1,4 @@
-#include "passes/RaymarchSurface.h"
+#include "RaymarchSurface.h"
 
 #include "Readback.h"
 
