@@ -69,7 +69,8 @@ void main() {
   float lengthPerDepth = length(cameraRay);
   vec3 origin = getCameraWorldPosition();
   vec3 direction = normalize(mat3(frame.worldFromCamera) * cameraRay);
-  vec3 inverseDirection = 1.0 / direction;
+  // A ray along a grid plane would divide by zero: nudge the component (the slab test stays exact enough).
+  vec3 inverseDirection = 1.0 / mix(direction, vec3(1e-12), lessThan(abs(direction), vec3(1e-12)));
 
   float tEntry = entryDepth * lengthPerDepth;
   vec2 grid = boxSpan(origin, inverseDirection, gridOrigin, gridOrigin + vec3(gridSize) * cellSize);
