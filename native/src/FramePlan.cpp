@@ -6,24 +6,43 @@ namespace spindrift {
 
 const char* passName(Pass pass) {
   switch (pass) {
-    case Pass::Background: return "background";
-    case Pass::SplashDepthLayers: return "splash_depth_layers";
-    case Pass::AggregateDepthLayers: return "aggregate_depth_layers";
-    case Pass::Smoothing: return "smoothing";
-    case Pass::RaymarchSurface: return "raymarch_surface";
-    case Pass::Refraction: return "refraction";
-    case Pass::FoamSceneDepth: return "foam_scene_depth";
-    case Pass::FoamDepth: return "foam_depth";
-    case Pass::FoamThickness: return "foam_thickness";
-    case Pass::FoamIntensity: return "foam_intensity";
-    case Pass::FoamOcclusion: return "foam_occlusion";
-    case Pass::FoamBlur: return "foam_blur";
-    case Pass::Composite: return "composite";
+    case Pass::Background:
+      return "background";
+    case Pass::OccluderDepth:
+      return "occluder_depth";
+    case Pass::LiquidMeshDepth:
+      return "liquid_mesh_depth";
+    case Pass::SplashDepthLayers:
+      return "splash_depth_layers";
+    case Pass::AggregateDepthLayers:
+      return "aggregate_depth_layers";
+    case Pass::Smoothing:
+      return "smoothing";
+    case Pass::RaymarchSurface:
+      return "raymarch_surface";
+    case Pass::Refraction:
+      return "refraction";
+    case Pass::FoamSceneDepth:
+      return "foam_scene_depth";
+    case Pass::FoamDepth:
+      return "foam_depth";
+    case Pass::FoamThickness:
+      return "foam_thickness";
+    case Pass::FoamIntensity:
+      return "foam_intensity";
+    case Pass::FoamOcclusion:
+      return "foam_occlusion";
+    case Pass::FoamBlur:
+      return "foam_blur";
+    case Pass::Composite:
+      return "composite";
   }
   return "unknown";
 }
 
-bool FramePlan::runs(Pass pass) const { return std::find(passes.begin(), passes.end(), pass) != passes.end(); }
+bool FramePlan::runs(Pass pass) const {
+  return std::find(passes.begin(), passes.end(), pass) != passes.end();
+}
 
 FramePlan planFrame(const FrameContents& contents) {
   FramePlan plan;
@@ -37,9 +56,11 @@ FramePlan planFrame(const FrameContents& contents) {
   const bool splashes = contents.splashParticles > 0;
   const bool aggregates = contents.aggregateParticles > 0;
   decide(Pass::Background, nullptr);
+  decide(Pass::OccluderDepth, contents.occluderMeshes > 0 ? nullptr : "no occluders");
+  decide(Pass::LiquidMeshDepth, contents.liquidMesh ? nullptr : "no liquid mesh");
   decide(Pass::SplashDepthLayers, splashes ? nullptr : "no splash particles in view");
   decide(Pass::AggregateDepthLayers, aggregates ? nullptr : "no aggregate particles in view");
-  decide(Pass::Smoothing, !aggregates                      ? "no aggregate particles in view"
+  decide(Pass::Smoothing, !aggregates                    ? "no aggregate particles in view"
                           : contents.smoothing == "none" ? "liquid.smoothing is none"
                                                          : nullptr);
   // The ray-marched surface is part of the frame only where liquid.surface asks for it: a screen-space frame

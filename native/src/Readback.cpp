@@ -72,6 +72,8 @@ void readLiquidLayers(const LiquidData* liquid, int width, int height, std::vect
     layers.push_back(filledLayer(width, height, "depth", {"Z"}, 1e10f));
     layers.push_back(filledLayer(width, height, "normal", {"X", "Y", "Z"}, 0.0f));
     layers.push_back(filledLayer(width, height, "thickness", {"Y"}, 0.0f));
+    for (const char* split : {"refraction_uv", "transmittance", "reflection"})
+      layers.push_back(filledLayer(width, height, split, {"R", "G", "B"}, 0.0f));
     return;
   }
   layers.push_back(readLayer(liquid->color, "liquid", rgba));
@@ -80,6 +82,10 @@ void readLiquidLayers(const LiquidData* liquid, int width, int height, std::vect
   layers.push_back(readLayer(liquid->frontDepth, "depth", {"Z"}));
   layers.push_back(readLayer(liquid->frontNormal, "normal", {"X", "Y", "Z"}));
   layers.push_back(readLayer(liquid->thickness, "thickness", {"Y"}));
+  // The refraction split for a compositor that refracts another render (docs/python-module.md).
+  layers.push_back(readLayer(liquid->refractionUv, "refraction_uv", {"R", "G", "B"}));
+  layers.push_back(readLayer(liquid->transmittance, "transmittance", {"R", "G", "B"}));
+  layers.push_back(readLayer(liquid->reflection, "reflection", {"R", "G", "B"}));
 }
 
 void readFrameLayers(const CompositeData& composite, const LiquidData* liquid, const FoamLayerData* foam,
@@ -103,7 +109,8 @@ void IntermediateLayers::keep(std::vector<ImageLayer> layers) {
 }
 
 void IntermediateLayers::appendTo(std::vector<ImageLayer>& layers) {
-  for (ImageLayer& layer : kept_) layers.push_back(std::move(layer));
+  for (ImageLayer& layer : kept_)
+    layers.push_back(std::move(layer));
   kept_.clear();
 }
 

@@ -24,7 +24,8 @@ ImageLayer filledLayer(int width, int height, const std::string& name,
 /// has the same channels.
 void readFoamLayers(const FoamLayerData* foam, int width, int height, std::vector<ImageLayer>& layers);
 
-/// Appends the liquid layers (liquid, liquid_splash, liquid_class, depth, normal, thickness); `liquid` null (no
+/// Appends the liquid layers (liquid, liquid_splash, liquid_class, depth, normal, thickness, refraction_uv,
+/// transmittance, reflection); `liquid` null (no
 /// liquid in view) gives the same layers, empty (depth 1e10), so every frame of a sequence has the same channels.
 void readLiquidLayers(const LiquidData* liquid, int width, int height, std::vector<ImageLayer>& layers);
 

@@ -2,6 +2,8 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cstdint>
+#include <filesystem>
 #include <optional>
 
 #include "gl/GlThread.h"
@@ -18,6 +20,7 @@
 #include "passes/FoamSceneDepthPass.h"
 #include "passes/FoamThicknessPass.h"
 #include "passes/FrameUniforms.h"
+#include "passes/OccluderDepthPass.h"
 #include "passes/RefractionPass.h"
 #include "prep/BackgroundCache.h"
 #include "prep/FoamPreparation.h"
@@ -27,6 +30,7 @@
 #include "FrameStatsRecording.h"
 #include "RaymarchSurface.h"
 #include "Readback.h"
+#include "spindrift/Error.h"
 
 namespace spindrift {
 namespace {
@@ -39,10 +43,14 @@ double millisecondsSince(Clock::time_point start) {
 
 // Every GL object of the frame; made, used and destroyed on the GL thread.
 struct FramePipeline {
-  ShaderLibrary shaders{findShaderDirectory()};
+  explicit FramePipeline(const std::filesystem::path& shaderDirectory) : shaders(shaderDirectory) {}
+
+  ShaderLibrary shaders;
   FrameUniformBuffer frameUniforms;
   PassTimer timer;
   BackgroundPass background{shaders};
+  OccluderDepthPass occluderDepth{shaders};
+  OccluderDepthPass liquidMeshDepth{shaders};
   EllipsoidImpostorPass splashImpostors{shaders};
   EllipsoidImpostorPass aggregateImpostors{shaders};
   DepthSmoothingPass frontSmoothing{shaders};
@@ -80,21 +88,43 @@ RenderResult emptyResult(int frame, int width, int height, const Particles& part
   return result;
 }
 
+// An in-memory background image must have the camera's size; BackgroundCache resamples only files.
+void requireCameraSize(const FloatImage& image, int channels, const char* what, int width, int height) {
+  if (image.width != width || image.height != height || image.channels != channels ||
+      image.pixels.size() != std::size_t(width) * height * channels)
+    throw Error(std::string(what) + ": expected " + std::to_string(width) + "x" + std::to_string(height) +
+                "x" + std::to_string(channels) + " floats (the camera's size), got " +
+                std::to_string(image.width) + "x" + std::to_string(image.height) + "x" +
+                std::to_string(image.channels));
+}
+
 }  // namespace
+
+// In-memory inputs of a frame, by pointer, beside those loaded from the scene's files.
+struct Renderer::FrameExtras {
+  std::vector<const TriangleMesh*> occluders;
+  const TriangleMesh* liquidMesh = nullptr;
+  const FloatImage* backgroundColor = nullptr;
+  const FloatImage* backgroundDepth = nullptr;
+};
 
 struct Renderer::Impl {
   GlThread glThread;
   std::unique_ptr<FramePipeline> pipeline;  // Lives on glThread; reset there before the thread ends.
   BackgroundCache backgroundCache;
   bool intermediateLayers = false;
+  // In-memory backgrounds change every frame: each gets its own upload generation, apart from the cache's.
+  std::uint64_t hostBackgroundGeneration = std::uint64_t(1) << 63;
 
   ~Impl() {
     glThread.run([this] { pipeline.reset(); });
   }
 };
 
-Renderer::Renderer() : impl_(std::make_unique<Impl>()) {
-  impl_->glThread.run([this] { impl_->pipeline = std::make_unique<FramePipeline>(); });
+Renderer::Renderer() : Renderer(findShaderDirectory()) {}
+
+Renderer::Renderer(const std::filesystem::path& shaderDirectory) : impl_(std::make_unique<Impl>()) {
+  impl_->glThread.run([&] { impl_->pipeline = std::make_unique<FramePipeline>(shaderDirectory); });
 }
 
 Renderer::~Renderer() = default;
@@ -105,11 +135,34 @@ std::string Renderer::glRenderer() const { return impl_->glThread.renderer(); }
 std::string Renderer::glVersion() const { return impl_->glThread.version(); }
 
 RenderResult Renderer::renderFrame(const Scene& scene, int frame) {
+  return renderFrame(scene, frame, FrameInputs{});
+}
+
+RenderResult Renderer::renderFrame(const Scene& scene, int frame, const FrameInputs& inputs) {
   const Clock::time_point start = Clock::now();
   ParticleCounts counts;
-  const Particles particles = loadParticles(scene, frame, &counts);
+  Particles particles = loadParticles(scene, frame, &counts);
+  const std::size_t droppedFromFiles = counts.droppedInvalid;
+  const std::size_t droppedInMemory = appendValidParticles(particles, inputs.particles);
+  counts = countByKind(particles);
+  counts.droppedInvalid = droppedFromFiles + droppedInMemory;
+  for (std::size_t i = 0; i < inputs.occluders.size(); ++i)
+    inputs.occluders[i].validate("occluders[" + std::to_string(i) + "]");
+  if (inputs.liquidMesh) inputs.liquidMesh->validate("liquid_mesh");
+  FrameInputs files;
+  loadMeshes(scene, frame, files);
   const double loadMilliseconds = millisecondsSince(start);
-  RenderResult result = renderParticles(scene, particles, frame);
+  FrameExtras extras;
+  for (const TriangleMesh& mesh : files.occluders)
+    extras.occluders.push_back(&mesh);
+  for (const TriangleMesh& mesh : inputs.occluders)
+    extras.occluders.push_back(&mesh);
+  extras.liquidMesh = inputs.liquidMesh  ? &*inputs.liquidMesh
+                      : files.liquidMesh ? &*files.liquidMesh
+                                         : nullptr;
+  extras.backgroundColor = inputs.backgroundColor ? &*inputs.backgroundColor : nullptr;
+  extras.backgroundDepth = inputs.backgroundDepth ? &*inputs.backgroundDepth : nullptr;
+  RenderResult result = renderPrepared(scene, particles, frame, extras);
   result.stats.counts = counts;
   result.stats.loadMilliseconds = loadMilliseconds;
   result.stats.totalMilliseconds = millisecondsSince(start);
@@ -122,6 +175,11 @@ RenderResult Renderer::renderFrame(const Scene& scene, int frame) {
 // the aggregate layers, refraction, the foam paper's seven passes (figure 2), and the composite; then read the
 // layers back. A pass the plan leaves out is not run, and the stats say why (FramePlan.cpp).
 RenderResult Renderer::renderParticles(const Scene& scene, const Particles& particles, int frame) {
+  return renderPrepared(scene, particles, frame, FrameExtras{});
+}
+
+RenderResult Renderer::renderPrepared(const Scene& scene, const Particles& particles, int frame,
+                                      const FrameExtras& extras) {
   const Clock::time_point start = Clock::now();
   const Camera& camera = scene.camera;
   const LiquidParameters& liquidParameters = scene.parameters.liquid;
@@ -137,13 +195,25 @@ RenderResult Renderer::renderParticles(const Scene& scene, const Particles& part
   const float radius = typicalLiquidRadius(particles);
   const FoamPreparation foam = prepareFoam(particles, camera, foamParameters);
   std::optional<RaymarchPreparation> raymarch;
-  if (liquidParameters.surface == "raymarch") raymarch.emplace(prepareRaymarch(particles, camera, radius, liquidParameters));
-  const BackgroundImages backgroundImages = impl_->backgroundCache.load(scene.background, frame, width, height);
+  if (liquidParameters.surface == "raymarch")
+    raymarch.emplace(prepareRaymarch(particles, camera, radius, liquidParameters));
+  BackgroundImages backgroundImages = impl_->backgroundCache.load(scene.background, frame, width, height);
+  if (extras.backgroundColor) {
+    requireCameraSize(*extras.backgroundColor, 4, "background colour", width, height);
+    backgroundImages.color = extras.backgroundColor;
+  }
+  if (extras.backgroundDepth) {
+    requireCameraSize(*extras.backgroundDepth, 1, "background depth", width, height);
+    backgroundImages.eyeDepth = extras.backgroundDepth;
+  }
+  if (extras.backgroundColor || extras.backgroundDepth)
+    backgroundImages.generation = ++impl_->hostBackgroundGeneration;
   stats.prepareMilliseconds = millisecondsSince(prepareStart);
   recordPreparation(liquid, foam, stats);
-  const FramePlan plan = planFrame(
-      {liquid.splashes.size(), liquid.aggregates.size(), foam.instances.size(), liquidParameters.smoothing,
-       liquidParameters.surface});
+  const FramePlan plan =
+      planFrame({liquid.splashes.size(), liquid.aggregates.size(), foam.instances.size(),
+                 liquidParameters.smoothing, extras.occluders.size(), extras.liquidMesh != nullptr,
+                 liquidParameters.surface});
   stats.skipped = plan.skipped;
 
   impl_->glThread.run([&] {
@@ -152,8 +222,21 @@ RenderResult Renderer::renderParticles(const Scene& scene, const Particles& part
     IntermediateLayers intermediate(impl_->intermediateLayers);
     pipeline.frameUniforms.update(camera);
 
-    const BackgroundData background =
+    const BackgroundData resolved =
         timed(Pass::Background, [&] { return pipeline.background.run(backgroundImages, width, height); });
+    // Solid geometry handed as triangles joins the background's depth, so every later pass that tests against
+    // solids sees it; the liquid's own mesh stands in for (or joins) background.liquid_depth.
+    auto meshDepth = [&](Pass pass, OccluderDepthPass& prepass, const std::vector<const TriangleMesh*>& meshes,
+                         const Texture2D* start) -> const Texture2D* {
+      if (!plan.runs(pass)) return start;
+      return &timed(pass, [&] { return prepass.run(meshes, start, width, height); }).eyeDepth;
+    };
+    const Texture2D& solidDepth =
+        *meshDepth(Pass::OccluderDepth, pipeline.occluderDepth, extras.occluders, &resolved.eyeDepth);
+    const Texture2D* liquidDepth =
+        meshDepth(Pass::LiquidMeshDepth, pipeline.liquidMeshDepth, {extras.liquidMesh}, resolved.liquidEyeDepth);
+    const BackgroundData background{resolved.color, solidDepth, resolved.environment, resolved.fallbackColor,
+                                    liquidDepth};
     std::optional<SurfaceLayers> splashes, aggregates;
     if (plan.runs(Pass::SplashDepthLayers)) {
       splashes.emplace(timed(Pass::SplashDepthLayers, [&] {

@@ -13,7 +13,8 @@ namespace {
 
 std::vector<std::string> names(const std::vector<Pass>& passes) {
   std::vector<std::string> result;
-  for (Pass pass : passes) result.push_back(passName(pass));
+  for (Pass pass : passes)
+    result.push_back(passName(pass));
   return result;
 }
 
@@ -27,11 +28,21 @@ const std::vector<std::string> kFoamPasses = {"foam_scene_depth", "foam_depth", 
                                               "foam_intensity",   "foam_occlusion", "foam_blur"};
 
 TEST(FramePlan, FullFrameRunsEveryPassInRecipeOrder) {
-  const FramePlan plan = planFrame({100, 1000, 50, "plane_fit"});
-  const std::vector<std::string> expected = {
-      "background",     "splash_depth_layers", "aggregate_depth_layers", "smoothing", "refraction",
-      "foam_scene_depth", "foam_depth",        "foam_thickness",         "foam_intensity", "foam_occlusion",
-      "foam_blur",      "composite"};
+  const FramePlan plan = planFrame({100, 1000, 50, "plane_fit", 2, true});
+  const std::vector<std::string> expected = {"background",
+                                             "occluder_depth",
+                                             "liquid_mesh_depth",
+                                             "splash_depth_layers",
+                                             "aggregate_depth_layers",
+                                             "smoothing",
+                                             "refraction",
+                                             "foam_scene_depth",
+                                             "foam_depth",
+                                             "foam_thickness",
+                                             "foam_intensity",
+                                             "foam_occlusion",
+                                             "foam_blur",
+                                             "composite"};
   EXPECT_EQ(names(plan.passes), expected);
   EXPECT_TRUE(plan.skipped.empty());
 }
@@ -39,11 +50,14 @@ TEST(FramePlan, FullFrameRunsEveryPassInRecipeOrder) {
 TEST(FramePlan, EmptyFrameRunsBackgroundAndCompositeOnly) {
   const FramePlan plan = planFrame({0, 0, 0, "plane_fit"});
   EXPECT_EQ(names(plan.passes), (std::vector<std::string>{"background", "composite"}));
-  ASSERT_EQ(plan.skipped.size(), 10u);
-  EXPECT_EQ(plan.skipped.front().name, "splash_depth_layers");
+  ASSERT_EQ(plan.skipped.size(), 12u);
+  EXPECT_EQ(plan.skipped.front().name, "occluder_depth");
+  EXPECT_EQ(reasonFor(plan, "occluder_depth"), "no occluders");
+  EXPECT_EQ(reasonFor(plan, "liquid_mesh_depth"), "no liquid mesh");
   EXPECT_EQ(reasonFor(plan, "refraction"), "no liquid particles in view");
   EXPECT_EQ(reasonFor(plan, "smoothing"), "no aggregate particles in view");
-  for (const std::string& pass : kFoamPasses) EXPECT_EQ(reasonFor(plan, pass), "no foam particles in view");
+  for (const std::string& pass : kFoamPasses)
+    EXPECT_EQ(reasonFor(plan, pass), "no foam particles in view");
 }
 
 TEST(FramePlan, SplashesAloneNeedNoSmoothing) {
@@ -71,12 +85,19 @@ TEST(FramePlan, FoamWithoutLiquidRunsTheFoamPasses) {
     EXPECT_TRUE(plan.runs(pass)) << passName(pass);
 }
 
+TEST(FramePlan, MeshesRunTheirDepthPrepassesWithoutParticles) {
+  const FramePlan plan = planFrame({0, 0, 0, "plane_fit", 1, true});
+  EXPECT_TRUE(plan.runs(Pass::OccluderDepth));
+  EXPECT_TRUE(plan.runs(Pass::LiquidMeshDepth));
+  EXPECT_FALSE(plan.runs(Pass::Refraction));
+}
+
 TEST(FramePlan, EveryPassIsEitherRunOrSkippedExactlyOnce) {
   for (std::size_t splash : {0, 1})
     for (std::size_t aggregate : {0, 1})
       for (std::size_t foam : {0, 1})
         for (const char* smoothing : {"plane_fit", "none"}) {
-          const FramePlan plan = planFrame({splash, aggregate, foam, smoothing});
+          const FramePlan plan = planFrame({splash, aggregate, foam, smoothing, splash, aggregate > 0});
           std::vector<std::string> all = names(plan.passes);
           for (const SkippedPass& skipped : plan.skipped) {
             EXPECT_FALSE(skipped.reason.empty());
@@ -84,7 +105,7 @@ TEST(FramePlan, EveryPassIsEitherRunOrSkippedExactlyOnce) {
           }
           std::sort(all.begin(), all.end());
           EXPECT_EQ(std::adjacent_find(all.begin(), all.end()), all.end());
-          EXPECT_EQ(all.size(), 12u);
+          EXPECT_EQ(all.size(), 14u);
         }
 }
 
@@ -95,7 +116,7 @@ namespace spindrift {
 namespace {
 
 TEST(FramePlan, RaymarchedSurfaceRunsBetweenSmoothingAndRefraction) {
-  const FramePlan plan = planFrame({10, 100, 0, "plane_fit", "raymarch"});
+  const FramePlan plan = planFrame({10, 100, 0, "plane_fit", 0, false, "raymarch"});
   const std::vector<std::string> passes = names(plan.passes);
   const auto position = [&](const char* name) {
     return std::find(passes.begin(), passes.end(), name) - passes.begin();
@@ -103,8 +124,8 @@ TEST(FramePlan, RaymarchedSurfaceRunsBetweenSmoothingAndRefraction) {
   ASSERT_TRUE(plan.runs(Pass::RaymarchSurface));
   EXPECT_EQ(position("raymarch_surface"), position("smoothing") + 1);
   EXPECT_EQ(position("refraction"), position("raymarch_surface") + 1);
-  EXPECT_FALSE(planFrame({10, 100, 0, "plane_fit", "screen"}).runs(Pass::RaymarchSurface));
-  const FramePlan empty = planFrame({0, 0, 0, "plane_fit", "raymarch"});
+  EXPECT_FALSE(planFrame({10, 100, 0, "plane_fit", 0, false, "screen"}).runs(Pass::RaymarchSurface));
+  const FramePlan empty = planFrame({0, 0, 0, "plane_fit", 0, false, "raymarch"});
   EXPECT_FALSE(empty.runs(Pass::RaymarchSurface));
   EXPECT_EQ(reasonFor(empty, "raymarch_surface"), "no liquid particles in view");
 }
