@@ -18,6 +18,8 @@ const char* passName(Pass pass) {
       return "aggregate_depth_layers";
     case Pass::Smoothing:
       return "smoothing";
+    case Pass::RaymarchSurface:
+      return "raymarch_surface";
     case Pass::Refraction:
       return "refraction";
     case Pass::FoamSceneDepth:
@@ -72,6 +74,12 @@ FramePlan planFrame(const FrameContents& contents) {
                           : contents.smoothing == "none" ? "liquid.smoothing is none"
                           : !layersShown                 ? noLiquidOutput
                                                          : nullptr);
+  // The ray-marched surface is part of the frame only where liquid.surface asks for it: a screen-space frame
+  // does not list it as skipped.
+  if (contents.surface == "raymarch")
+    decide(Pass::RaymarchSurface, !(splashes || aggregates) ? "no liquid particles in view"
+                                  : !layersShown            ? noLiquidOutput
+                                                            : nullptr);
   decide(Pass::Refraction, !(splashes || aggregates) ? "no liquid particles in view"
                            : !liquidShown            ? noLiquidOutput
                                                      : nullptr);

@@ -16,6 +16,7 @@ enum class Pass {
   SplashDepthLayers,
   AggregateDepthLayers,
   Smoothing,
+  RaymarchSurface,  ///< liquid.surface = raymarch: six passes, timed by RaymarchSurface itself
   Refraction,
   FoamSceneDepth,
   FoamDepth,
@@ -43,6 +44,7 @@ struct FrameContents {
   bool liquidLayersWanted = true;   ///< Any liquid layer: liquid, depth, normal, thickness, refraction split ...
   bool foamLayersWanted = true;     ///< Any foam layer.
   bool intermediateWanted = false;  ///< The depth layers before and after smoothing (`--intermediate`).
+  std::string surface = "screen";       ///< liquid.surface.
 };
 
 /// Which passes a frame runs and, for each it does not, why. The wiring of the frame in one plain function,

@@ -155,6 +155,11 @@ void IntermediateLayers::keep(const SurfaceLayers& layers, const std::string& na
   kept_.push_back(readLayer(layers.back.normal, name + "_back_normal", {"X", "Y", "Z"}));
 }
 
+void IntermediateLayers::keep(std::vector<ImageLayer> layers) {
+  if (!enabled_) return;
+  for (ImageLayer& layer : layers) kept_.push_back(std::move(layer));
+}
+
 void IntermediateLayers::appendTo(std::vector<ImageLayer>& layers) {
   for (ImageLayer& layer : kept_) layers.push_back(std::move(layer));
   kept_.clear();

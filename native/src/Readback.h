@@ -65,6 +65,8 @@ class IntermediateLayers {
  public:
   explicit IntermediateLayers(bool enabled) : enabled_(enabled) {}
   void keep(const SurfaceLayers& layers, const std::string& name);
+  /// Keeps layers already read (a pass's own intermediate layers), when enabled.
+  void keep(std::vector<ImageLayer> layers);
   /// Moves the kept layers to the end of `layers`.
   void appendTo(std::vector<ImageLayer>& layers);
 

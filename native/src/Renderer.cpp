@@ -27,8 +27,10 @@
 #include "prep/BackgroundCache.h"
 #include "prep/FoamPreparation.h"
 #include "prep/LiquidPreparation.h"
+#include "prep/RaymarchPreparation.h"
 #include "FramePlan.h"
 #include "FrameStatsRecording.h"
+#include "RaymarchSurface.h"
 #include "Readback.h"
 #include "spindrift/Error.h"
 #include "spindrift/Limits.h"
@@ -57,6 +59,7 @@ struct FramePipeline {
   EllipsoidImpostorPass aggregateImpostors{shaders};
   DepthSmoothingPass frontSmoothing{shaders};
   DepthSmoothingPass backSmoothing{shaders};
+  RaymarchSurface raymarch{shaders};
   RefractionPass refraction{shaders};
   FoamSceneDepthPass foamSceneDepth{shaders};
   FoamDepthPass foamDepth{shaders};
@@ -228,6 +231,9 @@ RenderResult Renderer::renderPrepared(const Scene& scene, const Particles& parti
   const LiquidPreparation liquid = prepareLiquid(particles, camera, liquidParameters);
   const float radius = typicalLiquidRadius(particles);
   const FoamPreparation foam = prepareFoam(particles, camera, foamParameters);
+  std::optional<RaymarchPreparation> raymarch;
+  if (liquidParameters.surface == "raymarch")
+    raymarch.emplace(prepareRaymarch(particles, camera, radius, liquidParameters));
   BackgroundImages backgroundImages = impl_->backgroundCache.load(scene.background, frame, width, height);
   if (extras.backgroundColor) {
     requireCameraSize(*extras.backgroundColor, 4, "background colour", width, height);
@@ -248,7 +254,7 @@ RenderResult Renderer::renderPrepared(const Scene& scene, const Particles& parti
   const FramePlan plan = planFrame({liquid.splashes.size(), liquid.aggregates.size(), foam.instances.size(),
                                     liquidParameters.smoothing, extras.occluders.size(), extras.liquidMesh != nullptr,
                                     layers.wantsComposite(), layers.wantsLiquidLayers(), layers.wantsFoamLayers(),
-                                    impl_->intermediateLayers});
+                                    impl_->intermediateLayers, liquidParameters.surface});
   stats.skipped = plan.skipped;
 
   impl_->glThread.run([&] {
@@ -288,10 +294,21 @@ RenderResult Renderer::renderPrepared(const Scene& scene, const Particles& parti
     if (plan.runs(Pass::Smoothing)) {
       aggregates.emplace(timed(Pass::Smoothing, [&] {
         return SurfaceLayers{
-            pipeline.frontSmoothing.run(aggregates->front, radius, false, liquidParameters, width, height),
+            // A ray-marched surface replaces the front layer: only the back layer is smoothed then.
+            raymarch ? aggregates->front
+                     : pipeline.frontSmoothing.run(aggregates->front, radius, false, liquidParameters, width,
+                                                   height),
             pipeline.backSmoothing.run(aggregates->back, radius, true, liquidParameters, width, height)};
       }));
       intermediate.keep(*aggregates, "aggregate_smoothed");
+    }
+    if (plan.runs(Pass::RaymarchSurface)) {  // times its six passes itself
+      RaymarchSurface& surface = pipeline.raymarch;
+      replaceFrontLayers(surface.run(*raymarch, splashes, aggregates, background, liquidParameters,
+                                     pipeline.timer, width, height),
+                         splashes, aggregates);
+      if (impl_->intermediateLayers) intermediate.keep(surface.intermediateLayers());
+      stats.raymarch = surface.statistics();
     }
     std::optional<LiquidData> liquidLayer;
     if (plan.runs(Pass::Refraction))

@@ -35,6 +35,10 @@ def parse_arguments():
                                            "--quick)")
     parser.add_argument("--work", default=os.path.join(runs.REPOSITORY, "build", "bench"))
     parser.add_argument("--blender", default="blender")
+    parser.add_argument("--examples", help="comma-separated subset of the plan's examples")
+    parser.add_argument("--configurations", help="comma-separated labels: run only these points of the sweep")
+    parser.add_argument("--sweep-only", action="store_true",
+                        help="the Spindrift sweep and Cycles' sample points only: no VTK, scaling or stability suite")
     parser.add_argument("--report-only", action="store_true",
                         help="rewrite the page and plots from WORK/results.json without running anything")
     arguments = parser.parse_args()
@@ -131,6 +135,15 @@ def main():
     started = time.perf_counter()
     plan = sweep.plan(arguments.quick)
     plan["quick"] = arguments.quick
+    if arguments.examples:
+        plan["examples"] = arguments.examples.split(",")
+    if arguments.configurations:
+        plan["only_configurations"] = arguments.configurations.split(",")
+    plan["sweep_only"] = arguments.sweep_only
+    subset = bool(arguments.examples or arguments.configurations or arguments.sweep_only)
+    plan["subset"] = subset
+    if subset and os.path.abspath(arguments.output) == os.path.abspath(os.path.join(runs.REPOSITORY, "docs")):
+        sys.exit("a subset run must not overwrite docs/benchmarks.md: give --output")
     table = runs.parameter_table()
     absorption = absorption_from(table)
     machine = machine_description()
@@ -145,8 +158,13 @@ def main():
         results["examples"][example] = {
             "spindrift": spindrift_rows,
             "cycles": sweep.cycles_points(references, plan),
-            "vtk": sweep.vtk_points(example, references, plan, absorption, arguments.work),
+            "vtk": [] if arguments.sweep_only else sweep.vtk_points(example, references, plan, absorption,
+                                                                      arguments.work),
         }
+    if arguments.sweep_only:
+        results["scaling"] = results["stability"] = None
+        finish(results, arguments, started)
+        return
 
     log("scaling")
     base_scene = os.path.join(references_directory(arguments.work, plan["examples"][0], plan),
@@ -164,10 +182,18 @@ def main():
 
     log("stability suite")
     results["stability"] = run_stability_suite(arguments.work)
+    finish(results, arguments, started)
+
+
+def finish(results, arguments, started):
     results["runtime_s"] = time.perf_counter() - started
-    with open(results_path(arguments), "w") as handle:
+    results["machine"]["load_average_at_end"] = os.getloadavg()
+    # A subset's results stay beside its page, so they never replace a full run's under WORK.
+    path = (os.path.join(arguments.output, "results.json") if results["plan"].get("subset")
+            else results_path(arguments))
+    with open(path, "w") as handle:
         json.dump(results, handle, indent=1, default=str)
-    report.write(results, arguments.output, arguments.quick)
+    report.write(results, arguments.output, results["plan"]["quick"])
     log(f"done in {results['runtime_s'] / 60:.1f} min: {os.path.join(arguments.output, 'benchmarks.md')}")
 
 

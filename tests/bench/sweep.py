@@ -37,9 +37,15 @@ def configurations(quick):
         settings.update({f"liquid.{key}": value for key, value in changes.items()})
         return label, settings, foam
 
+    # The ray-marched surface (docs/raymarch.md) beside the screen-space one: its defaults, and the two
+    # baselines its adaptive parts are measured against (uniform steps; every pixel cast).
+    raymarch = [variant("raymarch", surface="raymarch"),
+                variant("raymarch uniform steps", surface="raymarch", raymarch_stepping="uniform"),
+                variant("raymarch full resolution", surface="raymarch", raymarch_resolution="full")]
     if quick:
         return [variant("plane_fit i3 w9"), variant("none", smoothing="none"),
-                variant("max_refractions 1", max_refractions=1), variant("plane_fit, foam off", foam=False)]
+                variant("max_refractions 1", max_refractions=1), variant("plane_fit, foam off", foam=False),
+                raymarch[0]]
     points = [variant(f"plane_fit i{i} w{w}", smoothing_iterations=i, plane_fit_window=w)
               for i in (1, 3, 5) for w in (5, 9, 15)]
     points += [variant(f"{method} i{i}", smoothing=method, smoothing_iterations=i)
@@ -49,7 +55,7 @@ def configurations(quick):
     points += [variant("none", smoothing="none")]
     points += [variant(f"max_refractions {n}", max_refractions=n) for n in (1, 2)]
     points += [variant("layers merged", layers="merged"), variant("plane_fit, foam off", foam=False)]
-    return points
+    return points + raymarch
 
 
 def scene_for(camera_directory, foam):
@@ -72,9 +78,12 @@ def liquid_radius(scene):
 
 def run_configurations(example, references, plan, table, work):
     rows = []
+    wanted = plan.get("only_configurations")
     work_directory = os.path.join(work, "runs", example)
     os.makedirs(work_directory, exist_ok=True)
     for label, settings, foam in plan["configurations"]:
+        if wanted and label not in wanted:
+            continue
         why_not = runs.unsupported_settings(settings, table)
         if why_not and "liquid.layers" in settings and settings["liquid.layers"] == "split":
             # Builds without the layers parameter always split: drop the default rather than skip the point.

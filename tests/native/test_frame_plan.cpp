@@ -164,3 +164,32 @@ TEST(FramePlan, IntermediateLayersKeepTheDepthLayers) {
 
 }  // namespace
 }  // namespace spindrift
+
+namespace spindrift {
+namespace {
+
+FrameContents withSurface(std::size_t splashes, std::size_t aggregates, const char* surface) {
+  FrameContents contents;
+  contents.splashParticles = splashes;
+  contents.aggregateParticles = aggregates;
+  contents.surface = surface;
+  return contents;
+}
+
+TEST(FramePlan, RaymarchedSurfaceRunsBetweenSmoothingAndRefraction) {
+  const FramePlan plan = planFrame(withSurface(10, 100, "raymarch"));
+  const std::vector<std::string> passes = names(plan.passes);
+  const auto position = [&](const char* name) {
+    return std::find(passes.begin(), passes.end(), name) - passes.begin();
+  };
+  ASSERT_TRUE(plan.runs(Pass::RaymarchSurface));
+  EXPECT_EQ(position("raymarch_surface"), position("smoothing") + 1);
+  EXPECT_EQ(position("refraction"), position("raymarch_surface") + 1);
+  EXPECT_FALSE(planFrame(withSurface(10, 100, "screen")).runs(Pass::RaymarchSurface));
+  const FramePlan empty = planFrame(withSurface(0, 0, "raymarch"));
+  EXPECT_FALSE(empty.runs(Pass::RaymarchSurface));
+  EXPECT_EQ(reasonFor(empty, "raymarch_surface"), "no liquid particles in view");
+}
+
+}  // namespace
+}  // namespace spindrift

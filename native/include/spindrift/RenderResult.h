@@ -46,6 +46,21 @@ struct LiquidFrameStats {
   double anisotropyMilliseconds = 0.0;
 };
 
+/// What the ray-marched surface did in a frame (liquid.surface = raymarch; all zero otherwise).
+struct RaymarchFrameStats {
+  bool enabled = false;
+  bool adaptiveStepping = true;        ///< liquid.raymarch_stepping was adaptive (else uniform).
+  std::size_t densityParticles = 0;    ///< Liquid particles in the GPU neighbour grid.
+  std::size_t gridCells = 0;           ///< Cells of the binary density grid.
+  std::size_t raysCast = 0;
+  std::size_t hits = 0;                ///< Rays that found the iso-surface.
+  std::size_t totalSteps = 0;          ///< Marching steps of all rays: skips and density samples.
+  double averageStepsPerRay = 0.0;
+  double densityEvaluationsPerRay = 0.0;  ///< Bisection included.
+  /// Screen tiles cast at full, half and quarter resolution, and tiles without liquid.
+  std::size_t tiles[4] = {0, 0, 0, 0};
+};
+
 /// What the foam pipeline found in a frame.
 struct FoamFrameStats {
   std::size_t sprayParticles = 0;    ///< In view, by type.
@@ -74,6 +89,7 @@ struct FrameStats {
   ParticleCounts counts;                 ///< Everything the sources held, by kind.
   LiquidFrameStats liquid;
   FoamFrameStats foam;
+  RaymarchFrameStats raymarch;
   double loadMilliseconds = 0.0;         ///< Reading particle files.
   double prepareMilliseconds = 0.0;      ///< CPU preparation: culling and packing.
   double readbackMilliseconds = 0.0;
