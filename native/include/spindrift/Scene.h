@@ -25,6 +25,11 @@ struct ParticleSource {
   /// For foam sources: every particle of this kind, instead of the per-particle flags of the file.
   std::optional<ParticleKind> kind;
   float radius = 0.05f;  ///< World units; a per-particle radius attribute overrides it.
+  /// Where `radius` came from: "scene file", or the Mantaflow domain it was derived from (--stats says it).
+  std::string radiusOrigin = "scene file";
+  /// For a source with a Mantaflow `domain`: how far Mantaflow's liquid mesh stands off the particles' flat
+  /// surface, world units (0 otherwise); it sets liquid.surface_offset (docs/mantaflow-caches.md).
+  float meshFlatOffset = 0.0f;
   glm::mat4 worldFromFile{1.0f};
 };
 
