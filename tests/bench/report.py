@@ -157,6 +157,8 @@ def write_plots(results, images):
         plots.time_vs_error(geometric, "median |depth error| (particle radii)", path,
                             f"{example}: time per frame against depth error")
         written.append(path)
+    if not results.get("scaling"):
+        return written
     particles = results["scaling"]["particles"]
     series = {}
     for source in ("synthetic", "resampled"):
@@ -184,7 +186,9 @@ def write(results, output, quick):
               table(["", ""], [["OpenGL renderer", machine["gl_renderer"]], ["CPU", machine["cpu"]],
                                ["memory", machine["memory"]], ["OS", machine["os"]], ["Blender", machine["blender"]],
                                ["load average at start", ", ".join(f"{v:.1f}" for v in machine["load_average"])],
-                               ["run", ("--quick" if quick else "full") + f", {results['runtime_s'] / 60:.1f} min"]])]
+                               ["run", ("--quick" if quick else "full") + f", {results['runtime_s'] / 60:.1f} min"],
+                               ["filters", ", ".join(f"{k} {v}" for k, v in plan.get("filters", {}).items())
+                                or "none"]])]
     for example, data in results["examples"].items():
         parts += ["", f"## {example}", "",
                   f"{plan['width']}×{plan['height']}, cameras {', '.join(plan['cameras'])}; times on "
@@ -194,6 +198,11 @@ def write(results, output, quick):
                   "### Spindrift settings", "", spindrift_table(data), "", "### Where the defaults stand", "",
                   defaults_on_front(data), "", "### GPU time per pass", "",
                   pass_table(data), "", "### Peers: VTK's fluid mapper and Cycles", "", peers_table(data)]
+    if not results.get("scaling"):
+        parts += ["", "## Stability suite", "", stability_table(results["stability"]), ""]
+        with open(os.path.join(output, "benchmarks.md"), "w") as handle:
+            handle.write("\n".join(parts))
+        return
     parts += ["", "## Scaling", "", "Default settings, the dam-break `oblique` camera (480×270 for the particle sweep, "
               "its background resampled for the resolution sweep).", "",
               "![scaling with particles](images/bench_scaling_particles.png)",
