@@ -67,7 +67,13 @@ def summarise(values):
 
 
 def measure(example_directory, frame, settings, work):
-    scene = os.path.join(example_directory, "scene.json")
+    # A scene with the example's liquid source alone: its background renders need not exist.
+    description = json.load(open(os.path.join(example_directory, "scene.json")))
+    liquid = dict(next(p for p in description["particles"] if p.get("role", "liquid") == "liquid"))
+    liquid["path"] = os.path.join(example_directory, liquid["path"])
+    scene = os.path.join(work, f"{os.path.basename(example_directory)}_liquid.json")
+    with open(scene, "w") as handle:
+        json.dump({"version": 1, "camera": description["camera"], "particles": [liquid]}, handle)
     ply = os.path.join(work, f"{os.path.basename(example_directory)}_{frame}.ply")
     subprocess.run([runs.EXPORT_PARTICLES, scene, str(frame), ply], check=True, capture_output=True)
     particles = read_ply(ply)[:, :3].astype(np.float64)
