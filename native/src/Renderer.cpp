@@ -109,6 +109,10 @@ RenderResult Renderer::renderParticles(const Scene& scene, const Particles& part
   const LiquidParameters& liquidParameters = scene.parameters.liquid;
   const FoamParameters& foamParameters = scene.parameters.foam;
   const int width = camera.width, height = camera.height;
+  // A Mantaflow liquid is clipped to its domain's box, as Mantaflow closes its mesh at the walls.
+  const DomainBox* domainBox = nullptr;
+  for (const ParticleSource& source : scene.particles)
+    if (source.role == ParticleRole::Liquid && source.domainBox && !domainBox) domainBox = &*source.domainBox;
   RenderResult result;
   result.width = width;
   result.height = height;
@@ -160,7 +164,7 @@ RenderResult Renderer::renderParticles(const Scene& scene, const Particles& part
     if (!liquid.splashes.empty()) {
       {
         ScopedPassTimer timed(timer, "splash_depth_layers");
-        splashes.emplace(pipeline.splashImpostors.run(liquid.splashes, *background, width, height));
+        splashes.emplace(pipeline.splashImpostors.run(liquid.splashes, *background, width, height, domainBox));
       }
       keep(*splashes, "splash");
     } else {
@@ -170,7 +174,7 @@ RenderResult Renderer::renderParticles(const Scene& scene, const Particles& part
     if (!liquid.aggregates.empty()) {
       {
         ScopedPassTimer timed(timer, "aggregate_depth_layers");
-        aggregates.emplace(pipeline.aggregateImpostors.run(liquid.aggregates, *background, width, height));
+        aggregates.emplace(pipeline.aggregateImpostors.run(liquid.aggregates, *background, width, height, domainBox));
       }
       keep(*aggregates, "aggregate");
       if (liquidParameters.smoothing != "none") {

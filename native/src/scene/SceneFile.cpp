@@ -93,6 +93,11 @@ void applyDomain(const JsonFields& fields, ParticleSource& source) {
     const MantaflowCacheConfig config = readMantaflowCacheConfig(configPath);
     if (cellSize == 0.0f) cellSize = config.cellSize();
     if (!fields.has("world_from_file")) source.worldFromFile = config.worldFromFile();
+    // Mantaflow sets the outermost mesh_scale - 1 layers of mesh cells outside (0.5), so the mesh's face
+    // against a wall lies about one mesh cell less than that inside: (mesh_scale - 0.1) mesh cells.
+    const float inset = (float(settings.meshScale) - 0.1f) / float(settings.meshScale) * config.cellSize();
+    source.domainBox = DomainBox{config.worldFromFile(), glm::vec3(inset),
+                                 glm::vec3(config.resolution) * config.cellSize() - inset};
   } else if (cellSize == 0.0f) {
     fields.fail("domain", "no Mantaflow config file (cache/config/config_NNNN.uni) beside " + source.path.string() +
                               ": give domain.cell_size");
