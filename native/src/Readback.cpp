@@ -63,4 +63,50 @@ void readFoamLayers(const FoamLayerData* foam, int width, int height, std::vecto
   layers.push_back(totalThickness(foam->thickness));
 }
 
+void readLiquidLayers(const LiquidData* liquid, int width, int height, std::vector<ImageLayer>& layers) {
+  const std::vector<std::string> rgba = {"R", "G", "B", "A"};
+  if (!liquid) {
+    layers.push_back(filledLayer(width, height, "liquid", rgba, 0.0f));
+    layers.push_back(filledLayer(width, height, "liquid_splash", rgba, 0.0f));
+    layers.push_back(filledLayer(width, height, "liquid_class", {"Y"}, 0.0f));
+    layers.push_back(filledLayer(width, height, "depth", {"Z"}, 1e10f));
+    layers.push_back(filledLayer(width, height, "normal", {"X", "Y", "Z"}, 0.0f));
+    layers.push_back(filledLayer(width, height, "thickness", {"Y"}, 0.0f));
+    for (const char* split : {"refraction_uv", "transmittance", "reflection"})
+      layers.push_back(filledLayer(width, height, split, {"R", "G", "B"}, 0.0f));
+    return;
+  }
+  layers.push_back(readLayer(liquid->color, "liquid", rgba));
+  layers.push_back(readLayer(liquid->splashColor, "liquid_splash", rgba));
+  layers.push_back(readLayer(liquid->surfaceClass, "liquid_class", {"Y"}));
+  layers.push_back(readLayer(liquid->frontDepth, "depth", {"Z"}));
+  layers.push_back(readLayer(liquid->frontNormal, "normal", {"X", "Y", "Z"}));
+  layers.push_back(readLayer(liquid->thickness, "thickness", {"Y"}));
+  // The refraction split for a compositor that refracts another render (docs/python-module.md).
+  layers.push_back(readLayer(liquid->refractionUv, "refraction_uv", {"R", "G", "B"}));
+  layers.push_back(readLayer(liquid->transmittance, "transmittance", {"R", "G", "B"}));
+  layers.push_back(readLayer(liquid->reflection, "reflection", {"R", "G", "B"}));
+}
+
+void readFrameLayers(const CompositeData& composite, const LiquidData* liquid, const FoamLayerData* foam,
+                     int width, int height, std::vector<ImageLayer>& layers) {
+  layers.push_back(readLayer(composite.color, "composite", {"R", "G", "B", "A"}));
+  readLiquidLayers(liquid, width, height, layers);
+  readFoamLayers(foam, width, height, layers);
+}
+
+void IntermediateLayers::keep(const SurfaceLayers& layers, const std::string& name) {
+  if (!enabled_) return;
+  kept_.push_back(readLayer(layers.front.eyeDepth, name + "_front_depth", {"Z"}));
+  kept_.push_back(readLayer(layers.back.eyeDepth, name + "_back_depth", {"Z"}));
+  kept_.push_back(readLayer(layers.front.normal, name + "_front_normal", {"X", "Y", "Z"}));
+  kept_.push_back(readLayer(layers.back.normal, name + "_back_normal", {"X", "Y", "Z"}));
+}
+
+void IntermediateLayers::appendTo(std::vector<ImageLayer>& layers) {
+  for (ImageLayer& layer : kept_)
+    layers.push_back(std::move(layer));
+  kept_.clear();
+}
+
 }  // namespace spindrift

@@ -2,6 +2,8 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cstdint>
+#include <filesystem>
 #include <optional>
 
 #include "gl/GlThread.h"
@@ -18,11 +20,15 @@
 #include "passes/FoamSceneDepthPass.h"
 #include "passes/FoamThicknessPass.h"
 #include "passes/FrameUniforms.h"
+#include "passes/OccluderDepthPass.h"
 #include "passes/RefractionPass.h"
 #include "prep/BackgroundCache.h"
 #include "prep/FoamPreparation.h"
 #include "prep/LiquidPreparation.h"
+#include "FramePlan.h"
+#include "FrameStatsRecording.h"
 #include "Readback.h"
+#include "spindrift/Error.h"
 
 namespace spindrift {
 namespace {
@@ -35,10 +41,14 @@ double millisecondsSince(Clock::time_point start) {
 
 // Every GL object of the frame; made, used and destroyed on the GL thread.
 struct FramePipeline {
-  ShaderLibrary shaders{findShaderDirectory()};
+  explicit FramePipeline(const std::filesystem::path& shaderDirectory) : shaders(shaderDirectory) {}
+
+  ShaderLibrary shaders;
   FrameUniformBuffer frameUniforms;
   PassTimer timer;
   BackgroundPass background{shaders};
+  OccluderDepthPass occluderDepth{shaders};
+  OccluderDepthPass liquidMeshDepth{shaders};
   EllipsoidImpostorPass splashImpostors{shaders};
   EllipsoidImpostorPass aggregateImpostors{shaders};
   DepthSmoothingPass frontSmoothing{shaders};
@@ -63,21 +73,55 @@ float typicalLiquidRadius(const Particles& particles) {
   return radii[radii.size() / 2];
 }
 
+// A result with the frame's size and what the stats know before any work.
+RenderResult emptyResult(int frame, int width, int height, const Particles& particles) {
+  RenderResult result;
+  result.width = width;
+  result.height = height;
+  result.stats.frame = frame;
+  result.stats.width = width;
+  result.stats.height = height;
+  result.stats.counts = countByKind(particles);
+  return result;
+}
+
+// An in-memory background image must have the camera's size; BackgroundCache resamples only files.
+void requireCameraSize(const FloatImage& image, int channels, const char* what, int width, int height) {
+  if (image.width != width || image.height != height || image.channels != channels ||
+      image.pixels.size() != std::size_t(width) * height * channels)
+    throw Error(std::string(what) + ": expected " + std::to_string(width) + "x" + std::to_string(height) +
+                "x" + std::to_string(channels) + " floats (the camera's size), got " +
+                std::to_string(image.width) + "x" + std::to_string(image.height) + "x" +
+                std::to_string(image.channels));
+}
+
 }  // namespace
+
+// In-memory inputs of a frame, by pointer, beside those loaded from the scene's files.
+struct Renderer::FrameExtras {
+  std::vector<const TriangleMesh*> occluders;
+  const TriangleMesh* liquidMesh = nullptr;
+  const FloatImage* backgroundColor = nullptr;
+  const FloatImage* backgroundDepth = nullptr;
+};
 
 struct Renderer::Impl {
   GlThread glThread;
   std::unique_ptr<FramePipeline> pipeline;  // Lives on glThread; reset there before the thread ends.
   BackgroundCache backgroundCache;
   bool intermediateLayers = false;
+  // In-memory backgrounds change every frame: each gets its own upload generation, apart from the cache's.
+  std::uint64_t hostBackgroundGeneration = std::uint64_t(1) << 63;
 
   ~Impl() {
     glThread.run([this] { pipeline.reset(); });
   }
 };
 
-Renderer::Renderer() : impl_(std::make_unique<Impl>()) {
-  impl_->glThread.run([this] { impl_->pipeline = std::make_unique<FramePipeline>(); });
+Renderer::Renderer() : Renderer(findShaderDirectory()) {}
+
+Renderer::Renderer(const std::filesystem::path& shaderDirectory) : impl_(std::make_unique<Impl>()) {
+  impl_->glThread.run([&] { impl_->pipeline = std::make_unique<FramePipeline>(shaderDirectory); });
 }
 
 Renderer::~Renderer() = default;
@@ -88,11 +132,34 @@ std::string Renderer::glRenderer() const { return impl_->glThread.renderer(); }
 std::string Renderer::glVersion() const { return impl_->glThread.version(); }
 
 RenderResult Renderer::renderFrame(const Scene& scene, int frame) {
+  return renderFrame(scene, frame, FrameInputs{});
+}
+
+RenderResult Renderer::renderFrame(const Scene& scene, int frame, const FrameInputs& inputs) {
   const Clock::time_point start = Clock::now();
   ParticleCounts counts;
-  const Particles particles = loadParticles(scene, frame, &counts);
+  Particles particles = loadParticles(scene, frame, &counts);
+  const std::size_t droppedFromFiles = counts.droppedInvalid;
+  const std::size_t droppedInMemory = appendValidParticles(particles, inputs.particles);
+  counts = countByKind(particles);
+  counts.droppedInvalid = droppedFromFiles + droppedInMemory;
+  for (std::size_t i = 0; i < inputs.occluders.size(); ++i)
+    inputs.occluders[i].validate("occluders[" + std::to_string(i) + "]");
+  if (inputs.liquidMesh) inputs.liquidMesh->validate("liquid_mesh");
+  FrameInputs files;
+  loadMeshes(scene, frame, files);
   const double loadMilliseconds = millisecondsSince(start);
-  RenderResult result = renderParticles(scene, particles, frame);
+  FrameExtras extras;
+  for (const TriangleMesh& mesh : files.occluders)
+    extras.occluders.push_back(&mesh);
+  for (const TriangleMesh& mesh : inputs.occluders)
+    extras.occluders.push_back(&mesh);
+  extras.liquidMesh = inputs.liquidMesh  ? &*inputs.liquidMesh
+                      : files.liquidMesh ? &*files.liquidMesh
+                                         : nullptr;
+  extras.backgroundColor = inputs.backgroundColor ? &*inputs.backgroundColor : nullptr;
+  extras.backgroundDepth = inputs.backgroundDepth ? &*inputs.backgroundDepth : nullptr;
+  RenderResult result = renderPrepared(scene, particles, frame, extras);
   result.stats.counts = counts;
   result.stats.loadMilliseconds = loadMilliseconds;
   result.stats.totalMilliseconds = millisecondsSince(start);
@@ -100,10 +167,16 @@ RenderResult Renderer::renderFrame(const Scene& scene, int frame) {
 }
 
 // The frame, top to bottom, as the liquid paper's figure 4 draws it: prepare the particles on the CPU (split
-// into splashes and aggregates, anisotropic ellipsoids; foam culled and packed), then on the GL thread the
-// background, the front and back depth layers of splashes and of aggregates, smoothing of the aggregate layers,
-// refraction, the foam paper's seven passes (figure 2), and the composite; then read the layers back. A pass the frame does not need is not run, and the stats say why.
+// into splashes and aggregates, anisotropic ellipsoids; foam culled and packed) and plan the passes, then on
+// the GL thread the background, the front and back depth layers of splashes and of aggregates, smoothing of
+// the aggregate layers, refraction, the foam paper's seven passes (figure 2), and the composite; then read the
+// layers back. A pass the plan leaves out is not run, and the stats say why (FramePlan.cpp).
 RenderResult Renderer::renderParticles(const Scene& scene, const Particles& particles, int frame) {
+  return renderPrepared(scene, particles, frame, FrameExtras{});
+}
+
+RenderResult Renderer::renderPrepared(const Scene& scene, const Particles& particles, int frame,
+                                      const FrameExtras& extras) {
   const Clock::time_point start = Clock::now();
   const Camera& camera = scene.camera;
   const LiquidParameters& liquidParameters = scene.parameters.liquid;
@@ -113,169 +186,118 @@ RenderResult Renderer::renderParticles(const Scene& scene, const Particles& part
   const DomainBox* domainBox = nullptr;
   for (const ParticleSource& source : scene.particles)
     if (source.role == ParticleRole::Liquid && source.domainBox && !domainBox) domainBox = &*source.domainBox;
-  RenderResult result;
-  result.width = width;
-  result.height = height;
+  RenderResult result = emptyResult(frame, width, height, particles);
+  result.stats.glRenderer = glRenderer();
+  result.stats.glVersion = glVersion();
   FrameStats& stats = result.stats;
-  stats.frame = frame;
-  stats.width = width;
-  stats.height = height;
-  stats.glRenderer = glRenderer();
-  stats.glVersion = glVersion();
-  stats.counts = countByKind(particles);
 
   const Clock::time_point prepareStart = Clock::now();
   const LiquidPreparation liquid = prepareLiquid(particles, camera, liquidParameters);
   const float radius = typicalLiquidRadius(particles);
   const FoamPreparation foam = prepareFoam(particles, camera, foamParameters);
-  const BackgroundImages backgroundImages = impl_->backgroundCache.load(scene.background, frame, width, height);
+  BackgroundImages backgroundImages = impl_->backgroundCache.load(scene.background, frame, width, height);
+  if (extras.backgroundColor) {
+    requireCameraSize(*extras.backgroundColor, 4, "background colour", width, height);
+    backgroundImages.color = extras.backgroundColor;
+  }
+  if (extras.backgroundDepth) {
+    requireCameraSize(*extras.backgroundDepth, 1, "background depth", width, height);
+    backgroundImages.eyeDepth = extras.backgroundDepth;
+  }
+  if (extras.backgroundColor || extras.backgroundDepth)
+    backgroundImages.generation = ++impl_->hostBackgroundGeneration;
   stats.prepareMilliseconds = millisecondsSince(prepareStart);
-  stats.liquid.splashParticles = liquid.splashes.size();
-  stats.liquid.aggregateParticles = liquid.aggregates.size();
-  stats.liquid.isotropicInterior = liquid.isotropicInterior;
-  stats.liquid.culled = liquid.culled;
-  stats.liquid.neighbourMilliseconds = liquid.neighbourMilliseconds;
-  stats.liquid.anisotropyMilliseconds = liquid.anisotropyMilliseconds;
-  stats.foam.sprayParticles = foam.spray;
-  stats.foam.surfaceParticles = foam.surface;
-  stats.foam.bubbleParticles = foam.bubble;
-  stats.foam.culled = foam.culled;
+  recordPreparation(liquid, foam, stats);
+  const FramePlan plan =
+      planFrame({liquid.splashes.size(), liquid.aggregates.size(), foam.instances.size(),
+                 liquidParameters.smoothing, extras.occluders.size(), extras.liquidMesh != nullptr});
+  stats.skipped = plan.skipped;
 
   impl_->glThread.run([&] {
     FramePipeline& pipeline = *impl_->pipeline;
-    PassTimer& timer = pipeline.timer;
-    auto skip = [&](const char* pass, const char* reason) { stats.skipped.push_back({pass, reason}); };
+    auto timed = [&](Pass pass, auto&& issuePass) { return timePass(pipeline.timer, passName(pass), issuePass); };
+    IntermediateLayers intermediate(impl_->intermediateLayers);
     pipeline.frameUniforms.update(camera);
 
-    std::optional<BackgroundData> background;
-    {
-      ScopedPassTimer timed(timer, "background");
-      background.emplace(pipeline.background.run(backgroundImages, width, height));
-    }
-    std::vector<ImageLayer> intermediate;
-    auto keep = [&](const SurfaceLayers& layers, const std::string& name) {
-      if (!impl_->intermediateLayers) return;
-      intermediate.push_back(readLayer(layers.front.eyeDepth, name + "_front_depth", {"Z"}));
-      intermediate.push_back(readLayer(layers.back.eyeDepth, name + "_back_depth", {"Z"}));
-      intermediate.push_back(readLayer(layers.front.normal, name + "_front_normal", {"X", "Y", "Z"}));
-      intermediate.push_back(readLayer(layers.back.normal, name + "_back_normal", {"X", "Y", "Z"}));
+    const BackgroundData resolved =
+        timed(Pass::Background, [&] { return pipeline.background.run(backgroundImages, width, height); });
+    // Solid geometry handed as triangles joins the background's depth, so every later pass that tests against
+    // solids sees it; the liquid's own mesh stands in for (or joins) background.liquid_depth.
+    auto meshDepth = [&](Pass pass, OccluderDepthPass& prepass, const std::vector<const TriangleMesh*>& meshes,
+                         const Texture2D* start) -> const Texture2D* {
+      if (!plan.runs(pass)) return start;
+      return &timed(pass, [&] { return prepass.run(meshes, start, width, height); }).eyeDepth;
     };
-    std::optional<SurfaceLayers> splashes;
-    if (!liquid.splashes.empty()) {
-      {
-        ScopedPassTimer timed(timer, "splash_depth_layers");
-        splashes.emplace(pipeline.splashImpostors.run(liquid.splashes, *background, width, height, domainBox));
-      }
-      keep(*splashes, "splash");
-    } else {
-      skip("splash_depth_layers", "no splash particles in view");
+    const Texture2D& solidDepth =
+        *meshDepth(Pass::OccluderDepth, pipeline.occluderDepth, extras.occluders, &resolved.eyeDepth);
+    const Texture2D* liquidDepth =
+        meshDepth(Pass::LiquidMeshDepth, pipeline.liquidMeshDepth, {extras.liquidMesh}, resolved.liquidEyeDepth);
+    const BackgroundData background{resolved.color, solidDepth, resolved.environment, resolved.fallbackColor,
+                                    liquidDepth};
+    std::optional<SurfaceLayers> splashes, aggregates;
+    if (plan.runs(Pass::SplashDepthLayers)) {
+      splashes.emplace(timed(Pass::SplashDepthLayers, [&] {
+        return pipeline.splashImpostors.run(liquid.splashes, background, width, height, domainBox);
+      }));
+      intermediate.keep(*splashes, "splash");
     }
-    std::optional<SurfaceLayers> aggregates;
-    if (!liquid.aggregates.empty()) {
-      {
-        ScopedPassTimer timed(timer, "aggregate_depth_layers");
-        aggregates.emplace(pipeline.aggregateImpostors.run(liquid.aggregates, *background, width, height, domainBox));
-      }
-      keep(*aggregates, "aggregate");
-      if (liquidParameters.smoothing != "none") {
-        ScopedPassTimer timed(timer, "smoothing");
-        const DepthLayer front = pipeline.frontSmoothing.run(aggregates->front, radius, false, liquidParameters, width, height);
-        const DepthLayer back = pipeline.backSmoothing.run(aggregates->back, radius, true, liquidParameters, width, height);
-        aggregates.emplace(SurfaceLayers{front, back});
-        keep(*aggregates, "aggregate_smoothed");
-      } else {
-        skip("smoothing", "liquid.smoothing is none");
-      }
-    } else {
-      skip("aggregate_depth_layers", "no aggregate particles in view");
-      skip("smoothing", "no aggregate particles in view");
+    if (plan.runs(Pass::AggregateDepthLayers)) {
+      aggregates.emplace(timed(Pass::AggregateDepthLayers, [&] {
+        return pipeline.aggregateImpostors.run(liquid.aggregates, background, width, height, domainBox);
+      }));
+      intermediate.keep(*aggregates, "aggregate");
+    }
+    if (plan.runs(Pass::Smoothing)) {
+      aggregates.emplace(timed(Pass::Smoothing, [&] {
+        return SurfaceLayers{
+            pipeline.frontSmoothing.run(aggregates->front, radius, false, liquidParameters, width, height),
+            pipeline.backSmoothing.run(aggregates->back, radius, true, liquidParameters, width, height)};
+      }));
+      intermediate.keep(*aggregates, "aggregate_smoothed");
     }
     std::optional<LiquidData> liquidLayer;
-    if (splashes || aggregates) {
-      ScopedPassTimer timed(timer, "refraction");
-      liquidLayer.emplace(pipeline.refraction.run(splashes, aggregates, *background, liquidParameters, width, height));
-    } else {
-      skip("refraction", "no liquid particles in view");
-    }
+    if (plan.runs(Pass::Refraction))
+      liquidLayer.emplace(timed(Pass::Refraction, [&] {
+        return pipeline.refraction.run(splashes, aggregates, background, liquidParameters, width, height);
+      }));
+
     // Foam (foam paper, figure 2): the solids' and the liquid's depth, the foam's nearest depth, its thickness,
-    // intensity, shadow and irradiance, then blur and the foam layer.
+    // intensity, shadow and irradiance, then blur and the foam layer. The plan runs all six or none.
     std::optional<FoamLayerData> foamLayer;
-    if (!foam.instances.empty()) {
-      std::optional<FoamSceneDepth> sceneDepth;
-      std::optional<FoamSurfaceData> foamSurface;
-      std::optional<FoamThicknessData> foamThickness;
-      std::optional<FoamIntensityData> foamIntensity;
-      std::optional<FoamOcclusionData> foamOcclusion;
-      {
-        ScopedPassTimer timed(timer, "foam_scene_depth");
-        sceneDepth.emplace(pipeline.foamSceneDepth.run(*background, liquidLayer ? &liquidLayer->frontDepth : nullptr,
-                                                       width, height));
-      }
-      {
-        ScopedPassTimer timed(timer, "foam_depth");
-        foamSurface.emplace(pipeline.foamDepth.run(foam.instances, *sceneDepth, width, height));
-      }
-      {
-        ScopedPassTimer timed(timer, "foam_thickness");
-        foamThickness.emplace(pipeline.foamThickness.run(*foamSurface, *sceneDepth, foamParameters, width, height));
-      }
-      {
-        ScopedPassTimer timed(timer, "foam_intensity");
-        foamIntensity.emplace(pipeline.foamIntensity.run(*foamThickness, foamParameters, width, height));
-      }
-      {
-        ScopedPassTimer timed(timer, "foam_occlusion");
-        foamOcclusion.emplace(pipeline.foamOcclusion.run(*foamSurface, *foamIntensity, *sceneDepth, *background,
-                                                         foamParameters, width, height));
-      }
-      {
-        ScopedPassTimer timed(timer, "foam_blur");
-        foamLayer.emplace(pipeline.foamBlur.run(*foamSurface, *foamThickness, *foamIntensity, *foamOcclusion,
-                                                foamParameters, width, height));
-      }
-    } else {
-      for (const char* pass : {"foam_scene_depth", "foam_depth", "foam_thickness", "foam_intensity", "foam_occlusion",
-                               "foam_blur"})
-        skip(pass, "no foam particles in view");
+    if (plan.runs(Pass::FoamDepth)) {
+      const FoamSceneDepth sceneDepth = timed(Pass::FoamSceneDepth, [&] {
+        return pipeline.foamSceneDepth.run(background, liquidLayer ? &liquidLayer->frontDepth : nullptr, width,
+                                           height);
+      });
+      const FoamSurfaceData foamSurface = timed(
+          Pass::FoamDepth, [&] { return pipeline.foamDepth.run(foam.instances, sceneDepth, width, height); });
+      const FoamThicknessData foamThickness = timed(Pass::FoamThickness, [&] {
+        return pipeline.foamThickness.run(foamSurface, sceneDepth, foamParameters, width, height);
+      });
+      const FoamIntensityData foamIntensity = timed(Pass::FoamIntensity, [&] {
+        return pipeline.foamIntensity.run(foamThickness, foamParameters, width, height);
+      });
+      const FoamOcclusionData foamOcclusion = timed(Pass::FoamOcclusion, [&] {
+        return pipeline.foamOcclusion.run(foamSurface, foamIntensity, sceneDepth, background, foamParameters,
+                                          width, height);
+      });
+      foamLayer.emplace(timed(Pass::FoamBlur, [&] {
+        return pipeline.foamBlur.run(foamSurface, foamThickness, foamIntensity, foamOcclusion, foamParameters,
+                                     width, height);
+      }));
     }
-    std::optional<CompositeData> composite;
-    {
-      ScopedPassTimer timed(timer, "composite");
-      composite.emplace(pipeline.composite.run(*background, liquidLayer ? &*liquidLayer : nullptr,
-                                               foamLayer ? &*foamLayer : nullptr, width, height));
-    }
-    stats.passes = timer.collect();
+    const CompositeData composite = timed(Pass::Composite, [&] {
+      return pipeline.composite.run(background, liquidLayer ? &*liquidLayer : nullptr,
+                                    foamLayer ? &*foamLayer : nullptr, width, height);
+    });
+    stats.passes = pipeline.timer.collect();
 
     const Clock::time_point readbackStart = Clock::now();
-    result.layers.push_back(readLayer(composite->color, "composite", {"R", "G", "B", "A"}));
-    if (liquidLayer) {
-      const RefractionStatistics rays = pipeline.refraction.statistics();
-      stats.liquid.liquidPixels = rays.liquidPixels;
-      stats.liquid.raysWithSecondBody = rays.raysWithSecondBody;
-      stats.liquid.totalInternalReflections = rays.totalInternalReflections;
-      for (int i = 0; i < 4; ++i) stats.liquid.orders[i] = rays.orders[i];
-      result.layers.push_back(readLayer(liquidLayer->color, "liquid", {"R", "G", "B", "A"}));
-      result.layers.push_back(readLayer(liquidLayer->splashColor, "liquid_splash", {"R", "G", "B", "A"}));
-      result.layers.push_back(readLayer(liquidLayer->surfaceClass, "liquid_class", {"Y"}));
-      result.layers.push_back(readLayer(liquidLayer->frontDepth, "depth", {"Z"}));
-      result.layers.push_back(readLayer(liquidLayer->frontNormal, "normal", {"X", "Y", "Z"}));
-      result.layers.push_back(readLayer(liquidLayer->thickness, "thickness", {"Y"}));
-    } else {
-      // The layers stay in the file so every frame of a sequence has the same channels.
-      result.layers.push_back(filledLayer(width, height, "liquid", {"R", "G", "B", "A"}, 0.0f));
-      result.layers.push_back(filledLayer(width, height, "liquid_splash", {"R", "G", "B", "A"}, 0.0f));
-      result.layers.push_back(filledLayer(width, height, "liquid_class", {"Y"}, 0.0f));
-      result.layers.push_back(filledLayer(width, height, "depth", {"Z"}, 1e10f));
-      result.layers.push_back(filledLayer(width, height, "normal", {"X", "Y", "Z"}, 0.0f));
-      result.layers.push_back(filledLayer(width, height, "thickness", {"Y"}, 0.0f));
-    }
-    if (foamLayer) {
-      const FoamOcclusionStatistics occlusion = pipeline.foamOcclusion.statistics();
-      stats.foam.foamPixels = occlusion.foamPixels;
-      stats.foam.aoSamplesPerPixel = occlusion.foamPixels ? double(occlusion.samples) / occlusion.foamPixels : 0.0;
-    }
-    readFoamLayers(foamLayer ? &*foamLayer : nullptr, width, height, result.layers);
-    for (ImageLayer& layer : intermediate) result.layers.push_back(std::move(layer));
+    if (liquidLayer) recordRefraction(pipeline.refraction.statistics(), stats.liquid);
+    if (foamLayer) recordFoamOcclusion(pipeline.foamOcclusion.statistics(), stats.foam);
+    readFrameLayers(composite, liquidLayer ? &*liquidLayer : nullptr, foamLayer ? &*foamLayer : nullptr, width,
+                    height, result.layers);
+    intermediate.appendTo(result.layers);
     stats.readbackMilliseconds = millisecondsSince(readbackStart);
   });
   stats.totalMilliseconds = millisecondsSince(start);

@@ -1,13 +1,14 @@
 #!/usr/bin/python3
 """Spindrift's speed-against-error benchmark: one command that regenerates docs/benchmarks.md and its plots.
 
-    tests/bench/benchmark.py [--quick] [--output docs] [--work build/bench]
+    tests/bench/benchmark.py [--quick] [--output DIR] [--work build/bench]
 
 Bakes the examples and renders the Cycles references where they are missing (git-ignored, under --work),
 runs every configuration of the sweep through `build/bin/spindrift render --set ... --stats`, VTK's fluid
 mapper and Cycles at increasing sample counts on the same frames, measures the scaling with particle count and
 resolution, runs the stability suite, and writes OUTPUT/benchmarks.md and OUTPUT/images/bench_*.png.
-`--quick` is a smoke run of a tiny subset (one example, one camera, few settings, one repeat).
+`--quick` is a smoke run of a tiny subset (one example, one camera, few settings, one repeat); it writes its page
+to WORK/quick/ (and its results to WORK/results_quick.json), never over the committed docs/benchmarks.md.
 """
 
 import argparse
@@ -30,7 +31,8 @@ EXAMPLES = ("dam_break", "drop")
 def parse_arguments():
     parser = argparse.ArgumentParser(description=__doc__.split("\n")[0])
     parser.add_argument("--quick", action="store_true", help="a smoke run of a tiny subset")
-    parser.add_argument("--output", default=os.path.join(runs.REPOSITORY, "docs"))
+    parser.add_argument("--output", help="where the page and its images go (default: docs, or WORK/quick with "
+                                           "--quick)")
     parser.add_argument("--work", default=os.path.join(runs.REPOSITORY, "build", "bench"))
     parser.add_argument("--blender", default="blender")
     parser.add_argument("--report-only", action="store_true",
@@ -46,7 +48,17 @@ def parse_arguments():
     parser.add_argument("--repeats", type=int, default=0, help="timed runs per setting (default: the plan's)")
     parser.add_argument("--no-vtk", action="store_true", help="leave VTK's fluid mapper out")
     parser.add_argument("--no-scaling", action="store_true", help="leave the scaling measurements out")
-    return parser.parse_args()
+    arguments = parser.parse_args()
+    if arguments.output is None:
+        arguments.output = (os.path.join(arguments.work, "quick") if arguments.quick
+                            else os.path.join(runs.REPOSITORY, "docs"))
+    os.makedirs(os.path.join(arguments.output, "images"), exist_ok=True)
+    return arguments
+
+
+def results_path(arguments):
+    """A quick run keeps its results apart, so it never replaces a full run's for --report-only."""
+    return os.path.join(arguments.work, "results_quick.json" if arguments.quick else "results.json")
 
 
 def apply_filters(plan, arguments):
@@ -153,7 +165,7 @@ def main():
     arguments = parse_arguments()
     os.makedirs(arguments.work, exist_ok=True)
     if arguments.report_only:
-        results = json.load(open(os.path.join(arguments.work, "results.json")))
+        results = json.load(open(results_path(arguments)))
         report.write(results, arguments.output, results["plan"].get("quick", False))
         return
     started = time.perf_counter()
@@ -196,7 +208,7 @@ def main():
     log("stability suite")
     results["stability"] = run_stability_suite(arguments.work)
     results["runtime_s"] = time.perf_counter() - started
-    with open(os.path.join(arguments.work, "results.json"), "w") as handle:
+    with open(results_path(arguments), "w") as handle:
         json.dump(results, handle, indent=1, default=str)
     report.write(results, arguments.output, arguments.quick)
     log(f"done in {results['runtime_s'] / 60:.1f} min: {os.path.join(arguments.output, 'benchmarks.md')}")

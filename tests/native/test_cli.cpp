@@ -69,7 +69,7 @@ TEST(CLI, RendersExrPngAndStats) {
                                        "liquid_class.Y",  "thickness.Y"};
   for (const char* layer : {"foam", "foam_spray", "foam_surface", "foam_bubble"})
     for (const char* channel : {".R", ".G", ".B", ".A"}) expected.insert(std::string(layer) + channel);
-  for (const char* layer : {"foam_shadow", "foam_irradiance"})
+  for (const char* layer : {"foam_shadow", "foam_irradiance", "refraction_uv", "transmittance", "reflection"})
     for (const char* channel : {".R", ".G", ".B"}) expected.insert(std::string(layer) + channel);
   expected.insert("foam_thickness.Y");
   EXPECT_EQ(channels, expected);

@@ -1,8 +1,10 @@
 #pragma once
 
+#include <filesystem>
 #include <memory>
 #include <string>
 
+#include "spindrift/FrameInputs.h"
 #include "spindrift/RenderResult.h"
 #include "spindrift/Scene.h"
 
@@ -14,13 +16,20 @@ namespace spindrift {
 /// live as long as the Renderer and are reused across frames.
 class Renderer {
  public:
+  /// Shaders from findShaderDirectory(): $SPINDRIFT_SHADER_DIR, or `share/spindrift/shaders` beside the
+  /// library's directory.
   Renderer();
+  /// Shaders from an explicit directory (the Blender add-on keeps them beside its module).
+  explicit Renderer(const std::filesystem::path& shaderDirectory);
   ~Renderer();
   Renderer(const Renderer&) = delete;
   Renderer& operator=(const Renderer&) = delete;
 
   /// Loads the frame's particles and background, renders every pass the scene needs and reads them back.
   RenderResult renderFrame(const Scene& scene, int frame);
+  /// The same, with what a host hands over in memory: particles added to the files', occluder and liquid
+  /// meshes beside the scene's mesh files, and a background colour and depth instead of its files.
+  RenderResult renderFrame(const Scene& scene, int frame, const FrameInputs& inputs);
   /// Renders already loaded particles (world space); `counts` describes them for the stats.
   RenderResult renderParticles(const Scene& scene, const Particles& particles, int frame);
 
@@ -34,6 +43,8 @@ class Renderer {
 
  private:
   struct Impl;
+  struct FrameExtras;
+  RenderResult renderPrepared(const Scene& scene, const Particles& particles, int frame, const FrameExtras& extras);
   std::unique_ptr<Impl> impl_;
 };
 

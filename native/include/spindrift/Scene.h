@@ -9,6 +9,7 @@
 #include <glm/vec3.hpp>
 
 #include "spindrift/Camera.h"
+#include "spindrift/FrameInputs.h"
 #include "spindrift/Parameters.h"
 #include "spindrift/Particles.h"
 
@@ -43,6 +44,13 @@ struct ParticleSource {
   glm::mat4 worldFromFile{1.0f};
 };
 
+/// A triangle mesh file (Wavefront OBJ) of the scene file's `occluders` or `liquid_mesh`. The path is
+/// absolute and may hold `####` like particle paths.
+struct MeshSource {
+  std::filesystem::path path;
+  glm::mat4 worldFromFile{1.0f};
+};
+
 /// What lies behind the liquid. Paths are absolute or empty, and may hold `####` like particle paths.
 struct Background {
   std::filesystem::path image;        ///< Colour, or empty.
@@ -60,6 +68,11 @@ struct Scene {
   Camera camera;
   std::vector<ParticleSource> particles;
   Background background;
+  /// Solid geometry drawn into the depth prepass (the frame's solid depth is the nearer of it and the
+  /// background's depth).
+  std::vector<MeshSource> occluders;
+  /// The liquid's own surface, whose depth plays the role of `background.liquid_depth`.
+  std::optional<MeshSource> liquidMesh;
   Parameters parameters;
   int frame = 1;  ///< The frame rendered when the command line names none.
 };
@@ -76,5 +89,9 @@ std::filesystem::path pathForFrame(const std::filesystem::path& pattern, int fra
 /// Reads every particle source of a frame and brings it to world space. Particles with a non-finite position,
 /// or a radius that is not finite and positive, are dropped and counted in `counts->droppedInvalid`.
 Particles loadParticles(const Scene& scene, int frame, ParticleCounts* counts = nullptr);
+
+/// Reads a frame's `occluders` and `liquid_mesh` files into `inputs` (world space), beside what it already
+/// holds; an in-memory liquid mesh already in `inputs` wins over the scene's file.
+void loadMeshes(const Scene& scene, int frame, FrameInputs& inputs);
 
 }  // namespace spindrift

@@ -37,4 +37,11 @@ class ScopedPassTimer {
   PassTimer& timer_;
 };
 
+/// Runs `issuePass` timed as the pass `passName` and returns what it returns.
+template <class IssuePass>
+auto timePass(PassTimer& timer, const std::string& passName, IssuePass&& issuePass) -> decltype(issuePass()) {
+  ScopedPassTimer timed(timer, passName);
+  return issuePass();
+}
+
 }  // namespace spindrift

@@ -4,31 +4,13 @@
 
 #include <glm/vec3.hpp>
 
+#include "framedata/BackgroundData.h"
+#include "framedata/BackgroundImages.h"
 #include "gl/GlObjects.h"
 #include "gl/ShaderLibrary.h"
 #include "io/ImageFiles.h"
 
 namespace spindrift {
-
-/// The background of one frame on the CPU, already at the camera's size. Null images are absent.
-struct BackgroundImages {
-  const FloatImage* color = nullptr;        ///< RGBA, premultiplied.
-  const FloatImage* eyeDepth = nullptr;     ///< Planar eye depth, one channel.
-  const FloatImage* environment = nullptr;  ///< Equirectangular RGBA, any size.
-  const FloatImage* liquidEyeDepth = nullptr;  ///< Planar eye depth of a render that includes the liquid.
-  glm::vec3 fallbackColor{0.0f};
-  std::uint64_t generation = 0;  ///< Changes whenever any image changes, so unchanged ones stay uploaded.
-};
-
-/// What lies behind the liquid, on the GPU, at the camera's size.
-struct BackgroundData {
-  const Texture2D& color;     ///< RGBA32F, opaque.
-  const Texture2D& eyeDepth;  ///< R32F planar eye depth; 1e10 where nothing is.
-  const Texture2D* environment;  ///< Null when the scene has none.
-  glm::vec3 fallbackColor;
-  /// R32F planar eye depth of a render that includes the liquid, as the file has it; null when none.
-  const Texture2D* liquidEyeDepth;
-};
 
 /// Resolves the background image over the environment or colour, and the solids' depth, per pixel.
 class BackgroundPass {

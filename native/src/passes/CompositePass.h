@@ -1,17 +1,13 @@
 #pragma once
 
+#include "framedata/BackgroundData.h"
+#include "framedata/CompositeData.h"
+#include "framedata/FoamLayerData.h"
+#include "framedata/LiquidData.h"
 #include "gl/GlObjects.h"
 #include "gl/ShaderLibrary.h"
-#include "passes/BackgroundPass.h"
-#include "passes/FoamBlurPass.h"
-#include "passes/RefractionPass.h"
 
 namespace spindrift {
-
-/// The final image.
-struct CompositeData {
-  const Texture2D& color;  ///< RGBA32F, premultiplied.
-};
 
 /// Puts the liquid layer over the background and the foam over both.
 class CompositePass {

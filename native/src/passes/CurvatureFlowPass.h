@@ -1,5 +1,6 @@
 #pragma once
 
+#include "framedata/SmoothedDepth.h"
 #include "gl/GlObjects.h"
 #include "gl/ShaderLibrary.h"
 #include "passes/DepthPingPong.h"

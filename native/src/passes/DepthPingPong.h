@@ -6,11 +6,6 @@
 
 namespace spindrift {
 
-/// The eye depth a smoothing filter produces: R32F, kNoSurfaceDepth where the layer is empty.
-struct SmoothedDepth {
-  const Texture2D& eyeDepth;
-};
-
 /// Two R32F eye-depth render targets that the iterative smoothing filters alternate between, and the
 /// fullscreen draw into one of them. One instance serves every filter of a DepthSmoothingPass, since only one
 /// filter runs per layer.

@@ -2,17 +2,12 @@
 
 #include <memory>
 
+#include "framedata/DepthLayers.h"
 #include "gl/GlObjects.h"
 #include "gl/ShaderLibrary.h"
 #include "spindrift/Parameters.h"
 
 namespace spindrift {
-
-/// One depth layer of the liquid: the front or back surface of the splashes or of the aggregated body.
-struct DepthLayer {
-  const Texture2D& eyeDepth;  ///< R32F planar eye depth; 1e10 (kNoSurfaceDepth) where the layer is empty.
-  const Texture2D& normal;    ///< RGBA16F: world-space outward normal in xyz, coverage (1 or 0) in w.
-};
 
 /// Smooths an aggregate depth layer with the method liquid.smoothing names (plane_fit, bilateral,
 /// curvature_flow, narrow_range or none) and recomputes its normals from the smoothed depth. Empty pixels stay

@@ -2,20 +2,14 @@
 
 #include <vector>
 
+#include "framedata/BackgroundData.h"
+#include "framedata/DepthLayers.h"
 #include "gl/GlObjects.h"
 #include "gl/ShaderLibrary.h"
-#include "passes/BackgroundPass.h"
-#include "passes/DepthSmoothingPass.h"
 #include "prep/LiquidPreparation.h"
 #include "spindrift/Scene.h"
 
 namespace spindrift {
-
-/// The front and back surfaces of one group of liquid particles (the splashes, or the aggregated body).
-struct SurfaceLayers {
-  DepthLayer front;  ///< Nearest front-facing surface.
-  DepthLayer back;   ///< Farthest back-facing surface.
-};
 
 /// Ray-casts ellipsoid impostors (Sigg et al. 2006) into a front and a back depth layer with exact per-pixel
 /// depth and analytic normals: the liquid paper's section 4.2. Spheres are ellipsoids with equal axes.

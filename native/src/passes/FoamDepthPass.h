@@ -2,20 +2,13 @@
 
 #include <vector>
 
+#include "framedata/FoamSceneDepth.h"
+#include "framedata/FoamSurfaceData.h"
 #include "gl/GlObjects.h"
 #include "gl/ShaderLibrary.h"
-#include "passes/FoamSceneDepthPass.h"
 #include "prep/FoamPreparation.h"
 
 namespace spindrift {
-
-/// Foam pass 3: the nearest foam sphere per pixel, and the uploaded particles the thickness pass draws again.
-struct FoamSurfaceData {
-  const Texture2D& depthAndSearchRadius;  ///< RG32F: planar eye depth (1e10 where none), search radius h.
-  const Texture2D& normal;                ///< RGBA16F: world normal, coverage.
-  const BufferObject& particles;          ///< FoamInstance[count], shader storage.
-  GLsizei count;
-};
 
 /// Draws foam particles as sprites with spherical depth (foam paper 2.1), keeping the nearest per pixel.
 class FoamDepthPass {

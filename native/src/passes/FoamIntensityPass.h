@@ -1,16 +1,12 @@
 #pragma once
 
+#include "framedata/FoamIntensityData.h"
+#include "framedata/FoamThicknessData.h"
 #include "gl/GlObjects.h"
 #include "gl/ShaderLibrary.h"
-#include "passes/FoamThicknessPass.h"
 #include "spindrift/Parameters.h"
 
 namespace spindrift {
-
-/// Foam pass 5: the foam's intensity, its opacity in the composite.
-struct FoamIntensityData {
-  const Texture2D& intensity;  ///< R32F: iota in [0, 1).
-};
 
 /// Turns thickness rho into intensity with the sigmoid iota(rho, rho_mod, rho_exp) (foam paper 2.3).
 class FoamIntensityPass {

@@ -2,27 +2,16 @@
 
 #include <cstdint>
 
+#include "framedata/BackgroundData.h"
+#include "framedata/FoamIntensityData.h"
+#include "framedata/FoamOcclusionData.h"
+#include "framedata/FoamSceneDepth.h"
+#include "framedata/FoamSurfaceData.h"
 #include "gl/GlObjects.h"
 #include "gl/ShaderLibrary.h"
-#include "passes/BackgroundPass.h"
-#include "passes/FoamDepthPass.h"
-#include "passes/FoamIntensityPass.h"
-#include "passes/FoamSceneDepthPass.h"
 #include "spindrift/Parameters.h"
 
 namespace spindrift {
-
-/// Foam pass 6: how much light each foam pixel receives.
-struct FoamOcclusionData {
-  const Texture2D& shadow;      ///< R32F: zeta in [0, 1].
-  const Texture2D& irradiance;  ///< RGBA16F: I in rgb.
-};
-
-/// What the occlusion pass did, counted on the GPU.
-struct FoamOcclusionStatistics {
-  std::uint32_t foamPixels = 0;
-  std::uint64_t samples = 0;  ///< SSAO samples generated (nu summed over passes and pixels).
-};
 
 /// Multi-pass screen-space ambient occlusion with Halton samples, turned into the shadow zeta, and the
 /// irradiance from the environment by cosine-weighted sample directions or an irradiance map (foam

@@ -1,16 +1,11 @@
 #pragma once
 
+#include "framedata/BackgroundData.h"
+#include "framedata/FoamSceneDepth.h"
 #include "gl/GlObjects.h"
 #include "gl/ShaderLibrary.h"
-#include "passes/BackgroundPass.h"
 
 namespace spindrift {
-
-/// Foam passes 1 and 2: the eye depths of what can hide or cover foam.
-struct FoamSceneDepth {
-  const Texture2D& solidEyeDepth;  ///< R32F: the background's solids (BackgroundData::eyeDepth).
-  const Texture2D& fluidEyeDepth;  ///< R32F: the liquid's first surface; 1e10 where there is none.
-};
 
 /// Resolves the liquid's depth from the liquid pipeline's first surface (use a: liquid drawn by Spindrift),
 /// the depth pass of a render that includes the liquid (use b: background.liquid_depth), or the nearer of

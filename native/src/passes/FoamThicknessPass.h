@@ -1,17 +1,13 @@
 #pragma once
 
+#include "framedata/FoamSceneDepth.h"
+#include "framedata/FoamSurfaceData.h"
+#include "framedata/FoamThicknessData.h"
 #include "gl/GlObjects.h"
 #include "gl/ShaderLibrary.h"
-#include "passes/FoamDepthPass.h"
-#include "passes/FoamSceneDepthPass.h"
 #include "spindrift/Parameters.h"
 
 namespace spindrift {
-
-/// Foam pass 4: the foam's thickness per pixel.
-struct FoamThicknessData {
-  const Texture2D& thickness;  ///< RGBA32F: summed weights of spray (r), surface foam (g) and bubbles (b).
-};
 
 /// Sums the foam sprites additively, each weighted by its type's falloff, the lifetime fade and the
 /// attenuation below the liquid surface; fragments behind solids are discarded (foam paper 2.2).

@@ -1,14 +1,10 @@
 #pragma once
 
+#include "framedata/SmoothedDepth.h"
 #include "gl/GlObjects.h"
 #include "gl/ShaderLibrary.h"
 
 namespace spindrift {
-
-/// Normals recomputed from a smoothed depth layer.
-struct RecomputedNormals {
-  const Texture2D& normal;  ///< RGBA16F: world-space outward normal in xyz, coverage (1 or 0) in w.
-};
 
 /// Recomputes a depth layer's outward world normals from its smoothed depth (the liquid paper recomputes them
 /// after plane fitting, whose fitted normals do not describe the smoothed surface).

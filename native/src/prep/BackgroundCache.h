@@ -4,8 +4,8 @@
 #include <optional>
 #include <string>
 
+#include "framedata/BackgroundImages.h"
 #include "io/ImageFiles.h"
-#include "passes/BackgroundPass.h"
 #include "spindrift/Scene.h"
 
 namespace spindrift {

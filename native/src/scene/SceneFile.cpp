@@ -148,6 +148,16 @@ ParticleSource readParticleSource(const JsonFields& fields, const std::filesyste
   return source;
 }
 
+MeshSource readMeshSource(const JsonFields& fields, const std::filesystem::path& baseDirectory) {
+  fields.allowOnly({"path", "world_from_file"});
+  MeshSource source;
+  source.path = fields.path("path", baseDirectory);
+  if (source.path.extension() != ".obj") fields.fail("path", "expected a Wavefront .obj file");
+  requireExisting(fields, "path", source.path);
+  if (fields.has("world_from_file")) source.worldFromFile = fields.affineMatrix("world_from_file");
+  return source;
+}
+
 Background readBackground(const JsonFields& fields, const std::filesystem::path& baseDirectory) {
   fields.allowOnly({"image", "depth", "liquid_depth", "environment", "color"});
   Background background;
@@ -201,7 +211,8 @@ Scene parseScene(const std::string& jsonText, const std::filesystem::path& scene
     throw Error(fileLabel + ": not valid JSON: " + error.what());
   }
   const JsonFields root(document, fileLabel, "");
-  root.allowOnly({"version", "frame", "camera", "particles", "background", "liquid", "foam"});
+  root.allowOnly(
+      {"version", "frame", "camera", "particles", "background", "occluders", "liquid_mesh", "liquid", "foam"});
   if (root.integer("version", 0, 1000) != 1)
     root.fail("version", "this Spindrift reads version 1 scene files");
 
@@ -217,6 +228,14 @@ Scene parseScene(const std::string& jsonText, const std::filesystem::path& scene
     scene.particles.push_back(
         readParticleSource(JsonFields(particles[i], fileLabel, "particles[" + std::to_string(i) + "]"), baseDirectory));
 
+  if (root.has("occluders")) {
+    const json& occluders = root.raw("occluders");
+    if (!occluders.is_array()) root.fail("occluders", "expected a list of meshes");
+    for (std::size_t i = 0; i < occluders.size(); ++i)
+      scene.occluders.push_back(
+          readMeshSource(JsonFields(occluders[i], fileLabel, "occluders[" + std::to_string(i) + "]"), baseDirectory));
+  }
+  if (root.has("liquid_mesh")) scene.liquidMesh = readMeshSource(root.child("liquid_mesh"), baseDirectory);
   if (root.has("background")) scene.background = readBackground(root.child("background"), baseDirectory);
   for (const char* group : {"liquid", "foam"})
     if (root.has(group)) setParameterGroup(scene.parameters, group, root.raw(group), fileLabel);

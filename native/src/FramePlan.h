@@ -1,0 +1,54 @@
+#pragma once
+
+#include <cstddef>
+#include <string>
+#include <vector>
+
+#include "spindrift/RenderResult.h"
+
+namespace spindrift {
+
+/// Every pass a frame can run, in the order the recipe runs them.
+enum class Pass {
+  Background,
+  OccluderDepth,
+  LiquidMeshDepth,
+  SplashDepthLayers,
+  AggregateDepthLayers,
+  Smoothing,
+  Refraction,
+  FoamSceneDepth,
+  FoamDepth,
+  FoamThickness,
+  FoamIntensity,
+  FoamOcclusion,
+  FoamBlur,
+  Composite,
+};
+
+/// The pass's name in the stats ("splash_depth_layers").
+const char* passName(Pass pass);
+
+/// What a frame holds, as far as choosing its passes goes: known after the CPU preparation, before any GL
+/// work.
+struct FrameContents {
+  std::size_t splashParticles = 0;      ///< Liquid particles in view drawn as splashes.
+  std::size_t aggregateParticles = 0;   ///< Liquid particles in view drawn as the aggregated body.
+  std::size_t foamParticles = 0;        ///< Secondary particles in view.
+  std::string smoothing = "plane_fit";  ///< liquid.smoothing.
+  std::size_t occluderMeshes = 0;       ///< Triangle meshes of solid geometry (files and in memory).
+  bool liquidMesh = false;              ///< The liquid's own surface given as triangles.
+};
+
+/// Which passes a frame runs and, for each it does not, why. The wiring of the frame in one plain function,
+/// so it can be read and tested without a GPU.
+struct FramePlan {
+  std::vector<Pass> passes;          ///< In the order they run.
+  std::vector<SkippedPass> skipped;  ///< In pass order, with the reason.
+
+  bool runs(Pass pass) const;
+};
+
+FramePlan planFrame(const FrameContents& contents);
+
+}  // namespace spindrift

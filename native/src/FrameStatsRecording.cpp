@@ -1,0 +1,30 @@
+#include "FrameStatsRecording.h"
+
+namespace spindrift {
+
+void recordPreparation(const LiquidPreparation& liquid, const FoamPreparation& foam, FrameStats& stats) {
+  stats.liquid.splashParticles = liquid.splashes.size();
+  stats.liquid.aggregateParticles = liquid.aggregates.size();
+  stats.liquid.isotropicInterior = liquid.isotropicInterior;
+  stats.liquid.culled = liquid.culled;
+  stats.liquid.neighbourMilliseconds = liquid.neighbourMilliseconds;
+  stats.liquid.anisotropyMilliseconds = liquid.anisotropyMilliseconds;
+  stats.foam.sprayParticles = foam.spray;
+  stats.foam.surfaceParticles = foam.surface;
+  stats.foam.bubbleParticles = foam.bubble;
+  stats.foam.culled = foam.culled;
+}
+
+void recordRefraction(const RefractionStatistics& rays, LiquidFrameStats& stats) {
+  stats.liquidPixels = rays.liquidPixels;
+  stats.raysWithSecondBody = rays.raysWithSecondBody;
+  stats.totalInternalReflections = rays.totalInternalReflections;
+  for (int i = 0; i < 4; ++i) stats.orders[i] = rays.orders[i];
+}
+
+void recordFoamOcclusion(const FoamOcclusionStatistics& occlusion, FoamFrameStats& stats) {
+  stats.foamPixels = occlusion.foamPixels;
+  stats.aoSamplesPerPixel = occlusion.foamPixels ? double(occlusion.samples) / occlusion.foamPixels : 0.0;
+}
+
+}  // namespace spindrift
