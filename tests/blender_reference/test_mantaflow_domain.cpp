@@ -26,7 +26,9 @@ namespace {
 
 using nlohmann::json;
 
-const json& domains() { return test::blenderReference().at("fluid").at("domains"); }
+const json& domains() {
+  return test::blenderReference().at("fluid").at("domains");
+}
 
 /// By hand from Blender's numbers: the longest scaled side of the mesh's bound box over resolution_max, and
 /// the grid centred on the bound box (docs/mantaflow-caches.md, "From cache to world").
@@ -44,18 +46,23 @@ HandComputed byHand(const json& domain) {
   const glm::vec3 scale = glm::abs(test::vec3(domain.at("scale")));
   const glm::vec3 size = (high - low) * scale;
   HandComputed hand;
-  hand.cellSize = std::max({size.x, size.y, size.z}) / test::blenderReference().at("fluid").at("resolution_max").get<float>();
+  hand.cellSize = std::max({size.x, size.y, size.z}) /
+                  test::blenderReference().at("fluid").at("resolution_max").get<float>();
   glm::vec3 resolution;
-  for (int axis = 0; axis < 3; ++axis) resolution[axis] = domain.at("domain_resolution").at(axis).get<float>();
+  for (int axis = 0; axis < 3; ++axis)
+    resolution[axis] = domain.at("domain_resolution").at(axis).get<float>();
   const glm::vec3 gridLow = 0.5f * (low + high) - resolution * hand.cellSize / (2.0f * scale);
-  hand.worldFromFile = test::matrixFromRows(domain.at("matrix_world")) * glm::translate(glm::mat4(1.0f), gridLow) *
-                       glm::scale(glm::mat4(1.0f), 1.0f / scale);
+  hand.worldFromFile = test::matrixFromRows(domain.at("matrix_world")) *
+                       glm::translate(glm::mat4(1.0f), gridLow) * glm::scale(glm::mat4(1.0f), 1.0f / scale);
   return hand;
 }
 
 std::string liquidFile(const json& domain) {
-  return domain.at("frames").at(std::to_string(test::blenderReference().at("fluid").at("reference_frame").get<int>()))
-      .at("files").at("liquid").get<std::string>();
+  return domain.at("frames")
+      .at(std::to_string(test::blenderReference().at("fluid").at("reference_frame").get<int>()))
+      .at("files")
+      .at("liquid")
+      .get<std::string>();
 }
 
 /// A scene whose only liquid source names the fixture's cache and the given domain settings, with a camera
@@ -68,9 +75,12 @@ std::string sceneText(const json& domain, const json& domainSettings, float dist
       {"version", 1},
       {"frame", test::blenderReference().at("fluid").at("reference_frame")},
       {"camera",
-       {{"width", width}, {"height", height}, {"fov_y_deg", 40.0},
+       {{"width", width},
+        {"height", height},
+        {"fov_y_deg", 40.0},
         {"position", {centre.x + 0.6f * distance, centre.y - 0.7f * distance, centre.z + 0.4f * distance}},
-        {"target", {centre.x, centre.y, centre.z}}, {"up", {0, 0, 1}}}},
+        {"target", {centre.x, centre.y, centre.z}},
+        {"up", {0, 0, 1}}}},
       {"particles", {{{"path", liquidFile(domain)}, {"grid", "particles"}, {"domain", domainSettings}}}}};
   return scene.dump();
 }
@@ -88,7 +98,8 @@ TEST(MantaflowDomain, ConfigGivesTheCellSizeAndTransformComputedByHand) {
     const glm::mat4 derived = config.worldFromFile();
     for (int column = 0; column < 4; ++column)
       for (int row = 0; row < 4; ++row)
-        EXPECT_NEAR(derived[column][row], hand.worldFromFile[column][row], 1e-4f) << "column " << column << " row " << row;
+        EXPECT_NEAR(derived[column][row], hand.worldFromFile[column][row], 1e-4f)
+            << "column " << column << " row " << row;
   }
 }
 
@@ -104,8 +115,8 @@ TEST(MantaflowDomain, DefaultDomainDerivesTheRadiusOfItsCells) {
     for (int column = 0; column < 4; ++column)
       for (int row = 0; row < 4; ++row)
         EXPECT_NEAR(source.worldFromFile[column][row], hand.worldFromFile[column][row], 1e-4f);
-    // Blender's defaults: mesh_particle_radius 2 on a grid twice as fine (mesh_scale 2), so Mantaflow's kernel
-    // radius is half a simulation cell's diagonal times 2.01 / 2.
+    // Blender's defaults: mesh_particle_radius 2 on a grid twice as fine (mesh_scale 2), so Mantaflow's
+    // kernel radius is half a simulation cell's diagonal times 2.01 / 2.
     const float kernel = 0.5f * std::sqrt(3.0f) * 2.01f * hand.cellSize / 2.0f;
     EXPECT_NEAR(liquidSurfaceFromDomain({}, hand.cellSize).meshKernelRadius, kernel, 1e-5f * kernel);
     EXPECT_NEAR(scene.parameters.liquid.surface_offset,
@@ -132,7 +143,8 @@ TEST(MantaflowDomain, SceneWithOnlyDomainSettingsRenders) {
   const RenderResult result = renderer.renderFrame(scene, scene.frame);
   EXPECT_GT(result.stats.liquid.liquidPixels, 50u);
   for (const ImageLayer& layer : result.layers)
-    for (float value : layer.pixels) ASSERT_TRUE(std::isfinite(value)) << layer.name;
+    for (float value : layer.pixels)
+      ASSERT_TRUE(std::isfinite(value)) << layer.name;
 }
 
 /// Planar depth and world normal of the nearest triangle of a mesh through each pixel centre: a CPU ray
@@ -145,15 +157,17 @@ struct MeshImage {
 MeshImage rayCastMesh(const Camera& camera, const json& mesh) {
   const glm::mat4 cameraFromWorld = glm::inverse(camera.worldFromCamera);
   std::vector<glm::vec3> vertices;
-  for (const json& v : mesh.at("vertices")) vertices.emplace_back(cameraFromWorld * glm::vec4(test::vec3(v), 1.0f));
+  for (const json& v : mesh.at("vertices"))
+    vertices.emplace_back(cameraFromWorld * glm::vec4(test::vec3(v), 1.0f));
   const float focal = 1.0f / std::tan(glm::radians(camera.fovYDegrees) / 2.0f);
   MeshImage image;
   image.depth.assign(std::size_t(camera.width) * camera.height, 1e10f);
   image.normal.assign(image.depth.size(), glm::vec3(0.0f));
   for (int row = 0; row < camera.height; ++row)
     for (int column = 0; column < camera.width; ++column) {
-      const glm::vec3 ray((2.0f * (column + 0.5f) / camera.width - 1.0f) * camera.width / camera.height / focal,
-                          (1.0f - 2.0f * (row + 0.5f) / camera.height) / focal, -1.0f);
+      const glm::vec3 ray(
+          (2.0f * (column + 0.5f) / camera.width - 1.0f) * camera.width / camera.height / focal,
+          (1.0f - 2.0f * (row + 0.5f) / camera.height) / focal, -1.0f);
       const std::size_t pixel = std::size_t(row) * camera.width + column;
       for (const json& triangle : mesh.at("triangles")) {
         const glm::vec3 a = vertices[triangle[0].get<int>()], b = vertices[triangle[1].get<int>()],
@@ -207,8 +221,8 @@ TEST(MantaflowDomain, DerivedSurfaceStandsWhereBlendersLiquidMeshStands) {
     depthErrors.push_back(std::abs(ours - reference.depth[pixel]) / radius);
     const std::size_t at = normal.channelCount() * pixel;
     const glm::vec3 n(normal.pixels[at], normal.pixels[at + 1], normal.pixels[at + 2]);
-    normalErrors.push_back(
-        glm::degrees(std::acos(std::clamp(glm::dot(glm::normalize(n), reference.normal[pixel]), -1.0f, 1.0f))));
+    normalErrors.push_back(glm::degrees(
+        std::acos(std::clamp(glm::dot(glm::normalize(n), reference.normal[pixel]), -1.0f, 1.0f))));
   }
   const double iou = either ? double(both) / double(either) : 0.0;
   const double depthMedian = median(depthErrors), normalMedian = median(normalErrors);

@@ -8,8 +8,8 @@
 #include <cmath>
 
 #include <glm/geometric.hpp>
-#include <glm/trigonometric.hpp>
 #include <glm/gtc/matrix_access.hpp>
+#include <glm/trigonometric.hpp>
 
 #include "LiquidTestScenes.h"
 #include "spindrift/Scene.h"
@@ -38,12 +38,13 @@ Scene poolScene(const glm::vec3& cameraPosition, const glm::vec3& target, bool c
 }
 
 Particles pool() {
-  return liquid_test::particlesOf(liquid_test::block({0.05f, 0.05f, 0.05f}, {1.95f, 1.95f, 0.95f}, kSpacing), kRadius);
+  return liquid_test::particlesOf(liquid_test::block({0.05f, 0.05f, 0.05f}, {1.95f, 1.95f, 0.95f}, kSpacing),
+                                  kRadius);
 }
 
 struct FaceErrors {
   int facePixels = 0;
-  int holes = 0;             // face pixels the liquid does not cover
+  int holes = 0;                   // face pixels the liquid does not cover
   float largestDepthError = 0.0f;  // in radii
   float largestNormalDegrees = 0.0f;
 };

@@ -47,7 +47,8 @@ TEST(MantaflowSurface, AveragedLevelSetAboveAFineLatticeMatchesTheContinuum) {
     SCOPED_TRACE(kernel);
     const float spacing = 0.1f;
     // The lattice's top layer lies half a spacing below the continuum's boundary.
-    EXPECT_NEAR(mantaflowFlatOffset(kernel, spacing) - 0.5f * spacing, continuumFlatOffset(kernel), 0.03f * kernel);
+    EXPECT_NEAR(mantaflowFlatOffset(kernel, spacing) - 0.5f * spacing, continuumFlatOffset(kernel),
+                0.03f * kernel);
   }
 }
 

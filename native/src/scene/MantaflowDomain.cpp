@@ -7,9 +7,9 @@
 #include <cstring>
 #include <vector>
 
+#include <zlib.h>
 #include <glm/geometric.hpp>
 #include <glm/gtc/matrix_transform.hpp>
-#include <zlib.h>
 
 #include "spindrift/Error.h"
 
@@ -70,8 +70,8 @@ float flatOffset(float kernelRadius, float spacing, bool averaged) {
     float inside = -spacing, outside = 3.0f * kernelRadius + spacing;
     for (int step = 0; step < 40; ++step) {
       const float middle = 0.5f * (inside + outside);
-      const bool isInside =
-          levelSetAbove(place[0] * spacing, place[1] * spacing, middle, kernelRadius, spacing, averaged) < 0.0f;
+      const bool isInside = levelSetAbove(place[0] * spacing, place[1] * spacing, middle, kernelRadius,
+                                          spacing, averaged) < 0.0f;
       (isInside ? inside : outside) = middle;
     }
     sum += 0.5f * (inside + outside) + 0.5f * spacing;
@@ -99,8 +99,10 @@ float MantaflowCacheConfig::cellSize() const {
 
 glm::mat4 MantaflowCacheConfig::worldFromFile() const {
   const glm::vec3 scale = objectScale();
-  const glm::vec3 gridLow = 0.5f * (boundsMin + boundsMax) - glm::vec3(resolution) * cellSize() / (2.0f * scale);
-  return worldFromObject * glm::translate(glm::mat4(1.0f), gridLow) * glm::scale(glm::mat4(1.0f), 1.0f / scale);
+  const glm::vec3 gridLow =
+      0.5f * (boundsMin + boundsMax) - glm::vec3(resolution) * cellSize() / (2.0f * scale);
+  return worldFromObject * glm::translate(glm::mat4(1.0f), gridLow) *
+         glm::scale(glm::mat4(1.0f), 1.0f / scale);
 }
 
 MantaflowCacheConfig readMantaflowCacheConfig(const std::filesystem::path& path) {
@@ -149,10 +151,11 @@ LiquidSurfaceFromDomain liquidSurfaceFromDomain(const MantaflowDomainSettings& s
   surface.flatOffset = flatOffset(kernelCells, spacingCells, settings.improvedMesh) * meshCell;
   surface.radius = kRadiusPerSpacing * cellSize / float(settings.particleNumber);
   surface.surfaceOffset = std::max(0.0f, surface.flatOffset - kSpindriftFlatOffsetRadii * surface.radius);
-  surface.origin = "derived from the Mantaflow domain (cell " + formatNumber(cellSize) + ", particle_number " +
-                   std::to_string(settings.particleNumber) + ", mesh_particle_radius " +
-                   formatNumber(settings.meshParticleRadius) + ", mesh_scale " + std::to_string(settings.meshScale) +
-                   ", " + (settings.improvedMesh ? "IMPROVED" : "UNION") + "): Mantaflow's flat surface stands " +
+  surface.origin = "derived from the Mantaflow domain (cell " + formatNumber(cellSize) +
+                   ", particle_number " + std::to_string(settings.particleNumber) +
+                   ", mesh_particle_radius " + formatNumber(settings.meshParticleRadius) + ", mesh_scale " +
+                   std::to_string(settings.meshScale) + ", " +
+                   (settings.improvedMesh ? "IMPROVED" : "UNION") + "): Mantaflow's flat surface stands " +
                    formatNumber(surface.flatOffset) + " off its particles";
   return surface;
 }

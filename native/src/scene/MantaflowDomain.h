@@ -22,7 +22,7 @@ struct MantaflowDomainSettings {
   float meshConcaveLower = 0.4f;    ///< mesh_concave_lower
   int particleNumber = 2;           ///< particle_number: particles seeded per cell along each axis.
   bool improvedMesh = true;         ///< mesh_generator: IMPROVED (true) or UNION.
-  float cellSize = 0.0f;  ///< World units; 0 means read it from the cache's config files.
+  float cellSize = 0.0f;            ///< World units; 0 means read it from the cache's config files.
 };
 
 /// The header of Mantaflow's `config/config_NNNN.uni` (gzip): what Blender records about the domain.
