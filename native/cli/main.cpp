@@ -56,6 +56,20 @@ void applyAssignments(Scene& scene, const std::vector<std::string>& assignments)
 
 bool hasFramePattern(const std::string& path) { return path.find('#') != std::string::npos; }
 
+// The frame's stats, with the radius of every liquid source and where it came from (the scene file, or the
+// Mantaflow domain it was derived from) and the surface offset the frame was drawn with.
+nlohmann::json statsJson(const RenderResult& result, const Scene& scene) {
+  nlohmann::json stats = result.stats.toJson();
+  nlohmann::json sources = nlohmann::json::array();
+  for (const ParticleSource& source : scene.particles)
+    if (source.role == ParticleRole::Liquid)
+      sources.push_back({{"path", source.path.string()}, {"radius", source.radius}, {"radius_origin", source.radiusOrigin},
+                         {"mantaflow_flat_offset", source.meshFlatOffset}});
+  stats["liquid_sources"] = sources;
+  stats["liquid_surface_offset_radii"] = scene.parameters.liquid.surface_offset;
+  return stats;
+}
+
 int runRender(const RenderOptions& options) {
   // Usage errors first: a bad frame list is reported as such even when the scene is also wrong.
   const std::vector<int> requestedFrames = options.frames.empty() ? std::vector<int>{} : cli::parseFrameList(options.frames);
@@ -123,13 +137,13 @@ int runRender(const RenderOptions& options) {
     }
     if (!finishPendingWrite()) return cli::kExitError;
     if (cli::StopSignals::received()) break;  // The frame in flight is dropped before any of it is written.
-    allStats.push_back(result->stats.toJson());
+    allStats.push_back(statsJson(*result, scene));
     pendingFrame = frame;
-    pendingWrite = std::async(std::launch::async, [&options, result, frame] {
+    pendingWrite = std::async(std::launch::async, [&options, &scene, result, frame] {
       if (!options.exrPath.empty()) writeExr(*result, pathForFrame(options.exrPath, frame));
       if (!options.pngPath.empty()) writePng(*result, pathForFrame(options.pngPath, frame));
       if (!options.statsPath.empty() && hasFramePattern(options.statsPath))
-        cli::writeTextFile(pathForFrame(options.statsPath, frame), result->stats.toJson().dump(2) + "\n");
+        cli::writeTextFile(pathForFrame(options.statsPath, frame), statsJson(*result, scene).dump(2) + "\n");
     });
     progress.frameDone(frame, std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
   }

@@ -220,6 +220,10 @@ RenderResult Renderer::renderPrepared(const Scene& scene, const Particles& parti
   const int width = camera.width, height = camera.height;
   checkFrame(scene, particles.size());
   validateParticles(particles);
+  // A Mantaflow liquid is clipped to its domain's box, as Mantaflow closes its mesh at the walls.
+  const DomainBox* domainBox = nullptr;
+  for (const ParticleSource& source : scene.particles)
+    if (source.role == ParticleRole::Liquid && source.domainBox && !domainBox) domainBox = &*source.domainBox;
   RenderResult result = emptyResult(frame, width, height, particles);
   result.stats.glRenderer = glRenderer();
   result.stats.glVersion = glVersion();
@@ -281,13 +285,13 @@ RenderResult Renderer::renderPrepared(const Scene& scene, const Particles& parti
     std::optional<SurfaceLayers> splashes, aggregates;
     if (plan.runs(Pass::SplashDepthLayers)) {
       splashes.emplace(timed(Pass::SplashDepthLayers, [&] {
-        return pipeline.splashImpostors.run(liquid.splashes, background, width, height);
+        return pipeline.splashImpostors.run(liquid.splashes, background, width, height, domainBox);
       }));
       intermediate.keep(*splashes, "splash");
     }
     if (plan.runs(Pass::AggregateDepthLayers)) {
       aggregates.emplace(timed(Pass::AggregateDepthLayers, [&] {
-        return pipeline.aggregateImpostors.run(liquid.aggregates, background, width, height);
+        return pipeline.aggregateImpostors.run(liquid.aggregates, background, width, height, domainBox);
       }));
       intermediate.keep(*aggregates, "aggregate");
     }

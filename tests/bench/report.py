@@ -206,7 +206,9 @@ def write(results, output, quick):
               table(["", ""], [["OpenGL renderer", machine["gl_renderer"]], ["CPU", machine["cpu"]],
                                ["memory", machine["memory"]], ["OS", machine["os"]], ["Blender", machine["blender"]],
                                ["load average at start", ", ".join(f"{v:.1f}" for v in machine["load_average"])],
-                               ["run", ("--quick" if quick else "full") + f", {results['runtime_s'] / 60:.1f} min"]])]
+                               ["run", ("--quick" if quick else "full") + f", {results['runtime_s'] / 60:.1f} min"],
+                               ["filters", ", ".join(f"{k} {v}" for k, v in plan.get("filters", {}).items())
+                                or "none"]])]
     for example, data in results["examples"].items():
         parts += ["", f"## {example}", "",
                   f"{plan['width']}×{plan['height']}, cameras {', '.join(plan['cameras'])}; times on "
@@ -221,6 +223,8 @@ def write(results, output, quick):
             parts += ["", "### The ray-marched surface (liquid.surface = raymarch)", "",
                       f"Counters of the `{plan['cameras'][0]}` camera (docs/raymarch.md).", "", marching]
     if not results.get("scaling"):
+        if results.get("stability"):
+            parts += ["", "## Stability suite", "", stability_table(results["stability"]), ""]
         parts += ["", f"A subset run (`--sweep-only`, configurations: "
                   f"{', '.join(plan.get('only_configurations') or ['all'])}): no scaling or stability suite. "
                   f"Load average at the end: "

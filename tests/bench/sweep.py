@@ -55,6 +55,13 @@ def configurations(quick):
     points += [variant("none", smoothing="none")]
     points += [variant(f"max_refractions {n}", max_refractions=n) for n in (1, 2)]
     points += [variant("layers merged", layers="merged"), variant("plane_fit, foam off", foam=False)]
+    # Each smoothing method without the surface offset the Mantaflow domain derives: the particles drawn at
+    # their radius alone, as every method was before the offset (docs/mantaflow-caches.md).
+    points += [variant(f"{label}, no offset", surface_offset=0.0, **changes) for label, changes in
+               (("plane_fit i3 w9", {}), ("bilateral i1", {"smoothing": "bilateral", "smoothing_iterations": 1}),
+                ("narrow_range i1", {"smoothing": "narrow_range", "smoothing_iterations": 1}),
+                ("curvature_flow s20", {"smoothing": "curvature_flow", "curvature_flow_steps": 20}),
+                ("none", {"smoothing": "none"}))]
     return points + raymarch
 
 
@@ -71,9 +78,14 @@ def scene_for(camera_directory, foam):
     return without_foam
 
 
-def liquid_radius(scene):
+def liquid_radius(scene, stats_path):
+    """The liquid's radius r, the unit of the depth errors: the scene's, or the one Spindrift derived from the
+    Mantaflow domain (its --stats say which)."""
     description = json.load(open(scene))
-    return next(p["radius"] for p in description["particles"] if p.get("role", "liquid") == "liquid")
+    source = next(p for p in description["particles"] if p.get("role", "liquid") == "liquid")
+    if "radius" in source:
+        return source["radius"]
+    return json.load(open(stats_path))["liquid_sources"][0]["radius"]
 
 
 def run_configurations(example, references, plan, table, work):
@@ -102,8 +114,8 @@ def run_configurations(example, references, plan, table, work):
             repeats = plan["repeats"] if index == 0 else 1
             measured = runs.timed_spindrift(scene, exr, settings, repeats, work_directory)
             timing = timing or measured
-            per_camera.append(runs.frame_errors(exr, camera_directory, liquid_radius(scene),
-                                                runs.SPINDRIFT_CHANNELS))
+            radius = liquid_radius(scene, os.path.join(work_directory, "stats_0.json"))
+            per_camera.append(runs.frame_errors(exr, camera_directory, radius, runs.SPINDRIFT_CHANNELS))
         errors = runs.mean_errors(per_camera)
         rows.append({"label": label, "settings": settings, "foam": foam, "timing": timing, "errors": errors,
                      "per_camera": dict(zip(plan["cameras"], per_camera))})

@@ -17,6 +17,14 @@ namespace spindrift {
 
 enum class ParticleRole { Liquid, Foam };
 
+/// The box a Mantaflow liquid is clipped to: Mantaflow closes its mesh with flat faces just inside the domain's
+/// walls (docs/mantaflow-caches.md). `worldFromBox` has unit scale; the box is [low, high] in its frame.
+struct DomainBox {
+  glm::mat4 worldFromBox{1.0f};
+  glm::vec3 low{0.0f};
+  glm::vec3 high{0.0f};
+};
+
 /// One entry of the scene file's `particles` list. Paths are absolute (resolved against the scene file) and
 /// may hold `####`, which stands for the frame number padded with zeros to the number of `#`.
 struct ParticleSource {
@@ -26,6 +34,13 @@ struct ParticleSource {
   /// For foam sources: every particle of this kind, instead of the per-particle flags of the file.
   std::optional<ParticleKind> kind;
   float radius = 0.05f;  ///< World units; a per-particle radius attribute overrides it.
+  /// Where `radius` came from: "scene file", or the Mantaflow domain it was derived from (--stats says it).
+  std::string radiusOrigin = "scene file";
+  /// For a source with a Mantaflow `domain`: how far Mantaflow's liquid mesh stands off the particles' flat
+  /// surface, world units (0 otherwise); it sets liquid.surface_offset (docs/mantaflow-caches.md).
+  float meshFlatOffset = 0.0f;
+  /// For a source with a Mantaflow `domain` whose cache records it: the box its liquid is clipped to.
+  std::optional<DomainBox> domainBox;
   glm::mat4 worldFromFile{1.0f};
 };
 
