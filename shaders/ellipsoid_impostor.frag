@@ -9,6 +9,12 @@
 layout(binding = 0) uniform sampler2D backgroundEyeDepth;
 
 uniform bool backFaces;
+// A Mantaflow domain's box (its cache-to-world frame, whose unit is the world's): the liquid is clipped to it,
+// so liquid pressed against the domain's walls ends in the flat face Mantaflow's mesh closes it with.
+uniform bool clipToDomain;
+uniform mat4 domainFromWorld;
+uniform vec3 domainLow;
+uniform vec3 domainHigh;
 
 flat in vec3 vCameraCentre;
 flat in mat3 vInverseAxesCamera;
@@ -31,7 +37,36 @@ void main() {
   float halfChord = sqrt(halfChordSquared);
   float nearT = closest - halfChord;
   if (nearT <= 0.0) discard;  // The camera is inside or past the ellipsoid; the CPU culls these.
-  float t = backFaces ? closest + halfChord : nearT;
+  float farT = closest + halfChord;
+
+  // Clip the chord [nearT, farT] to the domain's box (slab test in the box's frame); where the box cuts the
+  // ellipsoid the surface is the box's face, with its normal.
+  vec3 boxNormal = vec3(0.0);
+  bool onBox = false;
+  if (clipToDomain) {
+    mat4 domainFromCamera = domainFromWorld * frame.worldFromCamera;
+    vec3 boxOrigin = (domainFromCamera * vec4(0.0, 0.0, 0.0, 1.0)).xyz;
+    vec3 boxDirection = mat3(domainFromCamera) * direction;
+    vec3 inverse = 1.0 / boxDirection;
+    vec3 tLow = (domainLow - boxOrigin) * inverse, tHigh = (domainHigh - boxOrigin) * inverse;
+    vec3 tEnter = min(tLow, tHigh), tLeave = max(tLow, tHigh);
+    float enter = max(tEnter.x, max(tEnter.y, tEnter.z)), leave = min(tLeave.x, min(tLeave.y, tLeave.z));
+    float clippedNear = max(nearT, enter), clippedFar = min(farT, leave);
+    if (!(clippedNear < clippedFar)) discard;
+    if (!backFaces && enter > nearT) {
+      int axis = enter == tEnter.x ? 0 : (enter == tEnter.y ? 1 : 2);
+      boxNormal[axis] = -sign(boxDirection[axis]);
+      onBox = true;
+    } else if (backFaces && leave < farT) {
+      int axis = leave == tLeave.x ? 0 : (leave == tLeave.y ? 1 : 2);
+      boxNormal[axis] = sign(boxDirection[axis]);
+      onBox = true;
+    }
+    nearT = clippedNear;
+    farT = clippedFar;
+    if (nearT <= 0.0) discard;
+  }
+  float t = backFaces ? farT : nearT;
 
   float nearDepth = nearT * -direction.z;
   if (nearDepth < getNearClip() || nearDepth >= texelFetch(backgroundEyeDepth, ivec2(gl_FragCoord.xy), 0).r)
@@ -42,7 +77,10 @@ void main() {
   // The gradient of |A^-1 x|^2 is A^-T A^-1 x: the outward normal.
   vec3 unitPoint = origin + t * unitDirection;
   vec3 cameraNormal = normalize(transpose(vInverseAxesCamera) * unitPoint);
+  // The box frame is a rotation of the world's (unit scale), so its normals turn into the world's by the
+  // transpose of its rotation.
+  vec3 worldNormal = onBox ? transpose(mat3(domainFromWorld)) * boxNormal : mat3(frame.worldFromCamera) * cameraNormal;
   outEyeDepth = eyeDepth;
-  outNormal = vec4(normalize(mat3(frame.worldFromCamera) * cameraNormal), 1.0);
+  outNormal = vec4(normalize(worldNormal), 1.0);
   gl_FragDepth = depthBufferFromEyeDepth(eyeDepth);
 }

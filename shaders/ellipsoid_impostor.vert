@@ -1,7 +1,9 @@
 #version 450 core
-// Draws each liquid particle's ellipsoid as a camera-facing quad that covers its bounding sphere's
-// silhouette; the fragment shader ray-casts the exact ellipsoid (Sigg et al. 2006). One instance per
-// particle, four vertices as a triangle strip.
+// Draws each liquid particle's ellipsoid as a screen rectangle that bounds its exact projection (Sigg et al.
+// 2006, section 3.2), or, where that does not exist (an ellipsoid reaching the camera plane), as a
+// camera-facing quad around its bounding sphere's silhouette; the fragment shader ray-casts the exact
+// ellipsoid. A flattened ellipsoid seen edge-on covers a fraction of its bounding sphere's square, and every
+// fragment of the quad costs a ray cast. One instance per particle, four vertices as a triangle strip.
 #include "lib/frame.glsl"
 
 struct Ellipsoid {
@@ -25,6 +27,31 @@ void main() {
   // x_camera = R x_world + t, so the camera-space inverse is the world inverse followed by R^T.
   vInverseAxesCamera = inverseAxesWorld * transpose(mat3(frame.cameraFromWorld));
   vCameraCentre = centre;
+
+  // Tight bounds: the unit sphere maps to clip space by T = clipFromCamera [A c; 0 1]. A clip-space plane
+  // x - s w = 0 touches the ellipsoid where (r1 - s r4) D (r1 - s r4) = 0 with D = diag(1, 1, 1, -1) and r
+  // the rows of T: a quadratic in s whose roots are the rectangle's sides (likewise y with r2). It holds while
+  // the whole ellipsoid is in front of the camera plane, that is r4 D r4 < 0.
+  mat3 axes = inverse(vInverseAxesCamera);
+  mat4 clipFromUnitSphere = frame.clipFromCamera * mat4(vec4(axes[0], 0.0), vec4(axes[1], 0.0),
+                                                        vec4(axes[2], 0.0), vec4(centre, 1.0));
+  mat4 rows = transpose(clipFromUnitSphere);
+  const vec4 signs = vec4(1.0, 1.0, 1.0, -1.0);
+  float wDw = dot(rows[3], signs * rows[3]);
+  float xDw = dot(rows[0], signs * rows[3]), xDx = dot(rows[0], signs * rows[0]);
+  float yDw = dot(rows[1], signs * rows[3]), yDy = dot(rows[1], signs * rows[1]);
+  float xDiscriminant = xDw * xDw - wDw * xDx, yDiscriminant = yDw * yDw - wDw * yDy;
+  if (wDw < 0.0 && xDiscriminant >= 0.0 && yDiscriminant >= 0.0) {
+    vec2 middle = vec2(xDw, yDw) / wDw;
+    vec2 halfExtent = abs(sqrt(vec2(xDiscriminant, yDiscriminant)) / wDw);
+    // One pixel of margin keeps every pixel centre the exact silhouette covers inside, despite rounding.
+    halfExtent += 2.0 * frame.viewportSize.zw;
+    vec2 corner = vec2(gl_VertexID & 1, gl_VertexID >> 1) * 2.0 - 1.0;
+    // The rectangle's depth is irrelevant (the fragment shader writes gl_FragDepth); mid-range keeps it
+    // inside the clip volume.
+    gl_Position = vec4(middle + corner * halfExtent, 0.0, 1.0);
+    return;
+  }
 
   float distanceToCentre = length(centre);
   // The CPU culls spheres that contain the camera or lie behind it; this guards the square root anyway.

@@ -41,6 +41,13 @@ layout(location = 3) out float outThickness;   // path length in liquid
 layout(location = 4) out float outFrontDepth;  // eye depth of the first surface; 1e10 where none
 layout(location = 5) out vec4 outFrontNormal;  // world normal of the first surface, coverage
 
+// The refraction split for a compositor that refracts another render of the background (Blender's Map UV):
+// liquid = background(uv) * transmittance + reflection. Images, not attachments: the framebuffer already has
+// six of the eight draw buffers GL guarantees. Every pixel writes all three.
+layout(rgba32f, binding = 0) uniform writeonly image2D refractionUvImage;  // u, v (0..1, bottom left), looked up
+layout(rgba32f, binding = 1) uniform writeonly image2D transmittanceImage; // of that background colour, to the eye
+layout(rgba32f, binding = 2) uniform writeonly image2D reflectionImage;    // every other light of the pixel
+
 const int kSplash = 0;
 const int kAggregate = 1;
 
@@ -216,8 +223,10 @@ Crossing findEntry(vec3 origin, vec3 direction) {
 // b(.) of equation 6: the colour seen from `origin` along `direction` outside the liquid: the background image
 // where the ray meets a solid of its depth; a ray towards the sky sees the background image at the direction's
 // vanishing point when that pixel is infinitely far; a ray that leaves the screen sees the environment (or the
-// background colour).
-vec3 colourAlong(vec3 origin, vec3 direction) {
+// background colour). `backgroundTexel` is the window position of the background texel looked up (its
+// centre), or negative when the colour came from the environment or the flat colour.
+vec3 colourAlong(vec3 origin, vec3 direction, out vec2 backgroundTexel) {
+  backgroundTexel = vec2(-1.0);
   ScreenRay ray = screenRay(origin, direction);
   float previousT = 0.0, previousF = -1.0;
   for (int k = 1; k <= ray.samples; ++k) {
@@ -226,6 +235,7 @@ vec3 colourAlong(vec3 origin, vec3 direction) {
     if (f >= 0.0) {
       float tHit = refineCrossing(kBehindSolid, 0, origin, direction, previousT, previousF, t, f);
       vec2 hit = clamp(fragCoordFromCamera(origin + tHit * direction), vec2(0.0), frame.viewportSize.xy - 1.0);
+      backgroundTexel = vec2(ivec2(hit)) + 0.5;
       return texelFetch(backgroundColor, ivec2(hit), 0).rgb;
     }
     previousT = t;
@@ -233,8 +243,10 @@ vec3 colourAlong(vec3 origin, vec3 direction) {
   }
   if (direction.z < 0.0) {
     vec2 vanishing = fragCoordFromCamera(direction * getFarClip());
-    if (onScreen(vanishing) && texelFetch(backgroundEyeDepth, ivec2(vanishing), 0).r >= kNoSurfaceDepth * 0.5)
+    if (onScreen(vanishing) && texelFetch(backgroundEyeDepth, ivec2(vanishing), 0).r >= kNoSurfaceDepth * 0.5) {
+      backgroundTexel = vec2(ivec2(vanishing)) + 0.5;
       return texelFetch(backgroundColor, ivec2(vanishing), 0).rgb;
+    }
   }
   vec3 worldDirection = mat3(frame.worldFromCamera) * direction;
   return hasEnvironment ? texture(environmentMap, equirectangularUvFromDirection(worldDirection)).rgb : fallbackColor;
@@ -252,6 +264,9 @@ void main() {
   outThickness = 0.0;
   outFrontDepth = kNoSurfaceDepth;
   outFrontNormal = vec4(0.0);
+  imageStore(refractionUvImage, pixel, vec4(0.0));
+  imageStore(transmittanceImage, pixel, vec4(0.0));
+  imageStore(reflectionImage, pixel, vec4(0.0));
   if (firstDepth >= kNoSurfaceDepth * 0.5) return;
 
   int body = splashDepth <= aggregateDepth ? kSplash : kAggregate;
@@ -273,6 +288,7 @@ void main() {
   bool inside = false;
   int secondBody = -1;
   ivec2 entryPixel = pixel;  // where the path last entered a body, for the thickness of an unseen remainder
+  vec2 ignoredTexel;
   for (int crossing = 0; crossing < 4; ++crossing) {
     // The normal faces the side the ray comes from.
     vec3 facing = dot(normal, direction) < 0.0 ? normal : -normal;
@@ -289,7 +305,7 @@ void main() {
     } else {
       // Schlick's cosine is taken on the rarer (air) side, which is the refracted side when leaving.
       float fresnel = schlickFresnel(inside ? -dot(refracted, facing) : cosine, indexOfRefraction);
-      colour += throughput * fresnel * colourAlong(position, reflected);
+      colour += throughput * fresnel * colourAlong(position, reflected, ignoredTexel);
       throughput *= 1.0 - fresnel;
       direction = refracted;
       ++refractions;
@@ -329,7 +345,15 @@ void main() {
       if (dot(normal, normal) == 0.0) normal = -direction;
     }
   }
-  if (dot(throughput, throughput) > 0.0) colour += throughput * colourAlong(position, direction);
+  // The last lookup is the background the compositor refracts, when it is one; all else is reflected light.
+  vec2 finalTexel = vec2(-1.0);
+  vec3 finalColour = dot(throughput, throughput) > 0.0 ? colourAlong(position, direction, finalTexel) : vec3(0.0);
+  bool seesBackground = finalTexel.x >= 0.0;
+  imageStore(refractionUvImage, pixel,
+             seesBackground ? vec4(finalTexel * frame.viewportSize.zw, 1.0, 0.0) : vec4(0.0));
+  imageStore(transmittanceImage, pixel, vec4(seesBackground ? throughput : vec3(0.0), 0.0));
+  imageStore(reflectionImage, pixel, vec4(seesBackground ? colour : colour + throughput * finalColour, 0.0));
+  colour += throughput * finalColour;
   if (secondBody >= 0) atomicAdd(rayCounters[firstBody * 2 + secondBody], 1u);
 
   outLiquid = vec4(colour, 1.0);

@@ -70,13 +70,11 @@ WATER_IOR = 1.33
 WORLD_COLOR = (0.52, 0.62, 0.78)
 WORLD_STRENGTH = 0.55
 
-# Particle radii written to scene.json, in world units. Mantaflow seeds FLIP particles on a 2x2x2 sub-grid of
-# each cell (particle_number = 2), so neighbours are half a cell apart; a radius of 0.55 cells makes their
-# spheres overlap into a closed surface without bloating thin sheets much beyond the liquid mesh.
+# The liquid's radius is not written: Spindrift derives it from the domain's settings (particle_number: r is
+# 1.1 particle spacings, 0.55 cells here) together with how far Mantaflow's mesh stands off the particles.
 # Secondary particles are flecks of foam: the foam pipeline draws particle i at FOAM_RADIUS / ((i mod 5) + 1)
 # (bubbles at half that), so radii spread between 0.12 and 0.6 cells and the foam reads as flecks of a few
 # pixels at this distance.
-LIQUID_RADIUS = 0.55 * CELL_SIZE
 FOAM_RADIUS = 0.6 * CELL_SIZE
 
 CAMERA_LOCATION = Vector((2.05, -3.35, 1.6))
@@ -506,18 +504,31 @@ def camera_description(camera):
     }
 
 
+# The domain settings that shape Mantaflow's liquid mesh, as the scene file's `domain` object names them:
+# Spindrift derives the liquid's radius and surface offset from them and reads the cell size and the domain's
+# transform from the cache's config files (docs/mantaflow-caches.md).
+MESH_SETTINGS = ("particle_radius", "mesh_particle_radius", "mesh_scale", "mesh_smoothen_pos", "mesh_smoothen_neg",
+                 "mesh_concave_upper", "mesh_concave_lower", "particle_number", "mesh_generator")
+
+
+def domain_description(domain):
+    settings = domain.modifiers["Fluid"].domain_settings
+    return {name: clean_number(value) if isinstance(value, float) else value
+            for name, value in ((name, getattr(settings, name)) for name in MESH_SETTINGS)}
+
+
 def particle_sources(domain):
     """The liquid and the foam source, in this order."""
     # Mantaflow writes positions in the domain's local frame with its minimum corner at the origin, in world
-    # units; the domain has no rotation or scale, so file -> world is a translation to that corner.
+    # units; the domain has no rotation or scale, so file -> world is a translation to that corner. The liquid
+    # source reads it from the cache's config instead; the foam source states it.
     world_from_file = row_major(Matrix.Translation(domain_minimum_corner(domain)))
     return [
         {
             "path": "cache/data/fluid_data_####.vdb",
             "grid": "particles",
             "role": "liquid",
-            "radius": clean_number(LIQUID_RADIUS),
-            "world_from_file": world_from_file,
+            "domain": domain_description(domain),
         },
         {
             "path": "cache/particles/fluid_particles_####.vdb",

@@ -46,7 +46,6 @@ BALL_VELOCITY = Vector((0.0, 0.0, -1.5))  # m/s: an initial push so the impact c
 RENDER_WIDTH = 960
 RENDER_HEIGHT = 540
 WORLD_COLOR = dam_break.WORLD_COLOR
-LIQUID_RADIUS = 0.55 * CELL_SIZE  # the same reasoning as the dam break: FLIP particles half a cell apart
 FOAM_RADIUS = 0.2 * CELL_SIZE
 
 CAMERA_LOCATION = Vector((1.25, -1.55, 0.85))
@@ -57,7 +56,7 @@ CAMERA_SENSOR_MM = 24.0
 # The dam-break functions read their layout from their module's constants; this example's values replace
 # them there, once, so every shared function (domain, bake, cache check, camera, scene file) uses them.
 for name in ("DOMAIN_MIN", "DOMAIN_SIZE", "RESOLUTION", "CELL_SIZE", "FRAME_START", "FRAME_END",
-             "SHOWCASE_FRAME", "RENDER_WIDTH", "RENDER_HEIGHT", "LIQUID_RADIUS", "FOAM_RADIUS",
+             "SHOWCASE_FRAME", "RENDER_WIDTH", "RENDER_HEIGHT", "FOAM_RADIUS",
              "CAMERA_LOCATION", "CAMERA_TARGET", "CAMERA_LENS_MM", "CAMERA_SENSOR_MM"):
     setattr(dam_break, name, globals()[name])
 dam_break.log = lambda message: print(f"[drop] {message}", flush=True)

@@ -28,6 +28,11 @@ void Progress::frameDone(int frame, double frameSeconds) {
   std::fflush(stderr);
 }
 
+void Progress::frameSkipped(int frame) {
+  --total_;  // The estimate of the time left counts frames that will be rendered.
+  if (!quiet_) std::fprintf(stderr, "%sframe %d skipped: its files exist\n", terminal_ ? "\r" : "", frame);
+}
+
 void Progress::finish() {
   if (!quiet_ && terminal_ && done_ > 0) std::fprintf(stderr, "\n");
 }

@@ -13,6 +13,8 @@ class Progress {
  public:
   Progress(int total, bool quiet);
   void frameDone(int frame, double frameSeconds);
+  /// A frame left out because its files exist (--skip-existing); it counts towards the total.
+  void frameSkipped(int frame);
   void finish();
 
  private:

@@ -1,17 +1,24 @@
 // `spindrift`: renders scene files from a shell, lists parameters, and reports the OpenGL it finds.
-// Exit codes: 0 success, 1 a scene, file or rendering error (one line on stderr), 2 a usage error.
+// Exit codes (cli/Sequence.h, docs/reliability.md): 0 success, 1 a scene, file or rendering error (one line on
+// stderr), 2 a usage error, 3 frames failed under --keep-going, 128 + signal when stopped by SIGINT or SIGTERM.
 
+#include <algorithm>
 #include <chrono>
 #include <cstdio>
 #include <fstream>
+#include <future>
+#include <memory>
 #include <iostream>
+#include <optional>
 
 #include <CLI/CLI.hpp>
 
 #include "Progress.h"
+#include "Sequence.h"
 #include "spindrift/Error.h"
 #include "spindrift/Output.h"
 #include "spindrift/Renderer.h"
+#include "spindrift/Threads.h"
 
 namespace {
 
@@ -24,8 +31,12 @@ struct RenderOptions {
   std::string statsPath;
   std::string frames;
   std::vector<std::string> assignments;
+  std::vector<std::string> layers;
   bool quiet = false;
   bool intermediate = false;
+  bool skipExisting = false;
+  bool keepGoing = false;
+  int threads = 0;  // 0: all cores
 };
 
 void applyAssignments(Scene& scene, const std::vector<std::string>& assignments) {
@@ -45,6 +56,20 @@ void applyAssignments(Scene& scene, const std::vector<std::string>& assignments)
 
 bool hasFramePattern(const std::string& path) { return path.find('#') != std::string::npos; }
 
+// The frame's stats, with the radius of every liquid source and where it came from (the scene file, or the
+// Mantaflow domain it was derived from) and the surface offset the frame was drawn with.
+nlohmann::json statsJson(const RenderResult& result, const Scene& scene) {
+  nlohmann::json stats = result.stats.toJson();
+  nlohmann::json sources = nlohmann::json::array();
+  for (const ParticleSource& source : scene.particles)
+    if (source.role == ParticleRole::Liquid)
+      sources.push_back({{"path", source.path.string()}, {"radius", source.radius}, {"radius_origin", source.radiusOrigin},
+                         {"mantaflow_flat_offset", source.meshFlatOffset}});
+  stats["liquid_sources"] = sources;
+  stats["liquid_surface_offset_radii"] = scene.parameters.liquid.surface_offset;
+  return stats;
+}
+
 int runRender(const RenderOptions& options) {
   // Usage errors first: a bad frame list is reported as such even when the scene is also wrong.
   const std::vector<int> requestedFrames = options.frames.empty() ? std::vector<int>{} : cli::parseFrameList(options.frames);
@@ -56,27 +81,87 @@ int runRender(const RenderOptions& options) {
       if (!path->empty() && !hasFramePattern(*path))
         throw Error(*path + ": several frames need #### in the output name");
 
+  std::optional<WorkerThreadLimit> threadLimit;
+  if (options.threads > 0) threadLimit.emplace(options.threads);
   Renderer renderer;
   renderer.setIntermediateLayers(options.intermediate);
+  std::vector<std::string> layers = options.layers;
+  if (!layers.empty() && !options.pngPath.empty() &&
+      std::find(layers.begin(), layers.end(), "composite") == layers.end())
+    layers.push_back("composite");  // The PNG is the composite.
+  renderer.setLayers(layers);
   if (!options.quiet) std::fprintf(stderr, "spindrift: rendering on %s\n", renderer.glRenderer().c_str());
   cli::Progress progress(int(frames.size()), options.quiet);
   nlohmann::json allStats = nlohmann::json::array();
-  for (int frame : frames) {
-    const auto start = std::chrono::steady_clock::now();
-    const RenderResult result = renderer.renderFrame(scene, frame);
-    if (!options.exrPath.empty()) writeExr(result, pathForFrame(options.exrPath, frame));
-    if (!options.pngPath.empty()) writePng(result, pathForFrame(options.pngPath, frame));
-    if (!options.statsPath.empty() && hasFramePattern(options.statsPath)) {
-      std::ofstream(pathForFrame(options.statsPath, frame)) << result.stats.toJson().dump(2) << "\n";
+  cli::StopSignals stopSignals;
+  std::vector<int> failedFrames;
+  // Frame N's files are written on another thread while frame N+1 renders. A write's error is reported with its
+  // frame when the next frame (or the end) waits for it; a stop signal waits for the write in flight, so every
+  // file the sequence leaves is complete.
+  std::future<void> pendingWrite;
+  int pendingFrame = 0;
+  auto finishPendingWrite = [&]() -> bool {  // False: the sequence stops.
+    if (!pendingWrite.valid()) return true;
+    try {
+      pendingWrite.get();
+      return true;
+    } catch (const std::exception& error) {
+      if (frames.size() == 1) throw;
+      std::fprintf(stderr, "\nspindrift: error: frame %d: %s\n", pendingFrame, error.what());
+      failedFrames.push_back(pendingFrame);
+      return options.keepGoing;
     }
-    allStats.push_back(result.stats.toJson());
+  };
+  for (int frame : frames) {
+    if (cli::StopSignals::received()) break;
+    const std::vector<std::filesystem::path> outputs = cli::perFrameOutputs(
+        {options.exrPath, options.pngPath, options.statsPath}, frame, frames.size() == 1);
+    if (options.skipExisting && cli::allExist(outputs)) {
+      progress.frameSkipped(frame);
+      continue;
+    }
+    for (const std::filesystem::path& output : outputs) cli::removeStaleTemporaries(output);
+    const auto start = std::chrono::steady_clock::now();
+    std::shared_ptr<const RenderResult> result;
+    try {
+      result = std::make_shared<const RenderResult>(renderer.renderFrame(scene, frame));
+    } catch (const std::exception& error) {
+      if (frames.size() == 1) throw;
+      std::fprintf(stderr, "\nspindrift: error: frame %d: %s\n", frame, error.what());
+      if (!options.keepGoing) {
+        finishPendingWrite();
+        return cli::kExitError;
+      }
+      failedFrames.push_back(frame);
+      continue;
+    }
+    if (!finishPendingWrite()) return cli::kExitError;
+    if (cli::StopSignals::received()) break;  // The frame in flight is dropped before any of it is written.
+    allStats.push_back(statsJson(*result, scene));
+    pendingFrame = frame;
+    pendingWrite = std::async(std::launch::async, [&options, &scene, result, frame] {
+      if (!options.exrPath.empty()) writeExr(*result, pathForFrame(options.exrPath, frame));
+      if (!options.pngPath.empty()) writePng(*result, pathForFrame(options.pngPath, frame));
+      if (!options.statsPath.empty() && hasFramePattern(options.statsPath))
+        cli::writeTextFile(pathForFrame(options.statsPath, frame), statsJson(*result, scene).dump(2) + "\n");
+    });
     progress.frameDone(frame, std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
   }
+  if (!finishPendingWrite()) return cli::kExitError;
   progress.finish();
-  if (!options.statsPath.empty() && !hasFramePattern(options.statsPath)) {
-    std::ofstream stats(options.statsPath);
-    stats << (frames.size() == 1 ? allStats[0] : nlohmann::json{{"frames", allStats}}).dump(2) << "\n";
-    if (!stats) throw Error(options.statsPath + ": cannot write the stats");
+  if (!options.statsPath.empty() && !hasFramePattern(options.statsPath) && !allStats.empty())
+    cli::writeTextFile(options.statsPath,
+                       (frames.size() == 1 ? allStats[0] : nlohmann::json{{"frames", allStats}}).dump(2) + "\n");
+  if (const int signalNumber = cli::StopSignals::received()) {
+    std::fprintf(stderr, "spindrift: stopped by signal %d; every file written is complete\n", signalNumber);
+    return 128 + signalNumber;
+  }
+  if (!failedFrames.empty()) {
+    std::string list;
+    for (int frame : failedFrames) list += (list.empty() ? "" : ",") + std::to_string(frame);
+    std::fprintf(stderr, "spindrift: error: %zu of %zu frames failed: %s\n", failedFrames.size(), frames.size(),
+                 list.c_str());
+    return cli::kExitFramesFailed;
   }
   return 0;
 }
@@ -116,9 +201,22 @@ int main(int argc, char** argv) {
   renderCommand->add_option("--frames", render.frames, "Frames to render: 12, 1-240, 1-240:2 or a comma list "
                                                        "(default: the scene's `frame`, else 1)");
   renderCommand->add_option("--set", render.assignments, "Override a parameter: key=value (value is JSON)");
+  renderCommand->add_option("--layers", render.layers,
+                            "Layers to compute and write, comma-separated (default: all): composite, liquid, "
+                            "liquid_splash, liquid_class, depth, normal, thickness, refraction_uv, "
+                            "transmittance, reflection, foam, foam_spray, foam_surface, foam_bubble, "
+                            "foam_shadow, foam_irradiance, foam_thickness, liquid_shadow, caustics, liquid_sky "
+                            "(the last three when the scene has lights)")
+      ->delimiter(',');
   renderCommand->add_flag("-q,--quiet", render.quiet, "No progress output");
   renderCommand->add_flag("--intermediate", render.intermediate,
                           "Also write the depth layers before and after smoothing into the EXR");
+  renderCommand->add_flag("--skip-existing", render.skipExisting,
+                          "Skip frames whose output files all exist (resume a stopped sequence)");
+  renderCommand->add_flag("--keep-going", render.keepGoing,
+                          "Go on after a frame fails; exit with 3 at the end if any did");
+  renderCommand->add_option("--threads", render.threads, "Worker threads of the CPU preparation (default: all)")
+      ->check(CLI::PositiveNumber);
 
   bool markdown = false;
   CLI::App* paramsCommand = app.add_subcommand("params", "List every parameter with its default (JSON)");

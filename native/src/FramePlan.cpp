@@ -6,27 +6,51 @@ namespace spindrift {
 
 const char* passName(Pass pass) {
   switch (pass) {
-    case Pass::Background: return "background";
-    case Pass::LightDepthLayers: return "light_depth_layers";
-    case Pass::LiquidShadow: return "liquid_shadow";
-    case Pass::Caustics: return "caustics";
-    case Pass::LitBackground: return "lit_background";
-    case Pass::SplashDepthLayers: return "splash_depth_layers";
-    case Pass::AggregateDepthLayers: return "aggregate_depth_layers";
-    case Pass::Smoothing: return "smoothing";
-    case Pass::Refraction: return "refraction";
-    case Pass::FoamSceneDepth: return "foam_scene_depth";
-    case Pass::FoamDepth: return "foam_depth";
-    case Pass::FoamThickness: return "foam_thickness";
-    case Pass::FoamIntensity: return "foam_intensity";
-    case Pass::FoamOcclusion: return "foam_occlusion";
-    case Pass::FoamBlur: return "foam_blur";
-    case Pass::Composite: return "composite";
+    case Pass::Background:
+      return "background";
+    case Pass::OccluderDepth:
+      return "occluder_depth";
+    case Pass::LiquidMeshDepth:
+      return "liquid_mesh_depth";
+    case Pass::LightDepthLayers:
+      return "light_depth_layers";
+    case Pass::LiquidShadow:
+      return "liquid_shadow";
+    case Pass::Caustics:
+      return "caustics";
+    case Pass::LitBackground:
+      return "lit_background";
+    case Pass::SplashDepthLayers:
+      return "splash_depth_layers";
+    case Pass::AggregateDepthLayers:
+      return "aggregate_depth_layers";
+    case Pass::Smoothing:
+      return "smoothing";
+    case Pass::RaymarchSurface:
+      return "raymarch_surface";
+    case Pass::Refraction:
+      return "refraction";
+    case Pass::FoamSceneDepth:
+      return "foam_scene_depth";
+    case Pass::FoamDepth:
+      return "foam_depth";
+    case Pass::FoamThickness:
+      return "foam_thickness";
+    case Pass::FoamIntensity:
+      return "foam_intensity";
+    case Pass::FoamOcclusion:
+      return "foam_occlusion";
+    case Pass::FoamBlur:
+      return "foam_blur";
+    case Pass::Composite:
+      return "composite";
   }
   return "unknown";
 }
 
-bool FramePlan::runs(Pass pass) const { return std::find(passes.begin(), passes.end(), pass) != passes.end(); }
+bool FramePlan::runs(Pass pass) const {
+  return std::find(passes.begin(), passes.end(), pass) != passes.end();
+}
 
 FramePlan planFrame(const FrameContents& contents) {
   FramePlan plan;
@@ -39,10 +63,21 @@ FramePlan planFrame(const FrameContents& contents) {
   };
   const bool splashes = contents.splashParticles > 0;
   const bool aggregates = contents.aggregateParticles > 0;
+  const bool foamShown = contents.compositeWanted || contents.foamLayersWanted;
+  const bool foamRuns = contents.foamParticles > 0 && foamShown;
+  // The foam reads the liquid's first surface, so foam that is drawn needs the liquid too.
+  const bool liquidShown = contents.compositeWanted || contents.liquidLayersWanted || foamRuns;
+  const bool layersShown = liquidShown || contents.intermediateWanted;
+  const char* noLiquidOutput = "no liquid layer, composite or foam asked for (--layers)";
   decide(Pass::Background, nullptr);
+  decide(Pass::OccluderDepth, contents.occluderMeshes > 0 ? nullptr : "no occluders");
+  decide(Pass::LiquidMeshDepth, contents.liquidMesh ? nullptr : "no liquid mesh");
   // Light through the liquid onto the background: for every light that sees the liquid (LiquidLighting).
+  // The lit background reaches the refraction and the composite, and the light layers themselves.
+  const bool lightShown = liquidShown || contents.lightLayersWanted;
   const char* noLight = contents.lights == 0               ? "no lights in the scene"
                         : contents.lightsSeeingLiquid == 0 ? "no light sees the liquid"
+                        : !lightShown ? "no light layer, liquid layer, composite or foam asked for (--layers)"
                                                            : nullptr;
   for (Pass pass : {Pass::LightDepthLayers, Pass::LiquidShadow}) decide(pass, noLight);
   decide(Pass::Caustics, noLight                       ? noLight
@@ -50,17 +85,32 @@ FramePlan planFrame(const FrameContents& contents) {
                          : contents.causticLights == 0 ? "no sun or spot light sees the liquid"
                                                        : nullptr);
   decide(Pass::LitBackground, noLight);
-  decide(Pass::SplashDepthLayers, splashes ? nullptr : "no splash particles in view");
-  decide(Pass::AggregateDepthLayers, aggregates ? nullptr : "no aggregate particles in view");
-  decide(Pass::Smoothing, !aggregates                      ? "no aggregate particles in view"
+  decide(Pass::SplashDepthLayers, !splashes      ? "no splash particles in view"
+                                  : !layersShown ? noLiquidOutput
+                                                 : nullptr);
+  decide(Pass::AggregateDepthLayers, !aggregates    ? "no aggregate particles in view"
+                                     : !layersShown ? noLiquidOutput
+                                                    : nullptr);
+  decide(Pass::Smoothing, !aggregates                    ? "no aggregate particles in view"
                           : contents.smoothing == "none" ? "liquid.smoothing is none"
+                          : !layersShown                 ? noLiquidOutput
                                                          : nullptr);
-  decide(Pass::Refraction, splashes || aggregates ? nullptr : "no liquid particles in view");
-  const char* noFoam = contents.foamParticles > 0 ? nullptr : "no foam particles in view";
+  // The ray-marched surface is part of the frame only where liquid.surface asks for it: a screen-space frame
+  // does not list it as skipped.
+  if (contents.surface == "raymarch")
+    decide(Pass::RaymarchSurface, !(splashes || aggregates) ? "no liquid particles in view"
+                                  : !layersShown            ? noLiquidOutput
+                                                            : nullptr);
+  decide(Pass::Refraction, !(splashes || aggregates) ? "no liquid particles in view"
+                           : !liquidShown            ? noLiquidOutput
+                                                     : nullptr);
+  const char* foamReason = contents.foamParticles == 0 ? "no foam particles in view"
+                           : !foamShown                ? "no foam layer or composite asked for (--layers)"
+                                                       : nullptr;
   for (Pass pass : {Pass::FoamSceneDepth, Pass::FoamDepth, Pass::FoamThickness, Pass::FoamIntensity,
                     Pass::FoamOcclusion, Pass::FoamBlur})
-    decide(pass, noFoam);
-  decide(Pass::Composite, nullptr);
+    decide(pass, foamReason);
+  decide(Pass::Composite, contents.compositeWanted ? nullptr : "composite not asked for (--layers)");
   return plan;
 }
 

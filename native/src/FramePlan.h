@@ -11,6 +11,8 @@ namespace spindrift {
 /// Every pass a frame can run, in the order the recipe runs them.
 enum class Pass {
   Background,
+  OccluderDepth,
+  LiquidMeshDepth,
   LightDepthLayers,
   LiquidShadow,
   Caustics,
@@ -18,6 +20,7 @@ enum class Pass {
   SplashDepthLayers,
   AggregateDepthLayers,
   Smoothing,
+  RaymarchSurface,  ///< liquid.surface = raymarch: six passes, timed by RaymarchSurface itself
   Refraction,
   FoamSceneDepth,
   FoamDepth,
@@ -31,20 +34,30 @@ enum class Pass {
 /// The pass's name in the stats ("splash_depth_layers").
 const char* passName(Pass pass);
 
-/// What a frame holds, as far as choosing its passes goes: known after the CPU preparation, before any GL work.
+/// What a frame holds, as far as choosing its passes goes: known after the CPU preparation, before any GL
+/// work.
 struct FrameContents {
-  std::size_t splashParticles = 0;     ///< Liquid particles in view drawn as splashes.
-  std::size_t aggregateParticles = 0;  ///< Liquid particles in view drawn as the aggregated body.
-  std::size_t foamParticles = 0;       ///< Secondary particles in view.
+  std::size_t splashParticles = 0;      ///< Liquid particles in view drawn as splashes.
+  std::size_t aggregateParticles = 0;   ///< Liquid particles in view drawn as the aggregated body.
+  std::size_t foamParticles = 0;        ///< Secondary particles in view.
   std::string smoothing = "plane_fit";  ///< liquid.smoothing.
+  std::size_t occluderMeshes = 0;       ///< Triangle meshes of solid geometry (files and in memory).
+  bool liquidMesh = false;              ///< The liquid's own surface given as triangles.
+  // What the caller reads back (`--layers`): a pass whose result reaches no wanted layer is not run.
+  bool compositeWanted = true;
+  bool liquidLayersWanted = true;   ///< Any liquid layer: liquid, depth, normal, thickness, refraction split ...
+  bool foamLayersWanted = true;     ///< Any foam layer.
+  bool intermediateWanted = false;  ///< The depth layers before and after smoothing (`--intermediate`).
+  std::string surface = "screen";       ///< liquid.surface.
   std::size_t lights = 0;              ///< Lights in the scene.
   std::size_t lightsSeeingLiquid = 0;  ///< Lights whose view of the liquid is drawn.
   std::size_t causticLights = 0;       ///< Of those, suns and spots (point lights cast no caustics).
   bool caustics = true;                ///< light.caustics.
+  bool lightLayersWanted = true;       ///< Any of liquid_shadow, caustics, liquid_sky (`--layers`).
 };
 
-/// Which passes a frame runs and, for each it does not, why. The wiring of the frame in one plain function, so
-/// it can be read and tested without a GPU.
+/// Which passes a frame runs and, for each it does not, why. The wiring of the frame in one plain function,
+/// so it can be read and tested without a GPU.
 struct FramePlan {
   std::vector<Pass> passes;          ///< In the order they run.
   std::vector<SkippedPass> skipped;  ///< In pass order, with the reason.

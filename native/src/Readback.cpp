@@ -6,6 +6,55 @@
 
 namespace spindrift {
 
+namespace {
+
+const std::vector<std::string> kLiquidLayers = {"liquid",    "liquid_splash", "liquid_class",  "depth",
+                                                "normal",    "thickness",     "refraction_uv", "transmittance",
+                                                "reflection"};
+const std::vector<std::string> kFoamLayers = {"foam",        "foam_spray",      "foam_surface",  "foam_bubble",
+                                              "foam_shadow", "foam_irradiance", "foam_thickness"};
+const std::vector<std::string> kLightLayers = {"liquid_shadow", "caustics", "liquid_sky"};
+
+bool contains(const std::vector<std::string>& names, const std::string& name) {
+  return std::find(names.begin(), names.end(), name) != names.end();
+}
+
+}  // namespace
+
+const std::vector<std::string>& LayerSelection::allNames() {
+  static const std::vector<std::string> names = [] {
+    std::vector<std::string> all = {"composite"};
+    all.insert(all.end(), kLiquidLayers.begin(), kLiquidLayers.end());
+    all.insert(all.end(), kFoamLayers.begin(), kFoamLayers.end());
+    all.insert(all.end(), kLightLayers.begin(), kLightLayers.end());
+    return all;
+  }();
+  return names;
+}
+
+LayerSelection::LayerSelection(const std::vector<std::string>& names) : names_(names) {
+  for (const std::string& name : names_)
+    if (!contains(allNames(), name)) {
+      std::string valid;
+      for (const std::string& known : allNames()) valid += (valid.empty() ? "" : ", ") + known;
+      throw Error("unknown layer \"" + name + "\" (layers: " + valid + ")");
+    }
+}
+
+bool LayerSelection::wants(const std::string& layer) const { return names_.empty() || contains(names_, layer); }
+
+bool LayerSelection::wantsLiquidLayers() const {
+  return std::any_of(kLiquidLayers.begin(), kLiquidLayers.end(), [this](const auto& name) { return wants(name); });
+}
+
+bool LayerSelection::wantsLightLayers() const {
+  return std::any_of(kLightLayers.begin(), kLightLayers.end(), [this](const auto& name) { return wants(name); });
+}
+
+bool LayerSelection::wantsFoamLayers() const {
+  return std::any_of(kFoamLayers.begin(), kFoamLayers.end(), [this](const auto& name) { return wants(name); });
+}
+
 ImageLayer readLayer(const Texture2D& texture, const std::string& name,
                      const std::vector<std::string>& channels) {
   const std::size_t channelCount = channels.size();
@@ -44,49 +93,64 @@ ImageLayer totalThickness(const Texture2D& thicknessByType) {
 
 }  // namespace
 
-void readFoamLayers(const FoamLayerData* foam, int width, int height, std::vector<ImageLayer>& layers) {
+void readFoamLayers(const FoamLayerData* foam, int width, int height, const LayerSelection& selection,
+                    std::vector<ImageLayer>& layers) {
   const std::vector<std::string> rgba = {"R", "G", "B", "A"}, rgb = {"R", "G", "B"};
-  if (!foam) {
-    for (const char* name : {"foam", "foam_spray", "foam_surface", "foam_bubble"})
-      layers.push_back(filledLayer(width, height, name, rgba, 0.0f));
-    layers.push_back(filledLayer(width, height, "foam_shadow", rgb, 0.0f));
-    layers.push_back(filledLayer(width, height, "foam_irradiance", rgb, 0.0f));
-    layers.push_back(filledLayer(width, height, "foam_thickness", {"Y"}, 0.0f));
-    return;
+  struct Part {
+    const char* name;
+    const Texture2D* texture;
+    const std::vector<std::string>& channels;
+  };
+  const Part parts[] = {{"foam", foam ? &foam->foam : nullptr, rgba},
+                        {"foam_spray", foam ? &foam->spray : nullptr, rgba},
+                        {"foam_surface", foam ? &foam->surface : nullptr, rgba},
+                        {"foam_bubble", foam ? &foam->bubble : nullptr, rgba},
+                        {"foam_shadow", foam ? &foam->shadow : nullptr, rgb},
+                        {"foam_irradiance", foam ? &foam->irradiance : nullptr, rgb}};
+  for (const Part& part : parts) {
+    if (!selection.wants(part.name)) continue;
+    layers.push_back(part.texture ? readLayer(*part.texture, part.name, part.channels)
+                                  : filledLayer(width, height, part.name, part.channels, 0.0f));
   }
-  layers.push_back(readLayer(foam->foam, "foam", rgba));
-  layers.push_back(readLayer(foam->spray, "foam_spray", rgba));
-  layers.push_back(readLayer(foam->surface, "foam_surface", rgba));
-  layers.push_back(readLayer(foam->bubble, "foam_bubble", rgba));
-  layers.push_back(readLayer(foam->shadow, "foam_shadow", rgb));
-  layers.push_back(readLayer(foam->irradiance, "foam_irradiance", rgb));
-  layers.push_back(totalThickness(foam->thickness));
+  if (selection.wants("foam_thickness"))
+    layers.push_back(foam ? totalThickness(foam->thickness)
+                          : filledLayer(width, height, "foam_thickness", {"Y"}, 0.0f));
 }
 
-void readLiquidLayers(const LiquidData* liquid, int width, int height, std::vector<ImageLayer>& layers) {
-  const std::vector<std::string> rgba = {"R", "G", "B", "A"};
-  if (!liquid) {
-    layers.push_back(filledLayer(width, height, "liquid", rgba, 0.0f));
-    layers.push_back(filledLayer(width, height, "liquid_splash", rgba, 0.0f));
-    layers.push_back(filledLayer(width, height, "liquid_class", {"Y"}, 0.0f));
-    layers.push_back(filledLayer(width, height, "depth", {"Z"}, 1e10f));
-    layers.push_back(filledLayer(width, height, "normal", {"X", "Y", "Z"}, 0.0f));
-    layers.push_back(filledLayer(width, height, "thickness", {"Y"}, 0.0f));
-    return;
+void readLiquidLayers(const LiquidData* liquid, int width, int height, const LayerSelection& selection,
+                      std::vector<ImageLayer>& layers) {
+  const std::vector<std::string> rgba = {"R", "G", "B", "A"}, rgb = {"R", "G", "B"}, y = {"Y"}, z = {"Z"},
+                                 xyz = {"X", "Y", "Z"};
+  struct Part {
+    const char* name;
+    const Texture2D* texture;
+    const std::vector<std::string>& channels;
+    float empty;  // The value where no liquid is.
+  };
+  const Part parts[] = {{"liquid", liquid ? &liquid->color : nullptr, rgba, 0.0f},
+                        {"liquid_splash", liquid ? &liquid->splashColor : nullptr, rgba, 0.0f},
+                        {"liquid_class", liquid ? &liquid->surfaceClass : nullptr, y, 0.0f},
+                        {"depth", liquid ? &liquid->frontDepth : nullptr, z, 1e10f},
+                        {"normal", liquid ? &liquid->frontNormal : nullptr, xyz, 0.0f},
+                        {"thickness", liquid ? &liquid->thickness : nullptr, y, 0.0f},
+                        // The refraction split for a compositor that refracts another render
+                        // (docs/python-module.md).
+                        {"refraction_uv", liquid ? &liquid->refractionUv : nullptr, rgb, 0.0f},
+                        {"transmittance", liquid ? &liquid->transmittance : nullptr, rgb, 0.0f},
+                        {"reflection", liquid ? &liquid->reflection : nullptr, rgb, 0.0f}};
+  for (const Part& part : parts) {
+    if (!selection.wants(part.name)) continue;
+    layers.push_back(part.texture ? readLayer(*part.texture, part.name, part.channels)
+                                  : filledLayer(width, height, part.name, part.channels, part.empty));
   }
-  layers.push_back(readLayer(liquid->color, "liquid", rgba));
-  layers.push_back(readLayer(liquid->splashColor, "liquid_splash", rgba));
-  layers.push_back(readLayer(liquid->surfaceClass, "liquid_class", {"Y"}));
-  layers.push_back(readLayer(liquid->frontDepth, "depth", {"Z"}));
-  layers.push_back(readLayer(liquid->frontNormal, "normal", {"X", "Y", "Z"}));
-  layers.push_back(readLayer(liquid->thickness, "thickness", {"Y"}));
 }
 
-void readFrameLayers(const CompositeData& composite, const LiquidData* liquid, const FoamLayerData* foam,
-                     int width, int height, std::vector<ImageLayer>& layers) {
-  layers.push_back(readLayer(composite.color, "composite", {"R", "G", "B", "A"}));
-  readLiquidLayers(liquid, width, height, layers);
-  readFoamLayers(foam, width, height, layers);
+void readFrameLayers(const CompositeData* composite, const LiquidData* liquid, const FoamLayerData* foam,
+                     int width, int height, const LayerSelection& selection, std::vector<ImageLayer>& layers) {
+  if (composite && selection.wantsComposite())
+    layers.push_back(readLayer(composite->color, "composite", {"R", "G", "B", "A"}));
+  readLiquidLayers(liquid, width, height, selection, layers);
+  readFoamLayers(foam, width, height, selection, layers);
 }
 
 void IntermediateLayers::keep(const SurfaceLayers& layers, const std::string& name) {
@@ -97,23 +161,31 @@ void IntermediateLayers::keep(const SurfaceLayers& layers, const std::string& na
   kept_.push_back(readLayer(layers.back.normal, name + "_back_normal", {"X", "Y", "Z"}));
 }
 
+void IntermediateLayers::keep(std::vector<ImageLayer> layers) {
+  if (!enabled_) return;
+  for (ImageLayer& layer : layers) kept_.push_back(std::move(layer));
+}
+
 void IntermediateLayers::appendTo(std::vector<ImageLayer>& layers) {
   for (ImageLayer& layer : kept_) layers.push_back(std::move(layer));
   kept_.clear();
 }
 
 void readLightLayers(const LitBackgroundData* lit, bool sceneHasLights, int width, int height,
-                     std::vector<ImageLayer>& layers) {
+                     const LayerSelection& selection, std::vector<ImageLayer>& layers) {
   if (!sceneHasLights) return;
   const std::vector<std::string> rgb = {"R", "G", "B"};
-  if (lit) {
-    layers.push_back(readLayer(lit->liquidShadow, "liquid_shadow", rgb));
-    layers.push_back(readLayer(lit->caustics, "caustics", rgb));
-    layers.push_back(readLayer(lit->skyKept, "liquid_sky", rgb));
-  } else {
-    layers.push_back(filledLayer(width, height, "liquid_shadow", rgb, 1.0f));
-    layers.push_back(filledLayer(width, height, "caustics", rgb, 0.0f));
-    layers.push_back(filledLayer(width, height, "liquid_sky", rgb, 1.0f));
+  const struct {
+    const char* name;
+    const Texture2D* texture;
+    float empty;
+  } lightLayers[] = {{"liquid_shadow", lit ? &lit->liquidShadow : nullptr, 1.0f},
+                     {"caustics", lit ? &lit->caustics : nullptr, 0.0f},
+                     {"liquid_sky", lit ? &lit->skyKept : nullptr, 1.0f}};
+  for (const auto& layer : lightLayers) {
+    if (!selection.wants(layer.name)) continue;
+    layers.push_back(layer.texture ? readLayer(*layer.texture, layer.name, rgb)
+                                   : filledLayer(width, height, layer.name, rgb, layer.empty));
   }
 }
 

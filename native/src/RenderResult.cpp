@@ -13,6 +13,21 @@ nlohmann::json FrameStats::toJson() const {
   for (const PassTiming& pass : passes)
     passesJson.push_back({{"name", pass.name}, {"gpu_ms", pass.gpuMilliseconds}, {"cpu_ms", pass.cpuMilliseconds}});
   nlohmann::json skippedJson = nlohmann::json::array();
+  nlohmann::json raymarchJson = nullptr;  // null unless liquid.surface = raymarch
+  if (raymarch.enabled)
+    raymarchJson = {{"stepping", raymarch.adaptiveStepping ? "adaptive" : "uniform"},
+                    {"density_particles", raymarch.densityParticles},
+                    {"grid_cells", raymarch.gridCells},
+                    {"rays_cast", raymarch.raysCast},
+                    {"hits", raymarch.hits},
+                    {"total_steps", raymarch.totalSteps},
+                    {"average_steps_per_ray", raymarch.averageStepsPerRay},
+                    {"density_evaluations_per_ray", raymarch.densityEvaluationsPerRay},
+                    {"tiles",
+                     {{"full", raymarch.tiles[0]},
+                      {"half", raymarch.tiles[1]},
+                      {"quarter", raymarch.tiles[2]},
+                      {"empty", raymarch.tiles[3]}}}};
   for (const SkippedPass& pass : skipped) skippedJson.push_back({{"name", pass.name}, {"reason", pass.reason}});
   return {
       {"frame", frame},
@@ -54,12 +69,19 @@ nlohmann::json FrameStats::toJson() const {
         {"caustics", light.caustics},
         {"light_passes", light.lightPasses},
         {"prepare_ms", light.prepareMilliseconds}}},
+      {"raymarch", raymarchJson},
       {"passes", passesJson},
       {"skipped", skippedJson},
       {"load_ms", loadMilliseconds},
       {"prepare_ms", prepareMilliseconds},
       {"readback_ms", readbackMilliseconds},
       {"total_ms", totalMilliseconds},
+      {"first_frame", firstFrame},
+      {"setup",
+       {{"ms", setup.milliseconds},
+        {"programs_compiled", setup.programsCompiled},
+        {"programs_from_cache", setup.programsFromCache},
+        {"programs_rejected", setup.programsRejected}}},
   };
 }
 

@@ -2,9 +2,13 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cstdint>
+#include <filesystem>
 #include <optional>
+#include <utility>
 
 #include "gl/GlThread.h"
+#include "gl/QueryGlLimits.h"
 #include "gl/PassTimer.h"
 #include "gl/ShaderLibrary.h"
 #include "passes/BackgroundPass.h"
@@ -18,15 +22,20 @@
 #include "passes/FoamSceneDepthPass.h"
 #include "passes/FoamThicknessPass.h"
 #include "passes/FrameUniforms.h"
+#include "passes/OccluderDepthPass.h"
 #include "passes/RefractionPass.h"
 #include "prep/BackgroundCache.h"
 #include "prep/FoamPreparation.h"
 #include "prep/LightViews.h"
 #include "prep/LiquidPreparation.h"
+#include "prep/RaymarchPreparation.h"
 #include "FramePlan.h"
 #include "FrameStatsRecording.h"
 #include "LiquidLighting.h"
+#include "RaymarchSurface.h"
 #include "Readback.h"
+#include "spindrift/Error.h"
+#include "spindrift/Limits.h"
 
 namespace spindrift {
 namespace {
@@ -39,15 +48,21 @@ double millisecondsSince(Clock::time_point start) {
 
 // Every GL object of the frame; made, used and destroyed on the GL thread.
 struct FramePipeline {
-  ShaderLibrary shaders{findShaderDirectory()};
+  explicit FramePipeline(const std::filesystem::path& shaderDirectory)
+      : shaders(shaderDirectory, ProgramCache::forCurrentContext()) {}
+
+  ShaderLibrary shaders;
   FrameUniformBuffer frameUniforms;
   PassTimer timer;
   BackgroundPass background{shaders};
   LiquidLighting lighting{shaders};
+  OccluderDepthPass occluderDepth{shaders};
+  OccluderDepthPass liquidMeshDepth{shaders};
   EllipsoidImpostorPass splashImpostors{shaders};
   EllipsoidImpostorPass aggregateImpostors{shaders};
   DepthSmoothingPass frontSmoothing{shaders};
   DepthSmoothingPass backSmoothing{shaders};
+  RaymarchSurface raymarch{shaders};
   RefractionPass refraction{shaders};
   FoamSceneDepthPass foamSceneDepth{shaders};
   FoamDepthPass foamDepth{shaders};
@@ -80,36 +95,110 @@ RenderResult emptyResult(int frame, int width, int height, const Particles& part
   return result;
 }
 
+// An in-memory background image must have the camera's size; BackgroundCache resamples only files.
+void requireCameraSize(const FloatImage& image, int channels, const char* what, int width, int height) {
+  if (image.width != width || image.height != height || image.channels != channels ||
+      image.pixels.size() != std::size_t(width) * height * channels)
+    throw Error(std::string(what) + ": expected " + std::to_string(width) + "x" + std::to_string(height) +
+                "x" + std::to_string(channels) + " floats (the camera's size), got " +
+                std::to_string(image.width) + "x" + std::to_string(image.height) + "x" +
+                std::to_string(image.channels));
+}
+
 }  // namespace
+
+// In-memory inputs of a frame, by pointer, beside those loaded from the scene's files.
+struct Renderer::FrameExtras {
+  std::vector<const TriangleMesh*> occluders;
+  const TriangleMesh* liquidMesh = nullptr;
+  const FloatImage* backgroundColor = nullptr;
+  const FloatImage* backgroundDepth = nullptr;
+};
 
 struct Renderer::Impl {
   GlThread glThread;
   std::unique_ptr<FramePipeline> pipeline;  // Lives on glThread; reset there before the thread ends.
   BackgroundCache backgroundCache;
+  GlLimits glLimits;
   bool intermediateLayers = false;
+  LayerSelection layers;
+  bool firstFrame = true;
+  SetupStats setup;
+  // In-memory backgrounds change every frame: each gets its own upload generation, apart from the cache's.
+  std::uint64_t hostBackgroundGeneration = std::uint64_t(1) << 63;
 
   ~Impl() {
     glThread.run([this] { pipeline.reset(); });
   }
 };
 
-Renderer::Renderer() : impl_(std::make_unique<Impl>()) {
-  impl_->glThread.run([this] { impl_->pipeline = std::make_unique<FramePipeline>(); });
+Renderer::Renderer() : Renderer(findShaderDirectory()) {}
+
+Renderer::Renderer(const std::filesystem::path& shaderDirectory) {
+  const Clock::time_point start = Clock::now();
+  impl_ = std::make_unique<Impl>();
+  impl_->glThread.run([&] {
+    impl_->pipeline = std::make_unique<FramePipeline>(shaderDirectory);
+    impl_->glLimits = queryGlLimits();
+    const ProgramCacheCounts& programs = impl_->pipeline->shaders.cacheCounts();
+    impl_->setup.programsCompiled = programs.compiled;
+    impl_->setup.programsFromCache = programs.loaded;
+    impl_->setup.programsRejected = programs.rejected;
+  });
+  impl_->setup.milliseconds = millisecondsSince(start);
 }
 
 Renderer::~Renderer() = default;
 
 void Renderer::setIntermediateLayers(bool enabled) { impl_->intermediateLayers = enabled; }
+void Renderer::setLayers(const std::vector<std::string>& names) { impl_->layers = LayerSelection(names); }
 
 std::string Renderer::glRenderer() const { return impl_->glThread.renderer(); }
 std::string Renderer::glVersion() const { return impl_->glThread.version(); }
+const GlLimits& Renderer::glLimits() const { return impl_->glLimits; }
+
+// Everything that could make a frame fail halfway or allocate without bound is checked first, with an
+// error that names the limit (docs/reliability.md, "Limits").
+void Renderer::checkFrame(const Scene& scene, std::size_t particleCount) const {
+  const Camera& camera = scene.camera;
+  validateCamera(camera);
+  checkImageFitsGl(impl_->glLimits, camera.width, camera.height, "camera: the image");
+  requireMemory(std::uint64_t(camera.width) * std::uint64_t(camera.height) * kFrameBytesPerPixel +
+                    std::uint64_t(particleCount) * kPreparationBytesPerParticle,
+                "a " + std::to_string(camera.width) + "x" + std::to_string(camera.height) + " frame of " +
+                    std::to_string(particleCount) + " particles");
+}
 
 RenderResult Renderer::renderFrame(const Scene& scene, int frame) {
+  return renderFrame(scene, frame, FrameInputs{});
+}
+
+RenderResult Renderer::renderFrame(const Scene& scene, int frame, const FrameInputs& inputs) {
   const Clock::time_point start = Clock::now();
+  checkFrame(scene, 0);  // Before any file is read; renderParticles checks again with the particle count.
   ParticleCounts counts;
-  const Particles particles = loadParticles(scene, frame, &counts);
+  Particles particles = loadParticles(scene, frame, &counts);
+  const std::size_t droppedFromFiles = counts.droppedInvalid;
+  const std::size_t droppedInMemory = appendValidParticles(particles, inputs.particles);
+  counts = countByKind(particles);
+  counts.droppedInvalid = droppedFromFiles + droppedInMemory;
+  for (std::size_t i = 0; i < inputs.occluders.size(); ++i)
+    inputs.occluders[i].validate("occluders[" + std::to_string(i) + "]");
+  if (inputs.liquidMesh) inputs.liquidMesh->validate("liquid_mesh");
+  FrameInputs files;
+  loadMeshes(scene, frame, files);
   const double loadMilliseconds = millisecondsSince(start);
-  RenderResult result = renderParticles(scene, particles, frame);
+  FrameExtras extras;
+  for (const TriangleMesh& mesh : files.occluders)
+    extras.occluders.push_back(&mesh);
+  for (const TriangleMesh& mesh : inputs.occluders)
+    extras.occluders.push_back(&mesh);
+  extras.liquidMesh = inputs.liquidMesh  ? &*inputs.liquidMesh
+                      : files.liquidMesh ? &*files.liquidMesh
+                                         : nullptr;
+  extras.backgroundColor = inputs.backgroundColor ? &*inputs.backgroundColor : nullptr;
+  extras.backgroundDepth = inputs.backgroundDepth ? &*inputs.backgroundDepth : nullptr;
+  RenderResult result = renderPrepared(scene, particles, frame, extras);
   result.stats.counts = counts;
   result.stats.loadMilliseconds = loadMilliseconds;
   result.stats.totalMilliseconds = millisecondsSince(start);
@@ -122,28 +211,66 @@ RenderResult Renderer::renderFrame(const Scene& scene, int frame) {
 // the aggregate layers, refraction, the foam paper's seven passes (figure 2), and the composite; then read the
 // layers back. A pass the plan leaves out is not run, and the stats say why (FramePlan.cpp).
 RenderResult Renderer::renderParticles(const Scene& scene, const Particles& particles, int frame) {
+  return renderPrepared(scene, particles, frame, FrameExtras{});
+}
+
+RenderResult Renderer::renderPrepared(const Scene& scene, const Particles& particles, int frame,
+                                      const FrameExtras& extras) {
   const Clock::time_point start = Clock::now();
   const Camera& camera = scene.camera;
   const LiquidParameters& liquidParameters = scene.parameters.liquid;
   const FoamParameters& foamParameters = scene.parameters.foam;
   const int width = camera.width, height = camera.height;
+  checkFrame(scene, particles.size());
+  validateParticles(particles);
+  // A Mantaflow liquid is clipped to its domain's box, as Mantaflow closes its mesh at the walls.
+  const DomainBox* domainBox = nullptr;
+  for (const ParticleSource& source : scene.particles)
+    if (source.role == ParticleRole::Liquid && source.domainBox && !domainBox) domainBox = &*source.domainBox;
   RenderResult result = emptyResult(frame, width, height, particles);
   result.stats.glRenderer = glRenderer();
   result.stats.glVersion = glVersion();
+  result.stats.firstFrame = std::exchange(impl_->firstFrame, false);
+  if (result.stats.firstFrame) result.stats.setup = impl_->setup;
   FrameStats& stats = result.stats;
 
   const Clock::time_point prepareStart = Clock::now();
   const LiquidPreparation liquid = prepareLiquid(particles, camera, liquidParameters);
   const float radius = typicalLiquidRadius(particles);
   const FoamPreparation foam = prepareFoam(particles, camera, foamParameters);
-  const BackgroundImages backgroundImages = impl_->backgroundCache.load(scene.background, frame, width, height);
+  std::optional<RaymarchPreparation> raymarch;
+  if (liquidParameters.surface == "raymarch")
+    raymarch.emplace(prepareRaymarch(particles, camera, radius, liquidParameters));
+  BackgroundImages backgroundImages = impl_->backgroundCache.load(scene.background, frame, width, height);
+  if (extras.backgroundColor) {
+    requireCameraSize(*extras.backgroundColor, 4, "background colour", width, height);
+    backgroundImages.color = extras.backgroundColor;
+    backgroundImages.lightPasses = nullptr;  // The file's light passes belong to the file's image.
+  }
+  if (extras.backgroundDepth) {
+    requireCameraSize(*extras.backgroundDepth, 1, "background depth", width, height);
+    backgroundImages.eyeDepth = extras.backgroundDepth;
+  }
+  if (extras.backgroundColor || extras.backgroundDepth)
+    backgroundImages.generation = ++impl_->hostBackgroundGeneration;
+  if (backgroundImages.environment)
+    checkImageFitsGl(impl_->glLimits, backgroundImages.environment->width, backgroundImages.environment->height,
+                     "background.environment " + pathForFrame(scene.background.environment, frame).string());
   const LightingPreparation lighting = prepareLighting(particles, scene.lights, scene.parameters);
   stats.prepareMilliseconds = millisecondsSince(prepareStart);
   recordPreparation(liquid, foam, stats);
   recordLighting(scene.lights.size(), lighting, backgroundImages.lightPasses != nullptr, stats.light);
-  const FramePlan plan = planFrame({liquid.splashes.size(), liquid.aggregates.size(), foam.instances.size(),
-                                    liquidParameters.smoothing, scene.lights.size(), lighting.lights.size(),
-                                    causticLights(lighting), scene.parameters.light.caustics});
+  const LayerSelection& layers = impl_->layers;
+  FrameContents contents{liquid.splashes.size(), liquid.aggregates.size(), foam.instances.size(),
+                         liquidParameters.smoothing, extras.occluders.size(), extras.liquidMesh != nullptr,
+                         layers.wantsComposite(), layers.wantsLiquidLayers(), layers.wantsFoamLayers(),
+                         impl_->intermediateLayers, liquidParameters.surface};
+  contents.lights = scene.lights.size();
+  contents.lightsSeeingLiquid = lighting.lights.size();
+  contents.causticLights = causticLights(lighting);
+  contents.caustics = scene.parameters.light.caustics;
+  contents.lightLayersWanted = layers.wantsLightLayers();
+  const FramePlan plan = planFrame(contents);
   stats.skipped = plan.skipped;
   stats.light.caustics = plan.runs(Pass::Caustics);
 
@@ -153,8 +280,21 @@ RenderResult Renderer::renderParticles(const Scene& scene, const Particles& part
     IntermediateLayers intermediate(impl_->intermediateLayers);
     pipeline.frameUniforms.update(camera);
 
-    const BackgroundData unlit =
+    const BackgroundData resolved =
         timed(Pass::Background, [&] { return pipeline.background.run(backgroundImages, width, height); });
+    // Solid geometry handed as triangles joins the background's depth, so every later pass that tests against
+    // solids sees it; the liquid's own mesh stands in for (or joins) background.liquid_depth.
+    auto meshDepth = [&](Pass pass, OccluderDepthPass& prepass, const std::vector<const TriangleMesh*>& meshes,
+                         const Texture2D* start) -> const Texture2D* {
+      if (!plan.runs(pass)) return start;
+      return &timed(pass, [&] { return prepass.run(meshes, start, width, height); }).eyeDepth;
+    };
+    const Texture2D& solidDepth =
+        *meshDepth(Pass::OccluderDepth, pipeline.occluderDepth, extras.occluders, &resolved.eyeDepth);
+    const Texture2D* liquidDepth =
+        meshDepth(Pass::LiquidMeshDepth, pipeline.liquidMeshDepth, {extras.liquidMesh}, resolved.liquidEyeDepth);
+    const BackgroundData unlit{resolved.color,         solidDepth,  resolved.environment,
+                               resolved.fallbackColor, liquidDepth, resolved.lightPasses};
     // Light through the liquid onto the background (shadows, caustics, submerged points), before anything
     // refracts or shows the background; LiquidLighting times its passes per light.
     std::optional<LitBackgroundData> lit;
@@ -164,23 +304,34 @@ RenderResult Renderer::renderParticles(const Scene& scene, const Particles& part
     std::optional<SurfaceLayers> splashes, aggregates;
     if (plan.runs(Pass::SplashDepthLayers)) {
       splashes.emplace(timed(Pass::SplashDepthLayers, [&] {
-        return pipeline.splashImpostors.run(liquid.splashes, background, width, height);
+        return pipeline.splashImpostors.run(liquid.splashes, background, width, height, domainBox);
       }));
       intermediate.keep(*splashes, "splash");
     }
     if (plan.runs(Pass::AggregateDepthLayers)) {
       aggregates.emplace(timed(Pass::AggregateDepthLayers, [&] {
-        return pipeline.aggregateImpostors.run(liquid.aggregates, background, width, height);
+        return pipeline.aggregateImpostors.run(liquid.aggregates, background, width, height, domainBox);
       }));
       intermediate.keep(*aggregates, "aggregate");
     }
     if (plan.runs(Pass::Smoothing)) {
       aggregates.emplace(timed(Pass::Smoothing, [&] {
         return SurfaceLayers{
-            pipeline.frontSmoothing.run(aggregates->front, radius, false, liquidParameters, width, height),
+            // A ray-marched surface replaces the front layer: only the back layer is smoothed then.
+            raymarch ? aggregates->front
+                     : pipeline.frontSmoothing.run(aggregates->front, radius, false, liquidParameters, width,
+                                                   height),
             pipeline.backSmoothing.run(aggregates->back, radius, true, liquidParameters, width, height)};
       }));
       intermediate.keep(*aggregates, "aggregate_smoothed");
+    }
+    if (plan.runs(Pass::RaymarchSurface)) {  // times its six passes itself
+      RaymarchSurface& surface = pipeline.raymarch;
+      replaceFrontLayers(surface.run(*raymarch, splashes, aggregates, background, liquidParameters,
+                                     pipeline.timer, width, height),
+                         splashes, aggregates);
+      if (impl_->intermediateLayers) intermediate.keep(surface.intermediateLayers());
+      stats.raymarch = surface.statistics();
     }
     std::optional<LiquidData> liquidLayer;
     if (plan.runs(Pass::Refraction))
@@ -213,18 +364,20 @@ RenderResult Renderer::renderParticles(const Scene& scene, const Particles& part
                                      width, height);
       }));
     }
-    const CompositeData composite = timed(Pass::Composite, [&] {
-      return pipeline.composite.run(background, liquidLayer ? &*liquidLayer : nullptr,
-                                    foamLayer ? &*foamLayer : nullptr, width, height);
-    });
+    std::optional<CompositeData> composite;
+    if (plan.runs(Pass::Composite))
+      composite.emplace(timed(Pass::Composite, [&] {
+        return pipeline.composite.run(background, liquidLayer ? &*liquidLayer : nullptr,
+                                      foamLayer ? &*foamLayer : nullptr, width, height);
+      }));
     stats.passes = pipeline.timer.collect();
 
     const Clock::time_point readbackStart = Clock::now();
     if (liquidLayer) recordRefraction(pipeline.refraction.statistics(), stats.liquid);
     if (foamLayer) recordFoamOcclusion(pipeline.foamOcclusion.statistics(), stats.foam);
-    readFrameLayers(composite, liquidLayer ? &*liquidLayer : nullptr, foamLayer ? &*foamLayer : nullptr, width,
-                    height, result.layers);
-    readLightLayers(lit ? &*lit : nullptr, !scene.lights.empty(), width, height, result.layers);
+    readFrameLayers(composite ? &*composite : nullptr, liquidLayer ? &*liquidLayer : nullptr,
+                    foamLayer ? &*foamLayer : nullptr, width, height, layers, result.layers);
+    readLightLayers(lit ? &*lit : nullptr, !scene.lights.empty(), width, height, layers, result.layers);
     intermediate.appendTo(result.layers);
     stats.readbackMilliseconds = millisecondsSince(readbackStart);
   });

@@ -35,8 +35,23 @@ def parse_arguments():
                                            "--quick)")
     parser.add_argument("--work", default=os.path.join(runs.REPOSITORY, "build", "bench"))
     parser.add_argument("--blender", default="blender")
+    parser.add_argument("--examples", help="comma-separated subset of the plan's examples")
+    parser.add_argument("--configurations", help="comma-separated labels: run only these points of the sweep")
+    parser.add_argument("--sweep-only", action="store_true",
+                        help="the Spindrift sweep and Cycles' sample points only: no VTK, scaling or stability suite")
     parser.add_argument("--report-only", action="store_true",
                         help="rewrite the page and plots from WORK/results.json without running anything")
+    # Filters for a partial run on a busy machine; the page records what was left out.
+    parser.add_argument("--examples", default="", help="comma-separated examples (default: the plan's)")
+    parser.add_argument("--cameras", default="", help="comma-separated cameras (default: the plan's)")
+    parser.add_argument("--configurations", default="",
+                        help="semicolon-separated labels of Spindrift settings to run (labels hold commas; default: all)")
+    parser.add_argument("--reference-spp", type=int, default=0, help="Cycles reference samples (default: the plan's)")
+    parser.add_argument("--background-spp", type=int, default=0, help="background samples (default: the plan's)")
+    parser.add_argument("--sweep-spp", default="", help="comma-separated Cycles sweep sample counts")
+    parser.add_argument("--repeats", type=int, default=0, help="timed runs per setting (default: the plan's)")
+    parser.add_argument("--no-vtk", action="store_true", help="leave VTK's fluid mapper out")
+    parser.add_argument("--no-scaling", action="store_true", help="leave the scaling measurements out")
     arguments = parser.parse_args()
     if arguments.output is None:
         arguments.output = (os.path.join(arguments.work, "quick") if arguments.quick
@@ -48,6 +63,35 @@ def parse_arguments():
 def results_path(arguments):
     """A quick run keeps its results apart, so it never replaces a full run's for --report-only."""
     return os.path.join(arguments.work, "results_quick.json" if arguments.quick else "results.json")
+
+
+def apply_filters(plan, arguments):
+    """Narrows the plan to what the filters name and records them, so the page says what was run."""
+    filters = {}
+    for key in ("examples", "cameras"):
+        value = getattr(arguments, key)
+        if value:
+            plan[key] = value.split(",")
+            filters[key] = value
+    if arguments.configurations:
+        wanted = arguments.configurations.split(";")
+        plan["configurations"] = [c for c in plan["configurations"] if c[0] in wanted]
+        filters["configurations"] = arguments.configurations
+    for key in ("reference_spp", "background_spp", "repeats"):
+        value = getattr(arguments, key)
+        if value:
+            plan[key] = value
+            filters[key] = value
+    if arguments.sweep_spp:
+        plan["sweep_spp"] = [int(v) for v in arguments.sweep_spp.split(",")]
+        filters["sweep_spp"] = arguments.sweep_spp
+    if arguments.no_vtk:
+        plan["vtk_filters"] = []
+        filters["vtk"] = "off"
+    if arguments.no_scaling:
+        filters["scaling"] = "off"
+    plan["filters"] = filters
+    return plan
 
 
 def log(message):
@@ -129,8 +173,17 @@ def main():
         report.write(results, arguments.output, results["plan"].get("quick", False))
         return
     started = time.perf_counter()
-    plan = sweep.plan(arguments.quick)
+    plan = apply_filters(sweep.plan(arguments.quick), arguments)
     plan["quick"] = arguments.quick
+    if arguments.examples:
+        plan["examples"] = arguments.examples.split(",")
+    if arguments.configurations:
+        plan["only_configurations"] = arguments.configurations.split(",")
+    plan["sweep_only"] = arguments.sweep_only
+    subset = bool(arguments.examples or arguments.configurations or arguments.sweep_only)
+    plan["subset"] = subset
+    if subset and os.path.abspath(arguments.output) == os.path.abspath(os.path.join(runs.REPOSITORY, "docs")):
+        sys.exit("a subset run must not overwrite docs/benchmarks.md: give --output")
     table = runs.parameter_table()
     absorption = absorption_from(table)
     machine = machine_description()
@@ -145,29 +198,45 @@ def main():
         results["examples"][example] = {
             "spindrift": spindrift_rows,
             "cycles": sweep.cycles_points(references, plan),
-            "vtk": sweep.vtk_points(example, references, plan, absorption, arguments.work),
+            "vtk": [] if arguments.sweep_only else sweep.vtk_points(example, references, plan, absorption,
+                                                                      arguments.work),
         }
+    if arguments.sweep_only:
+        results["scaling"] = results["stability"] = None
+        finish(results, arguments, started)
+        return
 
-    log("scaling")
-    base_scene = os.path.join(references_directory(arguments.work, plan["examples"][0], plan),
-                              plan["cameras"][0], "scene.json")
-    scaling_work = os.path.join(arguments.work, "scaling")
-    os.makedirs(scaling_work, exist_ok=True)
-    mantaflow_ply = runs.export_particles(base_scene, json.load(open(base_scene))["frame"],
-                                          os.path.join(scaling_work, "mantaflow.ply"))
-    particle_rows = scaling.particle_scaling(base_scene, mantaflow_ply, plan["particle_counts"],
-                                             plan["particle_repeats"], scaling_work)
-    resolution_rows = scaling.resolution_scaling(base_scene, plan["resolutions"], plan["resolution_repeats"],
-                                                 scaling_work)
-    results["scaling"] = {"particles": particle_rows, "resolutions": resolution_rows,
-                          "slopes": scaling.slopes(particle_rows, resolution_rows)}
+    if arguments.no_scaling:
+        results["scaling"] = None
+    else:
+        log("scaling")
+        base_scene = os.path.join(references_directory(arguments.work, plan["examples"][0], plan),
+                                  plan["cameras"][0], "scene.json")
+        scaling_work = os.path.join(arguments.work, "scaling")
+        os.makedirs(scaling_work, exist_ok=True)
+        mantaflow_ply = runs.export_particles(base_scene, json.load(open(base_scene))["frame"],
+                                              os.path.join(scaling_work, "mantaflow.ply"))
+        particle_rows = scaling.particle_scaling(base_scene, mantaflow_ply, plan["particle_counts"],
+                                                 plan["particle_repeats"], scaling_work)
+        resolution_rows = scaling.resolution_scaling(base_scene, plan["resolutions"], plan["resolution_repeats"],
+                                                     scaling_work)
+        results["scaling"] = {"particles": particle_rows, "resolutions": resolution_rows,
+                              "slopes": scaling.slopes(particle_rows, resolution_rows)}
 
     log("stability suite")
     results["stability"] = run_stability_suite(arguments.work)
+    finish(results, arguments, started)
+
+
+def finish(results, arguments, started):
     results["runtime_s"] = time.perf_counter() - started
-    with open(results_path(arguments), "w") as handle:
+    results["machine"]["load_average_at_end"] = os.getloadavg()
+    # A subset's results stay beside its page, so they never replace a full run's under WORK.
+    path = (os.path.join(arguments.output, "results.json") if results["plan"].get("subset")
+            else results_path(arguments))
+    with open(path, "w") as handle:
         json.dump(results, handle, indent=1, default=str)
-    report.write(results, arguments.output, arguments.quick)
+    report.write(results, arguments.output, results["plan"]["quick"])
     log(f"done in {results['runtime_s'] / 60:.1f} min: {os.path.join(arguments.output, 'benchmarks.md')}")
 
 

@@ -106,6 +106,26 @@ def pass_table(data):
     return table(["setting"] + [f"{name} GPU ms" for name in names], rows)
 
 
+def raymarch_table(data):
+    """The ray-marched surface's own counters (on the timing camera): steps per ray, rays, tiles."""
+    rows = []
+    for row in data["spindrift"]:
+        stats = row.get("timing", {}).get("raymarch")
+        if not stats:
+            continue
+        tiles = stats["tiles"]
+        marching = sum(row["timing"]["passes"].get(name, {}).get("gpu_ms") or 0.0
+                       for name in row["timing"]["passes"] if name.startswith("raymarch"))
+        rows.append([row["label"], stats["stepping"], number(stats["average_steps_per_ray"]),
+                     number(stats["density_evaluations_per_ray"]), f"{stats['rays_cast']:,}", f"{stats['hits']:,}",
+                     f"{tiles['full']} / {tiles['half']} / {tiles['quarter']} / {tiles['empty']}",
+                     number(marching, 4)])
+    if not rows:
+        return ""
+    return table(["setting", "stepping", "steps per ray", "density evaluations per ray", "rays cast", "hits",
+                  "tiles full / half / quarter / empty", "raymarch passes GPU ms"], rows)
+
+
 def peers_table(data):
     rows = [[row["label"], number(row["frame_ms"], 4), number(row["first_frame_ms"], 4), number(row["errors"]["mae"]),
              number(row["errors"]["ssim"])] for row in data["vtk"]]
@@ -157,6 +177,8 @@ def write_plots(results, images):
         plots.time_vs_error(geometric, "median |depth error| (particle radii)", path,
                             f"{example}: time per frame against depth error")
         written.append(path)
+    if not results.get("scaling"):
+        return written
     particles = results["scaling"]["particles"]
     series = {}
     for source in ("synthetic", "resampled"):
@@ -184,7 +206,9 @@ def write(results, output, quick):
               table(["", ""], [["OpenGL renderer", machine["gl_renderer"]], ["CPU", machine["cpu"]],
                                ["memory", machine["memory"]], ["OS", machine["os"]], ["Blender", machine["blender"]],
                                ["load average at start", ", ".join(f"{v:.1f}" for v in machine["load_average"])],
-                               ["run", ("--quick" if quick else "full") + f", {results['runtime_s'] / 60:.1f} min"]])]
+                               ["run", ("--quick" if quick else "full") + f", {results['runtime_s'] / 60:.1f} min"],
+                               ["filters", ", ".join(f"{k} {v}" for k, v in plan.get("filters", {}).items())
+                                or "none"]])]
     for example, data in results["examples"].items():
         parts += ["", f"## {example}", "",
                   f"{plan['width']}×{plan['height']}, cameras {', '.join(plan['cameras'])}; times on "
@@ -194,6 +218,20 @@ def write(results, output, quick):
                   "### Spindrift settings", "", spindrift_table(data), "", "### Where the defaults stand", "",
                   defaults_on_front(data), "", "### GPU time per pass", "",
                   pass_table(data), "", "### Peers: VTK's fluid mapper and Cycles", "", peers_table(data)]
+        marching = raymarch_table(data)
+        if marching:
+            parts += ["", "### The ray-marched surface (liquid.surface = raymarch)", "",
+                      f"Counters of the `{plan['cameras'][0]}` camera (docs/raymarch.md).", "", marching]
+    if not results.get("scaling"):
+        if results.get("stability"):
+            parts += ["", "## Stability suite", "", stability_table(results["stability"]), ""]
+        parts += ["", f"A subset run (`--sweep-only`, configurations: "
+                  f"{', '.join(plan.get('only_configurations') or ['all'])}): no scaling or stability suite. "
+                  f"Load average at the end: "
+                  f"{', '.join(f'{v:.1f}' for v in machine.get('load_average_at_end', []))}.", ""]
+        with open(os.path.join(output, "benchmarks.md"), "w") as handle:
+            handle.write("\n".join(parts))
+        return
     parts += ["", "## Scaling", "", "Default settings, the dam-break `oblique` camera (480×270 for the particle sweep, "
               "its background resampled for the resolution sweep).", "",
               "![scaling with particles](images/bench_scaling_particles.png)",

@@ -114,6 +114,7 @@ def timed_spindrift(scene, exr, settings, repeats, work_directory):
         "repeats": len(walls),
         "particles": stats.get("particles", {}),
         "gl_renderer": stats.get("gl_renderer", "?"),
+        "raymarch": stats.get("raymarch"),  # steps per ray, rays cast, tiles (liquid.surface = raymarch)
     }
 
 

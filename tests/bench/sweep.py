@@ -37,9 +37,15 @@ def configurations(quick):
         settings.update({f"liquid.{key}": value for key, value in changes.items()})
         return label, settings, foam
 
+    # The ray-marched surface (docs/raymarch.md) beside the screen-space one: its defaults, and the two
+    # baselines its adaptive parts are measured against (uniform steps; every pixel cast).
+    raymarch = [variant("raymarch", surface="raymarch"),
+                variant("raymarch uniform steps", surface="raymarch", raymarch_stepping="uniform"),
+                variant("raymarch full resolution", surface="raymarch", raymarch_resolution="full")]
     if quick:
         return [variant("plane_fit i3 w9"), variant("none", smoothing="none"),
-                variant("max_refractions 1", max_refractions=1), variant("plane_fit, foam off", foam=False)]
+                variant("max_refractions 1", max_refractions=1), variant("plane_fit, foam off", foam=False),
+                raymarch[0]]
     points = [variant(f"plane_fit i{i} w{w}", smoothing_iterations=i, plane_fit_window=w)
               for i in (1, 3, 5) for w in (5, 9, 15)]
     points += [variant(f"{method} i{i}", smoothing=method, smoothing_iterations=i)
@@ -49,7 +55,14 @@ def configurations(quick):
     points += [variant("none", smoothing="none")]
     points += [variant(f"max_refractions {n}", max_refractions=n) for n in (1, 2)]
     points += [variant("layers merged", layers="merged"), variant("plane_fit, foam off", foam=False)]
-    return points
+    # Each smoothing method without the surface offset the Mantaflow domain derives: the particles drawn at
+    # their radius alone, as every method was before the offset (docs/mantaflow-caches.md).
+    points += [variant(f"{label}, no offset", surface_offset=0.0, **changes) for label, changes in
+               (("plane_fit i3 w9", {}), ("bilateral i1", {"smoothing": "bilateral", "smoothing_iterations": 1}),
+                ("narrow_range i1", {"smoothing": "narrow_range", "smoothing_iterations": 1}),
+                ("curvature_flow s20", {"smoothing": "curvature_flow", "curvature_flow_steps": 20}),
+                ("none", {"smoothing": "none"}))]
+    return points + raymarch
 
 
 def scene_for(camera_directory, foam):
@@ -65,16 +78,24 @@ def scene_for(camera_directory, foam):
     return without_foam
 
 
-def liquid_radius(scene):
+def liquid_radius(scene, stats_path):
+    """The liquid's radius r, the unit of the depth errors: the scene's, or the one Spindrift derived from the
+    Mantaflow domain (its --stats say which)."""
     description = json.load(open(scene))
-    return next(p["radius"] for p in description["particles"] if p.get("role", "liquid") == "liquid")
+    source = next(p for p in description["particles"] if p.get("role", "liquid") == "liquid")
+    if "radius" in source:
+        return source["radius"]
+    return json.load(open(stats_path))["liquid_sources"][0]["radius"]
 
 
 def run_configurations(example, references, plan, table, work):
     rows = []
+    wanted = plan.get("only_configurations")
     work_directory = os.path.join(work, "runs", example)
     os.makedirs(work_directory, exist_ok=True)
     for label, settings, foam in plan["configurations"]:
+        if wanted and label not in wanted:
+            continue
         why_not = runs.unsupported_settings(settings, table)
         if why_not and "liquid.layers" in settings and settings["liquid.layers"] == "split":
             # Builds without the layers parameter always split: drop the default rather than skip the point.
@@ -93,8 +114,8 @@ def run_configurations(example, references, plan, table, work):
             repeats = plan["repeats"] if index == 0 else 1
             measured = runs.timed_spindrift(scene, exr, settings, repeats, work_directory)
             timing = timing or measured
-            per_camera.append(runs.frame_errors(exr, camera_directory, liquid_radius(scene),
-                                                runs.SPINDRIFT_CHANNELS))
+            radius = liquid_radius(scene, os.path.join(work_directory, "stats_0.json"))
+            per_camera.append(runs.frame_errors(exr, camera_directory, radius, runs.SPINDRIFT_CHANNELS))
         errors = runs.mean_errors(per_camera)
         rows.append({"label": label, "settings": settings, "foam": foam, "timing": timing, "errors": errors,
                      "per_camera": dict(zip(plan["cameras"], per_camera))})

@@ -47,7 +47,8 @@ inline void expectAllChannelsFinite(const spindrift::RenderResult& result) {
   std::string where;
   const std::size_t bad = nonFiniteValues(result, &where);
   EXPECT_EQ(bad, 0u) << "non-finite values, first in layer " << where;
-  for (const char* layer : {"composite", "liquid", "liquid_splash", "liquid_class", "depth", "normal", "thickness"})
+  for (const char* layer : {"composite", "liquid", "liquid_splash", "liquid_class", "depth", "normal", "thickness",
+                            "refraction_uv", "transmittance", "reflection"})
     EXPECT_NE(result.layer(layer), nullptr) << layer;
 }
 

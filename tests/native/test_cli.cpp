@@ -6,31 +6,17 @@
 #include <algorithm>
 #include <cmath>
 #include <fstream>
+#include <map>
 #include <set>
 #include <sstream>
 
 #include <OpenImageIO/imageio.h>
 #include <nlohmann/json.hpp>
 
+#include "CliCommand.h"
 #include "TempDirectory.h"
 
 namespace {
-
-struct CommandResult {
-  int exitCode;
-  std::string stderrText;
-};
-
-CommandResult runCli(const std::string& arguments, const std::string& environment = "") {
-  TempDirectory directory;
-  const std::string errorsFile = (directory.path() / "stderr.txt").string();
-  const std::string command = environment + " " + SPINDRIFT_CLI_PATH + " " + arguments + " 2>" + errorsFile;
-  const int status = std::system(command.c_str());
-  std::ifstream errors(errorsFile);
-  std::stringstream text;
-  text << errors.rdbuf();
-  return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, text.str()};
-}
 
 // Eight particles around the origin, one of them NaN, seen by a camera on -Y.
 std::filesystem::path writeScene(const TempDirectory& directory, const std::string& extra = "") {
@@ -69,7 +55,7 @@ TEST(CLI, RendersExrPngAndStats) {
                                        "liquid_class.Y",  "thickness.Y"};
   for (const char* layer : {"foam", "foam_spray", "foam_surface", "foam_bubble"})
     for (const char* channel : {".R", ".G", ".B", ".A"}) expected.insert(std::string(layer) + channel);
-  for (const char* layer : {"foam_shadow", "foam_irradiance"})
+  for (const char* layer : {"foam_shadow", "foam_irradiance", "refraction_uv", "transmittance", "reflection"})
     for (const char* channel : {".R", ".G", ".B"}) expected.insert(std::string(layer) + channel);
   expected.insert("foam_thickness.Y");
   EXPECT_EQ(channels, expected);
@@ -136,4 +122,59 @@ TEST(CLI, NoOpenGLIsAClearErrorNotACrash) {
 TEST(CLI, ParamsMarkdownIsTheParameterTable) {
   const CommandResult result = runCli("params --markdown > /dev/null");
   EXPECT_EQ(result.exitCode, 0);
+}
+
+namespace {
+
+// Every channel of an EXR by name.
+std::map<std::string, std::vector<float>> readChannels(const std::filesystem::path& path) {
+  auto input = OIIO::ImageInput::open(path.string());
+  if (!input) return {};
+  const OIIO::ImageSpec spec = input->spec();
+  std::vector<float> pixels(std::size_t(spec.width) * spec.height * spec.nchannels);
+  input->read_image(0, 0, 0, spec.nchannels, OIIO::TypeDesc::FLOAT, pixels.data());
+  std::map<std::string, std::vector<float>> channels;
+  for (int c = 0; c < spec.nchannels; ++c)
+    for (std::size_t i = c; i < pixels.size(); i += std::size_t(spec.nchannels))
+      channels[spec.channelnames[c]].push_back(pixels[i]);
+  return channels;
+}
+
+}  // namespace
+
+// The reduced pipeline (--layers depth,normal: no foam, no composite) writes exactly the chosen layers, and
+// they equal the full pipeline's.
+TEST(CLI, LayersChooseWhatIsComputedAndWrittenAndMatchTheFullPipeline) {
+  TempDirectory directory;
+  const std::filesystem::path scene = writeScene(directory);
+  const auto full = directory.path() / "full.exr", reduced = directory.path() / "reduced.exr",
+             stats = directory.path() / "stats.json";
+  ASSERT_EQ(runCli("render -q " + scene.string() + " -o " + full.string()).exitCode, 0);
+  const CommandResult result = runCli("render -q " + scene.string() + " -o " + reduced.string() +
+                                      " --layers depth,normal --stats " + stats.string());
+  ASSERT_EQ(result.exitCode, 0) << result.stderrText;
+  const auto fullChannels = readChannels(full), reducedChannels = readChannels(reduced);
+  std::set<std::string> names;
+  for (const auto& [name, values] : reducedChannels) names.insert(name);
+  EXPECT_EQ(names, (std::set<std::string>{"depth.Z", "normal.X", "normal.Y", "normal.Z"}));
+  std::size_t covered = 0;
+  for (const auto& [name, values] : reducedChannels) {
+    ASSERT_EQ(values, fullChannels.at(name)) << name;
+    for (float value : values) EXPECT_TRUE(std::isfinite(value)) << name;
+  }
+  for (float depth : reducedChannels.at("depth.Z")) covered += depth < 1e9f;
+  EXPECT_GT(covered, 0u) << "the scene shows liquid";
+  const nlohmann::json json = nlohmann::json::parse(std::ifstream(stats));
+  std::set<std::string> skipped;
+  for (const auto& pass : json["skipped"]) skipped.insert(pass["name"].get<std::string>());
+  EXPECT_TRUE(skipped.count("composite"));
+}
+
+TEST(CLI, UnknownLayerIsOneErrorLine) {
+  TempDirectory directory;
+  const std::filesystem::path scene = writeScene(directory);
+  const CommandResult result =
+      runCli("render -q " + scene.string() + " --layers depth,colour -o " + (directory.path() / "x.exr").string());
+  EXPECT_EQ(result.exitCode, 1);
+  EXPECT_NE(result.stderrText.find("unknown layer \"colour\""), std::string::npos) << result.stderrText;
 }

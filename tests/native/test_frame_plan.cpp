@@ -13,7 +13,8 @@ namespace {
 
 std::vector<std::string> names(const std::vector<Pass>& passes) {
   std::vector<std::string> result;
-  for (Pass pass : passes) result.push_back(passName(pass));
+  for (Pass pass : passes)
+    result.push_back(passName(pass));
   return result;
 }
 
@@ -30,12 +31,32 @@ const std::vector<std::string> kLightPasses = {"light_depth_layers", "liquid_sha
                                                "lit_background"};
 
 TEST(FramePlan, FullFrameRunsEveryPassInRecipeOrder) {
-  const FramePlan plan = planFrame({100, 1000, 50, "plane_fit", 2, 2, 1, true});
-  const std::vector<std::string> expected = {
-      "background",     "light_depth_layers",  "liquid_shadow",          "caustics",  "lit_background",
-      "splash_depth_layers", "aggregate_depth_layers", "smoothing", "refraction",
-      "foam_scene_depth", "foam_depth",        "foam_thickness",         "foam_intensity", "foam_occlusion",
-      "foam_blur",      "composite"};
+  FrameContents contents{100, 1000, 50, "plane_fit"};
+  contents.occluderMeshes = 2;
+  contents.liquidMesh = true;
+  contents.lights = 2;
+  contents.lightsSeeingLiquid = 2;
+  contents.causticLights = 1;
+  contents.caustics = true;
+  const FramePlan plan = planFrame(contents);
+  const std::vector<std::string> expected = {"background",
+                                             "occluder_depth",
+                                             "liquid_mesh_depth",
+                                             "light_depth_layers",
+                                             "liquid_shadow",
+                                             "caustics",
+                                             "lit_background",
+                                             "splash_depth_layers",
+                                             "aggregate_depth_layers",
+                                             "smoothing",
+                                             "refraction",
+                                             "foam_scene_depth",
+                                             "foam_depth",
+                                             "foam_thickness",
+                                             "foam_intensity",
+                                             "foam_occlusion",
+                                             "foam_blur",
+                                             "composite"};
   EXPECT_EQ(names(plan.passes), expected);
   EXPECT_TRUE(plan.skipped.empty());
 }
@@ -43,12 +64,15 @@ TEST(FramePlan, FullFrameRunsEveryPassInRecipeOrder) {
 TEST(FramePlan, EmptyFrameRunsBackgroundAndCompositeOnly) {
   const FramePlan plan = planFrame({0, 0, 0, "plane_fit"});
   EXPECT_EQ(names(plan.passes), (std::vector<std::string>{"background", "composite"}));
-  ASSERT_EQ(plan.skipped.size(), 14u);
-  EXPECT_EQ(plan.skipped.front().name, "light_depth_layers");
+  ASSERT_EQ(plan.skipped.size(), 16u);
+  EXPECT_EQ(plan.skipped.front().name, "occluder_depth");
+  EXPECT_EQ(reasonFor(plan, "occluder_depth"), "no occluders");
+  EXPECT_EQ(reasonFor(plan, "liquid_mesh_depth"), "no liquid mesh");
   for (const std::string& pass : kLightPasses) EXPECT_EQ(reasonFor(plan, pass), "no lights in the scene");
   EXPECT_EQ(reasonFor(plan, "refraction"), "no liquid particles in view");
   EXPECT_EQ(reasonFor(plan, "smoothing"), "no aggregate particles in view");
-  for (const std::string& pass : kFoamPasses) EXPECT_EQ(reasonFor(plan, pass), "no foam particles in view");
+  for (const std::string& pass : kFoamPasses)
+    EXPECT_EQ(reasonFor(plan, pass), "no foam particles in view");
 }
 
 TEST(FramePlan, SplashesAloneNeedNoSmoothing) {
@@ -78,15 +102,52 @@ TEST(FramePlan, FoamWithoutLiquidRunsTheFoamPasses) {
 
 // Lights: all four light passes run when a light sees the liquid; caustics need a sun or a spot and
 // light.caustics; a scene whose lights see no liquid says so.
+FrameContents withLights(std::size_t lights, std::size_t seeing, std::size_t causticLights, bool caustics) {
+  FrameContents contents{0, 10, 0, "plane_fit"};
+  contents.lights = lights;
+  contents.lightsSeeingLiquid = seeing;
+  contents.causticLights = causticLights;
+  contents.caustics = caustics;
+  return contents;
+}
+
 TEST(FramePlan, LightsRunTheLightPasses) {
-  const FramePlan pointOnly = planFrame({0, 10, 0, "plane_fit", 1, 1, 0, true});
+  const FramePlan pointOnly = planFrame(withLights(1, 1, 0, true));
   EXPECT_TRUE(pointOnly.runs(Pass::LiquidShadow));
   EXPECT_TRUE(pointOnly.runs(Pass::LitBackground));
   EXPECT_EQ(reasonFor(pointOnly, "caustics"), "no sun or spot light sees the liquid");
-  const FramePlan causticsOff = planFrame({0, 10, 0, "plane_fit", 1, 1, 1, false});
+  const FramePlan causticsOff = planFrame(withLights(1, 1, 1, false));
   EXPECT_EQ(reasonFor(causticsOff, "caustics"), "light.caustics is off");
-  const FramePlan unseen = planFrame({0, 10, 0, "plane_fit", 1, 0, 0, true});
+  const FramePlan unseen = planFrame(withLights(1, 0, 0, true));
   for (const std::string& pass : kLightPasses) EXPECT_EQ(reasonFor(unseen, pass), "no light sees the liquid");
+  const FramePlan withCaustics = planFrame(withLights(1, 1, 1, true));
+  for (Pass pass : {Pass::LightDepthLayers, Pass::LiquidShadow, Pass::Caustics, Pass::LitBackground})
+    EXPECT_TRUE(withCaustics.runs(pass)) << passName(pass);
+}
+
+// --layers: the light passes run for the light layers alone, and not when nothing reads the lit background.
+TEST(FramePlan, LightPassesFollowTheLayerSelection) {
+  FrameContents lightOnly = withLights(1, 1, 1, true);
+  lightOnly.compositeWanted = lightOnly.liquidLayersWanted = lightOnly.foamLayersWanted = false;
+  const FramePlan plan = planFrame(lightOnly);
+  for (Pass pass : {Pass::LightDepthLayers, Pass::LiquidShadow, Pass::Caustics, Pass::LitBackground})
+    EXPECT_TRUE(plan.runs(pass)) << passName(pass);
+  EXPECT_FALSE(plan.runs(Pass::Refraction));
+  FrameContents nothing = lightOnly;
+  nothing.lightLayersWanted = false;
+  for (const std::string& pass : kLightPasses)
+    EXPECT_EQ(reasonFor(planFrame(nothing), pass),
+              "no light layer, liquid layer, composite or foam asked for (--layers)");
+}
+
+TEST(FramePlan, MeshesRunTheirDepthPrepassesWithoutParticles) {
+  FrameContents contents{0, 0, 0, "plane_fit"};
+  contents.occluderMeshes = 1;
+  contents.liquidMesh = true;
+  const FramePlan plan = planFrame(contents);
+  EXPECT_TRUE(plan.runs(Pass::OccluderDepth));
+  EXPECT_TRUE(plan.runs(Pass::LiquidMeshDepth));
+  EXPECT_FALSE(plan.runs(Pass::Refraction));
 }
 
 TEST(FramePlan, EveryPassIsEitherRunOrSkippedExactlyOnce) {
@@ -94,7 +155,19 @@ TEST(FramePlan, EveryPassIsEitherRunOrSkippedExactlyOnce) {
     for (std::size_t aggregate : {0, 1})
       for (std::size_t foam : {0, 1})
         for (const char* smoothing : {"plane_fit", "none"}) {
-          const FramePlan plan = planFrame({splash, aggregate, foam, smoothing});
+          for (int wanted = 0; wanted < 16; ++wanted) {
+          FrameContents contents{splash, aggregate, foam, smoothing};
+          contents.occluderMeshes = splash;
+          contents.liquidMesh = aggregate > 0;
+          contents.lights = splash + foam;
+          contents.lightsSeeingLiquid = foam;
+          contents.causticLights = aggregate * foam;
+          contents.caustics = smoothing[0] == 'p';
+          contents.compositeWanted = wanted & 1;
+          contents.liquidLayersWanted = wanted & 2;
+          contents.foamLayersWanted = wanted & 4;
+          contents.intermediateWanted = wanted & 8;
+          const FramePlan plan = planFrame(contents);
           std::vector<std::string> all = names(plan.passes);
           for (const SkippedPass& skipped : plan.skipped) {
             EXPECT_FALSE(skipped.reason.empty());
@@ -102,8 +175,84 @@ TEST(FramePlan, EveryPassIsEitherRunOrSkippedExactlyOnce) {
           }
           std::sort(all.begin(), all.end());
           EXPECT_EQ(std::adjacent_find(all.begin(), all.end()), all.end());
-          EXPECT_EQ(all.size(), 16u);
+          EXPECT_EQ(all.size(), 18u);
+          // A pass runs only when what it reads runs.
+          if (plan.runs(Pass::Smoothing)) EXPECT_TRUE(plan.runs(Pass::AggregateDepthLayers));
+          if (plan.runs(Pass::FoamSceneDepth) && (splash || aggregate)) EXPECT_TRUE(plan.runs(Pass::Refraction));
+          }
         }
+}
+
+FrameContents withLayers(bool composite, bool liquid, bool foam) {
+  FrameContents contents{100, 1000, 50, "plane_fit"};
+  contents.compositeWanted = composite;
+  contents.liquidLayersWanted = liquid;
+  contents.foamLayersWanted = foam;
+  return contents;
+}
+
+TEST(FramePlan, LiquidLayersAloneSkipFoamAndComposite) {
+  const FramePlan plan = planFrame(withLayers(false, true, false));
+  EXPECT_TRUE(plan.runs(Pass::Refraction));
+  EXPECT_TRUE(plan.runs(Pass::Smoothing));
+  EXPECT_FALSE(plan.runs(Pass::Composite));
+  EXPECT_EQ(reasonFor(plan, "composite"), "composite not asked for (--layers)");
+  for (const std::string& pass : kFoamPasses)
+    EXPECT_EQ(reasonFor(plan, pass), "no foam layer or composite asked for (--layers)");
+}
+
+TEST(FramePlan, FoamLayersAloneStillNeedTheLiquidThatCoversTheFoam) {
+  const FramePlan plan = planFrame(withLayers(false, false, true));
+  EXPECT_TRUE(plan.runs(Pass::Refraction));
+  EXPECT_TRUE(plan.runs(Pass::FoamBlur));
+  EXPECT_FALSE(plan.runs(Pass::Composite));
+}
+
+TEST(FramePlan, FoamLayersAloneWithoutFoamInViewNeedNoLiquid) {
+  FrameContents contents = withLayers(false, false, true);
+  contents.foamParticles = 0;
+  const FramePlan plan = planFrame(contents);
+  EXPECT_EQ(names(plan.passes), (std::vector<std::string>{"background"}));
+  EXPECT_EQ(reasonFor(plan, "refraction"), "no liquid layer, composite or foam asked for (--layers)");
+  EXPECT_EQ(reasonFor(plan, "aggregate_depth_layers"), "no liquid layer, composite or foam asked for (--layers)");
+}
+
+TEST(FramePlan, IntermediateLayersKeepTheDepthLayers) {
+  FrameContents contents = withLayers(false, false, false);
+  contents.intermediateWanted = true;
+  const FramePlan plan = planFrame(contents);
+  EXPECT_TRUE(plan.runs(Pass::AggregateDepthLayers));
+  EXPECT_TRUE(plan.runs(Pass::Smoothing));
+  EXPECT_FALSE(plan.runs(Pass::Refraction));
+}
+
+}  // namespace
+}  // namespace spindrift
+
+namespace spindrift {
+namespace {
+
+FrameContents withSurface(std::size_t splashes, std::size_t aggregates, const char* surface) {
+  FrameContents contents;
+  contents.splashParticles = splashes;
+  contents.aggregateParticles = aggregates;
+  contents.surface = surface;
+  return contents;
+}
+
+TEST(FramePlan, RaymarchedSurfaceRunsBetweenSmoothingAndRefraction) {
+  const FramePlan plan = planFrame(withSurface(10, 100, "raymarch"));
+  const std::vector<std::string> passes = names(plan.passes);
+  const auto position = [&](const char* name) {
+    return std::find(passes.begin(), passes.end(), name) - passes.begin();
+  };
+  ASSERT_TRUE(plan.runs(Pass::RaymarchSurface));
+  EXPECT_EQ(position("raymarch_surface"), position("smoothing") + 1);
+  EXPECT_EQ(position("refraction"), position("raymarch_surface") + 1);
+  EXPECT_FALSE(planFrame(withSurface(10, 100, "screen")).runs(Pass::RaymarchSurface));
+  const FramePlan empty = planFrame(withSurface(0, 0, "raymarch"));
+  EXPECT_FALSE(empty.runs(Pass::RaymarchSurface));
+  EXPECT_EQ(reasonFor(empty, "raymarch_surface"), "no liquid particles in view");
 }
 
 }  // namespace

@@ -53,7 +53,7 @@ TEST(GLResources, TwoHundredFramesKeepObjectsAndMemoryFlat) {
     // Particle counts vary from frame to frame, and every tenth frame is empty, as in a real sequence.
     const int count = frame % 10 == 0 ? 0 : 200 + int(random() % 800);
     const RenderResult result = renderer.renderParticles(scene, randomParticles(random, count), frame);
-    ASSERT_EQ(result.layers.size(), 14u);  // 7 of the liquid and composite, 7 of the foam
+    ASSERT_EQ(result.layers.size(), 17u);  // 10 of the liquid and composite, 7 of the foam
     if (frame == 20) {
       afterWarmUp = liveObjects();
       residentAfterWarmUp = residentKilobytes();

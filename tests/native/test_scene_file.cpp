@@ -143,6 +143,32 @@ TEST(SceneFile, ReadsLights) {
   EXPECT_TRUE(parseScene(sceneWith(kLookAt), directory.path() / "s.json").lights.empty());
 }
 
+TEST(SceneFile, DomainSettingsWithACellSizeDeriveTheRadius) {
+  TempDirectory directory;
+  directory.write("p.ply", kParticlesPly);
+  // particle_number 3: particles a third of a cell apart, r = 1.1 spacings; no cache beside p.ply, so the cell
+  // size is the scene's.
+  const Scene scene = parseScene(
+      R"({"version": 1, "camera": {"width": 8, "height": 8, "fov_y_deg": 40)" + kLookAt +
+          R"(}, "particles": [{"path": "p.ply", "domain": {"cell_size": 0.3, "particle_number": 3}}]})",
+      directory.path() / "scene.json");
+  EXPECT_NEAR(scene.particles[0].radius, 0.11f, 1e-6f);
+  EXPECT_NE(scene.particles[0].radiusOrigin.find("particle_number 3"), std::string::npos);
+  EXPECT_GT(scene.parameters.liquid.surface_offset, 0.0f);
+  // Old scene files: a hand radius and no domain leave the surface offset at 0, so they render as before.
+  EXPECT_FLOAT_EQ(parseScene(sceneWith(kLookAt), directory.path() / "s.json").parameters.liquid.surface_offset, 0.0f);
+}
+
+TEST(SceneFile, AGivenSurfaceOffsetWinsOverTheDerivedOne) {
+  TempDirectory directory;
+  directory.write("p.ply", kParticlesPly);
+  const Scene scene = parseScene(
+      R"({"version": 1, "camera": {"width": 8, "height": 8, "fov_y_deg": 40)" + kLookAt +
+          R"(}, "particles": [{"path": "p.ply", "domain": {"cell_size": 0.3}}], "liquid": {"surface_offset": 0.25}})",
+      directory.path() / "scene.json");
+  EXPECT_FLOAT_EQ(scene.parameters.liquid.surface_offset, 0.25f);
+}
+
 // Each bad file gets one error that names the key at fault.
 struct BadScene {
   const char* name;
@@ -209,5 +235,16 @@ INSTANTIATE_TEST_SUITE_P(
         BadScene{"ConeOnPoint", sceneWith(kLookAt, R"(, "lights": [{"type": "point", "position": [0, 0, 1], "strength": 1, "spot_angle_deg": 30}])"), "lights[0].spot_angle_deg"},
         BadScene{"TypoInLight", sceneWith(kLookAt, R"(, "lights": [{"type": "sun", "direction": [0, 0, -1], "strenght": 1}])"), "lights[0].strenght"},
         BadScene{"LightParameterOutOfRange", sceneWith(kLookAt, R"(, "light": {"direct_fraction": 2})"), "light.direct_fraction"},
+        BadScene{"ZeroFov", R"({"version": 1, "camera": {"width": 8, "height": 8, "fov_y_deg": 0)" + kLookAt + "}, \"particles\": []}", "camera.fov_y_deg"},
+        BadScene{"NearEqualsFar", sceneWith(kLookAt + R"(, "near": 2, "far": 2)"), "camera.far"},
+        BadScene{"ZeroNear", sceneWith(kLookAt + R"(, "near": 0)"), "camera.near"},
+        BadScene{"WiderThanTheLimit", R"({"version": 1, "camera": {"width": 16385, "height": 8, "fov_y_deg": 40)" + kLookAt + "}, \"particles\": []}", "16384"},
+        BadScene{"ZeroRadius", R"({"version": 1, "camera": {"width": 8, "height": 8, "fov_y_deg": 40)" + kLookAt + R"(}, "particles": [{"path": "p.ply", "radius": 0}]})", "particles[0].radius"},
+        BadScene{"InfiniteMatrixElement", sceneWith(R"(, "world_from_camera": [1,0,0,0,0,1,0,0,0,0,1,1e999,0,0,0,1])"), "number overflow parsing '1e999'"},
+        BadScene{"NeitherRadiusNorDomain", R"({"version": 1, "camera": {"width": 8, "height": 8, "fov_y_deg": 40)" + kLookAt + R"(}, "particles": [{"path": "p.ply"}]})", "particles[0].radius: missing: give the particle radius, or the Mantaflow \"domain\""},
+        BadScene{"DomainWithoutCacheOrCellSize", R"({"version": 1, "camera": {"width": 8, "height": 8, "fov_y_deg": 40)" + kLookAt + R"(}, "particles": [{"path": "p.ply", "domain": {}}]})", "particles[0].domain: no Mantaflow config file"},
+        BadScene{"TypoInDomain", R"({"version": 1, "camera": {"width": 8, "height": 8, "fov_y_deg": 40)" + kLookAt + R"(}, "particles": [{"path": "p.ply", "domain": {"mesh_particle_raduis": 2}}]})", "particles[0].domain.mesh_particle_raduis"},
+        BadScene{"UnknownMeshGenerator", R"({"version": 1, "camera": {"width": 8, "height": 8, "fov_y_deg": 40)" + kLookAt + R"(}, "particles": [{"path": "p.ply", "domain": {"cell_size": 0.1, "mesh_generator": "FINAL"}}]})", "particles[0].domain.mesh_generator"},
+        BadScene{"DomainOnFoam", R"({"version": 1, "camera": {"width": 8, "height": 8, "fov_y_deg": 40)" + kLookAt + R"(}, "particles": [{"path": "p.ply", "role": "foam", "radius": 1, "domain": {}}]})", "particles[0].domain"},
         BadScene{"NaNInMatrix", sceneWith(R"(, "world_from_camera": [1,0,0,0,0,1,0,0,0,0,1,0,0,0,0,"x"])"), "camera.world_from_camera"}),
     [](const testing::TestParamInfo<BadScene>& info) { return info.param.name; });

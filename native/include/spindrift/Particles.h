@@ -37,6 +37,11 @@ struct ParticleCounts {
   std::size_t total() const { return liquid + spray + bubble + foam; }
 };
 
+/// Appends the particles of `from` whose position is finite and whose radius is finite and positive, as file
+/// loading does; returns how many were dropped. `from.life` and `from.velocities` may be empty (0 then), and
+/// non-finite values in them become 0.
+std::size_t appendValidParticles(Particles& into, const Particles& from);
+
 const char* particleKindName(ParticleKind kind);
 ParticleCounts countByKind(const Particles& particles);
 

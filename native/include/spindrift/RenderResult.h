@@ -48,6 +48,21 @@ struct LiquidFrameStats {
   double anisotropyMilliseconds = 0.0;
 };
 
+/// What the ray-marched surface did in a frame (liquid.surface = raymarch; all zero otherwise).
+struct RaymarchFrameStats {
+  bool enabled = false;
+  bool adaptiveStepping = true;        ///< liquid.raymarch_stepping was adaptive (else uniform).
+  std::size_t densityParticles = 0;    ///< Liquid particles in the GPU neighbour grid.
+  std::size_t gridCells = 0;           ///< Cells of the binary density grid.
+  std::size_t raysCast = 0;
+  std::size_t hits = 0;                ///< Rays that found the iso-surface.
+  std::size_t totalSteps = 0;          ///< Marching steps of all rays: skips and density samples.
+  double averageStepsPerRay = 0.0;
+  double densityEvaluationsPerRay = 0.0;  ///< Bisection included.
+  /// Screen tiles cast at full, half and quarter resolution, and tiles without liquid.
+  std::size_t tiles[4] = {0, 0, 0, 0};
+};
+
 /// What the foam pipeline found in a frame.
 struct FoamFrameStats {
   std::size_t sprayParticles = 0;    ///< In view, by type.
@@ -67,6 +82,14 @@ struct LightFrameStats {
   double prepareMilliseconds = 0.0;     ///< CPU preparation of the lights' views (included in prepare_ms).
 };
 
+/// The cost a Renderer pays once, before its first frame: the GL context and the shader programs.
+struct SetupStats {
+  double milliseconds = 0.0;  ///< Wall time of the Renderer's construction: GL context and shader programs.
+  int programsCompiled = 0;   ///< Shader programs compiled from source.
+  int programsFromCache = 0;  ///< Loaded from the program binary cache (docs/architecture.md).
+  int programsRejected = 0;   ///< Cache files that were corrupt or refused by the driver, then rebuilt.
+};
+
 /// What a frame cost and contained; `--stats` writes it as JSON.
 struct FrameStats {
   int frame = 0;
@@ -78,10 +101,15 @@ struct FrameStats {
   LiquidFrameStats liquid;
   FoamFrameStats foam;
   LightFrameStats light;
+  RaymarchFrameStats raymarch;
   double loadMilliseconds = 0.0;         ///< Reading particle files.
   double prepareMilliseconds = 0.0;      ///< CPU preparation: culling and packing.
   double readbackMilliseconds = 0.0;
   double totalMilliseconds = 0.0;  ///< Wall time of the whole frame, loading included.
+  /// The first frame of a Renderer also carries its one-time setup (not part of totalMilliseconds); later
+  /// frames carry zeros, so a sequence's per-frame cost is its frames' totals.
+  bool firstFrame = true;
+  SetupStats setup;
   std::vector<PassTiming> passes;
   std::vector<SkippedPass> skipped;
 

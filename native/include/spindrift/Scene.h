@@ -9,12 +9,21 @@
 #include <glm/vec3.hpp>
 
 #include "spindrift/Camera.h"
+#include "spindrift/FrameInputs.h"
 #include "spindrift/Parameters.h"
 #include "spindrift/Particles.h"
 
 namespace spindrift {
 
 enum class ParticleRole { Liquid, Foam };
+
+/// The box a Mantaflow liquid is clipped to: Mantaflow closes its mesh with flat faces just inside the domain's
+/// walls (docs/mantaflow-caches.md). `worldFromBox` has unit scale; the box is [low, high] in its frame.
+struct DomainBox {
+  glm::mat4 worldFromBox{1.0f};
+  glm::vec3 low{0.0f};
+  glm::vec3 high{0.0f};
+};
 
 /// One entry of the scene file's `particles` list. Paths are absolute (resolved against the scene file) and
 /// may hold `####`, which stands for the frame number padded with zeros to the number of `#`.
@@ -25,6 +34,20 @@ struct ParticleSource {
   /// For foam sources: every particle of this kind, instead of the per-particle flags of the file.
   std::optional<ParticleKind> kind;
   float radius = 0.05f;  ///< World units; a per-particle radius attribute overrides it.
+  /// Where `radius` came from: "scene file", or the Mantaflow domain it was derived from (--stats says it).
+  std::string radiusOrigin = "scene file";
+  /// For a source with a Mantaflow `domain`: how far Mantaflow's liquid mesh stands off the particles' flat
+  /// surface, world units (0 otherwise); it sets liquid.surface_offset (docs/mantaflow-caches.md).
+  float meshFlatOffset = 0.0f;
+  /// For a source with a Mantaflow `domain` whose cache records it: the box its liquid is clipped to.
+  std::optional<DomainBox> domainBox;
+  glm::mat4 worldFromFile{1.0f};
+};
+
+/// A triangle mesh file (Wavefront OBJ) of the scene file's `occluders` or `liquid_mesh`. The path is
+/// absolute and may hold `####` like particle paths.
+struct MeshSource {
+  std::filesystem::path path;
   glm::mat4 worldFromFile{1.0f};
 };
 
@@ -56,6 +79,11 @@ struct Scene {
   Camera camera;
   std::vector<ParticleSource> particles;
   Background background;
+  /// Solid geometry drawn into the depth prepass (the frame's solid depth is the nearer of it and the
+  /// background's depth).
+  std::vector<MeshSource> occluders;
+  /// The liquid's own surface, whose depth plays the role of `background.liquid_depth`.
+  std::optional<MeshSource> liquidMesh;
   std::vector<Light> lights;  ///< Empty: the liquid casts no shadow and no caustics.
   Parameters parameters;
   int frame = 1;  ///< The frame rendered when the command line names none.
@@ -73,5 +101,9 @@ std::filesystem::path pathForFrame(const std::filesystem::path& pattern, int fra
 /// Reads every particle source of a frame and brings it to world space. Particles with a non-finite position,
 /// or a radius that is not finite and positive, are dropped and counted in `counts->droppedInvalid`.
 Particles loadParticles(const Scene& scene, int frame, ParticleCounts* counts = nullptr);
+
+/// Reads a frame's `occluders` and `liquid_mesh` files into `inputs` (world space), beside what it already
+/// holds; an in-memory liquid mesh already in `inputs` wins over the scene's file.
+void loadMeshes(const Scene& scene, int frame, FrameInputs& inputs);
 
 }  // namespace spindrift

@@ -7,6 +7,7 @@
 #include <cstring>
 #include <vector>
 
+#include "gl/EglLibrary.h"
 #include "spindrift/Error.h"
 
 namespace spindrift {
@@ -45,12 +46,12 @@ std::string eglErrorName(EGLint error) {
 // and eglTerminate would pull the context from under another Renderer.
 std::vector<Attempt> candidateDisplays() {
   std::vector<Attempt> attempts;
-  const char* clientExtensions = eglQueryString(EGL_NO_DISPLAY, EGL_EXTENSIONS);
+  const char* clientExtensions = egl().queryString(EGL_NO_DISPLAY, EGL_EXTENSIONS);
   auto getPlatformDisplay =
-      reinterpret_cast<PFNEGLGETPLATFORMDISPLAYEXTPROC>(eglGetProcAddress("eglGetPlatformDisplayEXT"));
-  auto queryDevices = reinterpret_cast<PFNEGLQUERYDEVICESEXTPROC>(eglGetProcAddress("eglQueryDevicesEXT"));
+      reinterpret_cast<PFNEGLGETPLATFORMDISPLAYEXTPROC>(egl().getProcAddress("eglGetPlatformDisplayEXT"));
+  auto queryDevices = reinterpret_cast<PFNEGLQUERYDEVICESEXTPROC>(egl().getProcAddress("eglQueryDevicesEXT"));
   auto queryDeviceString =
-      reinterpret_cast<PFNEGLQUERYDEVICESTRINGEXTPROC>(eglGetProcAddress("eglQueryDeviceStringEXT"));
+      reinterpret_cast<PFNEGLQUERYDEVICESTRINGEXTPROC>(egl().getProcAddress("eglQueryDeviceStringEXT"));
   if (getPlatformDisplay && queryDevices && hasExtension(clientExtensions, "EGL_EXT_platform_device")) {
     EGLDeviceEXT devices[16];
     EGLint deviceCount = 0;
@@ -68,7 +69,7 @@ std::vector<Attempt> candidateDisplays() {
   }
   if (getPlatformDisplay && hasExtension(clientExtensions, "EGL_MESA_platform_surfaceless"))
     attempts.push_back({"Mesa surfaceless", getPlatformDisplay(EGL_PLATFORM_SURFACELESS_MESA, EGL_DEFAULT_DISPLAY, nullptr)});
-  attempts.push_back({"default display", eglGetDisplay(EGL_DEFAULT_DISPLAY)});
+  attempts.push_back({"default display", egl().getDisplay(EGL_DEFAULT_DISPLAY)});
   return attempts;
 }
 
@@ -85,21 +86,21 @@ EglContext::EglContext() {
       continue;
     }
     EGLint major = 0, minor = 0;
-    if (!eglInitialize(attempt.display, &major, &minor)) {
-      fail("eglInitialize " + eglErrorName(eglGetError()));
+    if (!egl().initialize(attempt.display, &major, &minor)) {
+      fail("eglInitialize " + eglErrorName(egl().getError()));
       continue;
     }
-    if (!eglBindAPI(EGL_OPENGL_API)) {
+    if (!egl().bindAPI(EGL_OPENGL_API)) {
       fail("no desktop OpenGL");
       continue;
     }
-    const char* displayExtensions = eglQueryString(attempt.display, EGL_EXTENSIONS);
+    const char* displayExtensions = egl().queryString(attempt.display, EGL_EXTENSIONS);
     EGLConfig config = EGL_NO_CONFIG_KHR;
     if (!hasExtension(displayExtensions, "EGL_KHR_no_config_context")) {
       const EGLint configAttributes[] = {EGL_SURFACE_TYPE, EGL_PBUFFER_BIT, EGL_RENDERABLE_TYPE, EGL_OPENGL_BIT,
                                          EGL_NONE};
       EGLint configCount = 0;
-      if (!eglChooseConfig(attempt.display, configAttributes, &config, 1, &configCount) || configCount == 0) {
+      if (!egl().chooseConfig(attempt.display, configAttributes, &config, 1, &configCount) || configCount == 0) {
         fail("no pbuffer config");
           continue;
       }
@@ -107,20 +108,20 @@ EglContext::EglContext() {
     const EGLint contextAttributes[] = {EGL_CONTEXT_MAJOR_VERSION, 4, EGL_CONTEXT_MINOR_VERSION, 5,
                                         EGL_CONTEXT_OPENGL_PROFILE_MASK, EGL_CONTEXT_OPENGL_CORE_PROFILE_BIT,
                                         EGL_NONE};
-    EGLContext context = eglCreateContext(attempt.display, config, EGL_NO_CONTEXT, contextAttributes);
+    EGLContext context = egl().createContext(attempt.display, config, EGL_NO_CONTEXT, contextAttributes);
     if (context == EGL_NO_CONTEXT) {
-      fail("no OpenGL 4.5 core context (" + eglErrorName(eglGetError()) + ")");
+      fail("no OpenGL 4.5 core context (" + eglErrorName(egl().getError()) + ")");
       continue;
     }
     EGLSurface surface = EGL_NO_SURFACE;
     if (!hasExtension(displayExtensions, "EGL_KHR_surfaceless_context")) {
       const EGLint pbufferAttributes[] = {EGL_WIDTH, 1, EGL_HEIGHT, 1, EGL_NONE};
-      surface = eglCreatePbufferSurface(attempt.display, config, pbufferAttributes);
+      surface = egl().createPbufferSurface(attempt.display, config, pbufferAttributes);
     }
-    if (!eglMakeCurrent(attempt.display, surface, surface, context)) {
-      fail("eglMakeCurrent " + eglErrorName(eglGetError()));
-      if (surface != EGL_NO_SURFACE) eglDestroySurface(attempt.display, surface);
-      eglDestroyContext(attempt.display, context);
+    if (!egl().makeCurrent(attempt.display, surface, surface, context)) {
+      fail("eglMakeCurrent " + eglErrorName(egl().getError()));
+      if (surface != EGL_NO_SURFACE) egl().destroySurface(attempt.display, surface);
+      egl().destroyContext(attempt.display, context);
       continue;
     }
     display_ = attempt.display;
@@ -152,10 +153,10 @@ EglContext::~EglContext() { release(); }
 
 void EglContext::release() {
   if (!display_) return;
-  eglMakeCurrent(display_, EGL_NO_SURFACE, EGL_NO_SURFACE, EGL_NO_CONTEXT);
-  if (surface_) eglDestroySurface(display_, surface_);
-  if (context_) eglDestroyContext(display_, context_);
-  eglReleaseThread();
+  egl().makeCurrent(display_, EGL_NO_SURFACE, EGL_NO_SURFACE, EGL_NO_CONTEXT);
+  if (surface_) egl().destroySurface(display_, surface_);
+  if (context_) egl().destroyContext(display_, context_);
+  egl().releaseThread();
   display_ = context_ = surface_ = nullptr;
 }
 

@@ -93,7 +93,8 @@ std::filesystem::path findShaderDirectory() {
   throw Error("cannot locate the Spindrift library to find its shaders (set SPINDRIFT_SHADER_DIR)");
 }
 
-ShaderLibrary::ShaderLibrary(std::filesystem::path directory) : directory_(std::move(directory)) {}
+ShaderLibrary::ShaderLibrary(std::filesystem::path directory, ProgramCache cache)
+    : directory_(std::move(directory)), cache_(std::move(cache)) {}
 
 std::string ShaderLibrary::expandedSource(const std::string& file, std::vector<std::string>& files) const {
   std::ostringstream out;
@@ -102,14 +103,31 @@ std::string ShaderLibrary::expandedSource(const std::string& file, std::vector<s
 }
 
 ProgramObject ShaderLibrary::program(const std::vector<std::string>& stageFiles) const {
+  std::vector<std::string> sources;
+  std::vector<std::vector<std::string>> sourceFiles(stageFiles.size());
+  for (std::size_t stage = 0; stage < stageFiles.size(); ++stage) {
+    // The file name is part of the key: the same text as another stage type is another program.
+    sources.push_back(stageFiles[stage] + "\n" + expandedSource(stageFiles[stage], sourceFiles[stage]));
+  }
+  if (ProgramObject cached = cache_.load(sources)) return cached;
+  ProgramObject program = compile(stageFiles, sources, sourceFiles);
+  ++cache_.counts.compiled;
+  cache_.store(sources, program.id());
+  return program;
+}
+
+ProgramObject ShaderLibrary::compile(const std::vector<std::string>& stageFiles,
+                                     const std::vector<std::string>& sources,
+                                     const std::vector<std::vector<std::string>>& sourceFiles) const {
   ProgramObject program(glCreateProgram());
   std::vector<GLuint> shaders;
   auto deleteShaders = [&] {
     for (GLuint shader : shaders) glDeleteShader(shader);
   };
-  for (const std::string& file : stageFiles) {
-    std::vector<std::string> files;
-    const std::string source = expandedSource(file, files);
+  for (std::size_t stage = 0; stage < stageFiles.size(); ++stage) {
+    const std::string& file = stageFiles[stage];
+    const std::vector<std::string>& files = sourceFiles[stage];
+    const std::string source = sources[stage].substr(file.size() + 1);
     const GLuint shader = glCreateShader(stageFromFile(file));
     shaders.push_back(shader);
     const char* text = source.c_str();
@@ -127,6 +145,7 @@ ProgramObject ShaderLibrary::program(const std::vector<std::string>& stageFiles)
     }
     glAttachShader(program.id(), shader);
   }
+  if (cache_.enabled()) glProgramParameteri(program.id(), GL_PROGRAM_BINARY_RETRIEVABLE_HINT, GL_TRUE);
   glLinkProgram(program.id());
   deleteShaders();  // Attached shaders live on inside the program until it is deleted.
   GLint linked = GL_FALSE;

@@ -5,6 +5,7 @@
 #include <vector>
 
 #include "gl/GlObjects.h"
+#include "gl/ProgramCache.h"
 
 namespace spindrift {
 
@@ -15,10 +16,11 @@ std::filesystem::path findShaderDirectory();
 
 /// Loads GLSL from the shader directory, resolves `#include "lib/name.glsl"` (each file once) with a `#line`
 /// after every switch of file, and reports compile errors with file names and lines instead of source-string
-/// numbers.
+/// numbers. With a ProgramCache, a program whose sources and driver are unchanged is loaded from its binary
+/// instead of compiled.
 class ShaderLibrary {
  public:
-  explicit ShaderLibrary(std::filesystem::path directory);
+  explicit ShaderLibrary(std::filesystem::path directory, ProgramCache cache = ProgramCache({}, ""));
 
   /// Compiles and links one program from stage files named by extension: .vert, .geom, .frag, .comp.
   ProgramObject program(const std::vector<std::string>& stageFiles) const;
@@ -27,9 +29,15 @@ class ShaderLibrary {
   std::string expandedSource(const std::string& file, std::vector<std::string>& files) const;
 
   const std::filesystem::path& directory() const { return directory_; }
+  /// How many programs were loaded from the cache, compiled, or rebuilt after a rejected cache file.
+  const ProgramCacheCounts& cacheCounts() const { return cache_.counts; }
 
  private:
+  ProgramObject compile(const std::vector<std::string>& stageFiles, const std::vector<std::string>& sources,
+                        const std::vector<std::vector<std::string>>& sourceFiles) const;
+
   std::filesystem::path directory_;
+  mutable ProgramCache cache_;  // Loading a program does not change what the library gives.
 };
 
 /// The location of a uniform; throws Error when the program has no active uniform of that name.

@@ -14,6 +14,7 @@
 
 #include "io/OiioErrors.h"
 #include "spindrift/Error.h"
+#include "spindrift/Limits.h"
 
 namespace spindrift {
 namespace {
@@ -108,6 +109,10 @@ FloatImage readChannels(OIIO::ImageInput& input, const std::filesystem::path& pa
     lastChannel = std::max(lastChannel, channel);
   }
   const int blockChannels = std::max(0, lastChannel + 1 - firstChannel);
+  requireMemory((std::uint64_t(spec.width) * std::uint64_t(spec.height) * std::uint64_t(blockChannels) +
+                 std::uint64_t(image.width) * std::uint64_t(image.height) * std::uint64_t(image.channels)) *
+                    sizeof(float),
+                path.string() + ": a " + std::to_string(image.width) + "x" + std::to_string(image.height) + " image");
   std::vector<float> block(std::size_t(spec.width) * spec.height * blockChannels);
   if (blockChannels > 0 &&
       !input.read_image(subimage, 0, firstChannel, lastChannel + 1, OIIO::TypeFloat, block.data())) {
@@ -221,6 +226,10 @@ FloatImage resizeImage(const FloatImage& image, int width, int height, bool near
     throw Error("resizeImage: cannot resize to " + std::to_string(width) + "x" + std::to_string(height));
   }
   if (width == image.width && height == image.height) return image;
+  // The copy into OIIO, its result and ours: three images of the larger size at most.
+  requireMemory(3 * std::uint64_t(std::max(width * (long long)height, image.width * (long long)image.height)) *
+                    std::uint64_t(image.channels) * sizeof(float),
+                "resizing an image to " + std::to_string(width) + "x" + std::to_string(height));
 
   OIIO::ImageBuf source(OIIO::ImageSpec(image.width, image.height, image.channels, OIIO::TypeFloat));
   source.set_pixels(OIIO::ROI::All(), OIIO::TypeFloat, image.pixels.data());

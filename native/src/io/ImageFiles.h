@@ -5,17 +5,9 @@
 #include <optional>
 #include <vector>
 
+#include "spindrift/FloatImage.h"
+
 namespace spindrift {
-
-/// An image in memory: `channels` interleaved 32-bit floats per pixel, top row first, linear colour.
-struct FloatImage {
-  int width = 0;
-  int height = 0;
-  int channels = 0;
-  std::vector<float> pixels;
-
-  bool empty() const { return pixels.empty(); }
-};
 
 /// Reads an image's colour as RGBA (alpha 1 where the file has none; grey repeated to RGB). In a multilayer
 /// EXR the first layer named like "Combined" (Blender's "ViewLayer.Combined.R" ...) is taken; otherwise the

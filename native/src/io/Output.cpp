@@ -149,6 +149,9 @@ void writeExr(const RenderResult& result, const std::filesystem::path& path) {
   spec.z_channel = indexOf("depth.Z");
   spec.attribute("compression", "zip");
   spec.attribute("oiio:ColorSpace", "Linear");
+  // OpenImageIO stamps the current time into the header (capDate) unless DateTime is given: left empty, the
+  // same frame gives the same file on every node and every run, so farm output can be checked byte for byte.
+  spec.attribute("DateTime", "");
   writeThroughTemporaryFile(path, "openexr", spec, OIIO::TypeFloat, interleaved.data());
 }
 
@@ -184,6 +187,7 @@ void writePng(const RenderResult& result, const std::filesystem::path& path) {
   // The values are already straight alpha; without this OIIO would divide by alpha a second time.
   spec.attribute("oiio:UnassociatedAlpha", 1);
   spec.attribute("oiio:ColorSpace", "sRGB");
+  spec.attribute("DateTime", "");  // As in writeExr: no time stamp, identical frames are identical files.
   writeThroughTemporaryFile(path, "png", spec, OIIO::TypeUInt8, encoded.data());
 }
 

@@ -13,6 +13,7 @@
 #include "io/ParticleFile.h"
 #include "io/PlyHeader.h"
 #include "spindrift/Error.h"
+#include "spindrift/Limits.h"
 
 namespace spindrift {
 namespace {
@@ -297,6 +298,7 @@ ParticleFileData readPly(const std::filesystem::path& path) {
   std::error_code sizeError;
   const std::uintmax_t fileSize = std::filesystem::file_size(path, sizeError);
   if (sizeError) fail(path, "cannot read PLY file: " + sizeError.message());
+  requireMemory(std::uint64_t(fileSize), path.string() + ": reading the file");
   std::vector<char> bytes(static_cast<std::size_t>(fileSize));
   if (!file.read(bytes.data(), static_cast<std::streamsize>(bytes.size()))) {
     fail(path, "cannot read PLY file");
@@ -321,6 +323,8 @@ ParticleFileData readPly(const std::filesystem::path& path) {
     }
   }
 
+  // Up to nine floats per vertex (position, radius, type, life, velocity) come out of the file.
+  requireMemory(std::uint64_t(vertexElement->count) * 9 * sizeof(float), path.string() + ": the vertex arrays");
   ParticleFileData data;
   reserveVertices(layout, static_cast<std::size_t>(vertexElement->count), &data);
   if (header.format == PlyFormat::Ascii) {

@@ -7,10 +7,12 @@
 #include <openvdb/io/File.h>
 #include <openvdb/openvdb.h>
 #include <openvdb/points/AttributeArray.h>
+#include <openvdb/points/PointCount.h>
 #include <openvdb/points/PointDataGrid.h>
 
 #include "io/ParticleFile.h"
 #include "spindrift/Error.h"
+#include "spindrift/Limits.h"
 
 namespace spindrift {
 namespace {
@@ -125,6 +127,10 @@ ParticleFileData readGridPoints(const PointDataGrid& grid) {
   if (leaf0->attributeSet().find("P") == openvdb::points::AttributeSet::INVALID_POS) {
     throw Error("point grid '" + grid.getName() + "' has no P attribute");
   }
+  // Nine floats per point at most come out (position, velocity, life, flag); checked before any is copied.
+  const openvdb::Index64 count = openvdb::points::pointCount(grid.tree());
+  requireMemory(count * 9 * sizeof(float), "point grid '" + grid.getName() + "': " + std::to_string(count) + " points");
+  data.positions.reserve(count);
   const openvdb::math::Transform& transform = grid.transform();
   for (auto leaf = grid.tree().cbeginLeaf(); leaf; ++leaf) {
     const AttributeHandle<openvdb::Vec3f> positions(leaf->constAttributeArray("P"));

@@ -1,5 +1,8 @@
 #include "passes/EllipsoidImpostorPass.h"
 
+#include <glm/mat4x4.hpp>
+#include <glm/matrix.hpp>
+
 namespace spindrift {
 
 EllipsoidImpostorPass::EllipsoidImpostorPass(const ShaderLibrary& shaders)
@@ -11,7 +14,8 @@ EllipsoidImpostorPass::EllipsoidImpostorPass(const ShaderLibrary& shaders)
 }
 
 SurfaceLayers EllipsoidImpostorPass::run(const std::vector<EllipsoidInstance>& ellipsoids,
-                                         const BackgroundData& background, int width, int height) {
+                                         const BackgroundData& background, int width, int height,
+                                         const DomainBox* domain) {
   // Grow-only storage: a sequence reallocates only when a frame has more particles than any before it.
   const std::size_t bytes = ellipsoids.size() * sizeof(EllipsoidInstance);
   if (bytes > ellipsoidBufferBytes_) {
@@ -21,13 +25,14 @@ SurfaceLayers EllipsoidImpostorPass::run(const std::vector<EllipsoidInstance>& e
   }
   if (bytes > 0) glNamedBufferSubData(ellipsoidBuffer_.id(), 0, GLsizeiptr(bytes), ellipsoids.data());
   checkGlError("uploading liquid particles");
-  drawLayer(front_, false, GLsizei(ellipsoids.size()), background, width, height);
-  drawLayer(back_, true, GLsizei(ellipsoids.size()), background, width, height);
+  drawLayer(front_, false, GLsizei(ellipsoids.size()), background, width, height, domain);
+  drawLayer(back_, true, GLsizei(ellipsoids.size()), background, width, height, domain);
   return {{front_.eyeDepth, front_.normal}, {back_.eyeDepth, back_.normal}};
 }
 
 void EllipsoidImpostorPass::drawLayer(Target& target, bool backFaces, GLsizei count,
-                                      const BackgroundData& background, int width, int height) {
+                                      const BackgroundData& background, int width, int height,
+                                      const DomainBox* domain) {
   ensureTexture(target.eyeDepth, GL_R32F, width, height);
   ensureTexture(target.normal, GL_RGBA16F, width, height);
   ensureTexture(target.depthBuffer, GL_DEPTH_COMPONENT32F, width, height);
@@ -55,6 +60,13 @@ void EllipsoidImpostorPass::drawLayer(Target& target, bool backFaces, GLsizei co
   glDisable(GL_BLEND);
   glUseProgram(program_.id());
   glUniform1i(uniformLocation(program_.id(), "backFaces"), backFaces ? 1 : 0);
+  glUniform1i(uniformLocation(program_.id(), "clipToDomain"), domain ? 1 : 0);
+  if (domain) {
+    const glm::mat4 domainFromWorld = glm::inverse(domain->worldFromBox);
+    glUniformMatrix4fv(uniformLocation(program_.id(), "domainFromWorld"), 1, GL_FALSE, &domainFromWorld[0][0]);
+    glUniform3fv(uniformLocation(program_.id(), "domainLow"), 1, &domain->low[0]);
+    glUniform3fv(uniformLocation(program_.id(), "domainHigh"), 1, &domain->high[0]);
+  }
   glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, ellipsoidBuffer_.id());
   glBindTextureUnit(0, background.eyeDepth.id());
   glBindVertexArray(emptyVertexArray_.id());

@@ -7,6 +7,7 @@
 #include "gl/GlObjects.h"
 #include "gl/ShaderLibrary.h"
 #include "prep/LiquidPreparation.h"
+#include "spindrift/Scene.h"
 
 namespace spindrift {
 
@@ -15,8 +16,9 @@ namespace spindrift {
 class EllipsoidImpostorPass {
  public:
   explicit EllipsoidImpostorPass(const ShaderLibrary& shaders);
+  /// `domain`, when not null, clips the surfaces to a Mantaflow domain's box.
   SurfaceLayers run(const std::vector<EllipsoidInstance>& ellipsoids, const BackgroundData& background, int width,
-                    int height);
+                    int height, const DomainBox* domain = nullptr);
 
  private:
   struct Target {
@@ -26,7 +28,7 @@ class EllipsoidImpostorPass {
     Texture2D depthBuffer;
   };
   void drawLayer(Target& target, bool backFaces, GLsizei count, const BackgroundData& background, int width,
-                 int height);
+                 int height, const DomainBox* domain);
 
   ProgramObject program_;
   VertexArrayObject emptyVertexArray_;

@@ -24,6 +24,12 @@ LiquidData RefractionPass::run(const std::optional<SurfaceLayers>& splashes,
   ensureTexture(thickness_, GL_R32F, width, height);
   ensureTexture(frontDepth_, GL_R32F, width, height);
   ensureTexture(frontNormal_, GL_RGBA16F, width, height);
+  ensureTexture(refractionUv_, GL_RGBA32F, width, height);
+  ensureTexture(transmittance_, GL_RGBA32F, width, height);
+  ensureTexture(reflection_, GL_RGBA32F, width, height);
+  glBindImageTexture(0, refractionUv_.id(), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA32F);
+  glBindImageTexture(1, transmittance_.id(), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA32F);
+  glBindImageTexture(2, reflection_.id(), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA32F);
   const GLuint framebuffer = framebuffer_.id();
   const Texture2D* outputs[] = {&color_, &splashColor_, &surfaceClass_, &thickness_, &frontDepth_, &frontNormal_};
   GLenum attachments[6];
@@ -71,8 +77,11 @@ LiquidData RefractionPass::run(const std::optional<SurfaceLayers>& splashes,
   glUniform1f(uniformLocation(program, "stepPixels"), parameters.trace_step_pixels);
   glUniform1i(uniformLocation(program, "maxSteps"), parameters.trace_max_steps);
   drawFullscreenTriangle(emptyVertexArray_.id());
+  // The image stores must land before the split layers are sampled or read back.
+  glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_TEXTURE_UPDATE_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
   checkGlError("refracting through the liquid");
-  return {color_, splashColor_, surfaceClass_, thickness_, frontDepth_, frontNormal_};
+  return {color_, splashColor_, surfaceClass_, thickness_, frontDepth_, frontNormal_,
+          refractionUv_, transmittance_, reflection_};
 }
 
 RefractionStatistics RefractionPass::statistics() const {

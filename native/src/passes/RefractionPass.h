@@ -35,6 +35,9 @@ class RefractionPass {
   Texture2D thickness_;
   Texture2D frontDepth_;
   Texture2D frontNormal_;
+  Texture2D refractionUv_;
+  Texture2D transmittance_;
+  Texture2D reflection_;
   Texture2D emptyLayer_;  ///< 1x1 "no surface" texture bound in place of an absent layer.
 };
 

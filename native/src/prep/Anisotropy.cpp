@@ -126,6 +126,7 @@ AnisotropySettings AnisotropySettings::fromParameters(const LiquidParameters& pa
   settings.isotropicScale = parameters.anisotropy_isotropic_scale;
   settings.smoothing = parameters.anisotropy_smoothing;
   settings.maxEllipsoidScale = parameters.max_ellipsoid_scale;
+  settings.surfaceOffset = parameters.surface_offset;
   settings.needDensity = parameters.layers != "merged";
   return settings;
 }
@@ -220,7 +221,10 @@ ParticleShapes shapeParticles(const NeighbourGrid& grid, const AnisotropySetting
             const ParticleShape shape = shapeFromMoments(moments, radius, settings);
             const glm::vec3 centre = glm::vec3(cloud.x[i], cloud.y[i], cloud.z[i]) + shape.centreOffset;
             shapes.kinds[i] = shape.kind;
-            shapes.instances[i] = ellipsoidInstance(centre, shape.axes, shape.semiAxes);
+            // The surface offset grows every axis by the same length, so the drawn surface moves out by about
+            // that much everywhere (exactly so along the axes) while the shape computed at r stays as it is.
+            shapes.instances[i] =
+                ellipsoidInstance(centre, shape.axes, shape.semiAxes + settings.surfaceOffset * radius);
             if (!settings.needDensity) continue;
             // Unit-free density: the kernel's normalisation over its support volume, times r^3.
             if (shape.kind == ShapeKind::Anisotropic) {

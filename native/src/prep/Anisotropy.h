@@ -19,6 +19,7 @@ struct AnisotropySettings {
   float isotropicScale = 0.5f;   ///< k_n, in particle radii.
   float smoothing = 0.0f;        ///< lambda.
   float maxEllipsoidScale = 1.2f;
+  float surfaceOffset = 0.0f;  ///< Every drawn semi-axis is grown by this, in particle radii.
   bool needDensity = true;  ///< False when every particle is an aggregate (liquid.layers = merged).
 
   static AnisotropySettings fromParameters(const LiquidParameters& parameters);

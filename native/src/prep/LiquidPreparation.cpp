@@ -44,8 +44,9 @@ LiquidCandidates selectLiquidCandidates(const Particles& particles, const Camera
                         // smoothing moves by at most lambda R from the particle; its neighbours lie within R
                         // more.
                         const float neighbourhood = parameters.neighbour_radius * radius;
-                        const float drawnReach = std::max(1.0f, parameters.max_ellipsoid_scale) * radius +
-                                                 parameters.anisotropy_smoothing * neighbourhood;
+                        const float drawnReach =
+                            (std::max(1.0f, parameters.max_ellipsoid_scale) + parameters.surface_offset) * radius +
+                            parameters.anisotropy_smoothing * neighbourhood;
                         const glm::vec3 centre = frustum.cameraFromWorld(position);
                         if (frustum.reachedBySphere(centre, drawnReach))
                           roles[i] = kVisible;
@@ -126,7 +127,8 @@ void classifyAndPack(const NeighbourGrid& grid, const ParticleShapes& shapes,
       if (shapes.kinds[i] == ShapeKind::Hidden) continue;
       if (isSplash(i)) {
         preparation.splashes[nextSplash++] =
-            sphereInstance(glm::vec3(cloud.x[i], cloud.y[i], cloud.z[i]), cloud.radius[i]);
+            sphereInstance(glm::vec3(cloud.x[i], cloud.y[i], cloud.z[i]),
+                           (1.0f + parameters.surface_offset) * cloud.radius[i]);
       } else {
         preparation.aggregates[nextAggregate++] = shapes.instances[i];
         interiorPerBlock[block] += shapes.kinds[i] == ShapeKind::Interior;

@@ -1,9 +1,12 @@
+#include <algorithm>
+#include <cmath>
 #include <fstream>
 #include <sstream>
 
 #include <glm/geometric.hpp>
 
 #include "scene/JsonFields.h"
+#include "scene/MantaflowDomain.h"
 #include "spindrift/Error.h"
 #include "spindrift/Scene.h"
 
@@ -55,8 +58,60 @@ Camera readCamera(const JsonFields& fields) {
   return camera;
 }
 
+// A liquid source's `domain`: the Mantaflow settings that shape the liquid mesh, every key optional with
+// Blender's default. The cell size and the domain's transform come from the cache's config files.
+MantaflowDomainSettings readDomainSettings(const JsonFields& fields) {
+  fields.allowOnly({"particle_radius", "mesh_particle_radius", "mesh_scale", "mesh_smoothen_pos",
+                    "mesh_smoothen_neg", "mesh_concave_upper", "mesh_concave_lower", "particle_number",
+                    "mesh_generator", "cell_size"});
+  MantaflowDomainSettings settings;
+  if (fields.has("particle_radius")) settings.particleRadius = fields.number("particle_radius", 0.0f, 10.0f);
+  if (fields.has("mesh_particle_radius"))
+    settings.meshParticleRadius = fields.number("mesh_particle_radius", 0.0f, 10.0f);
+  if (fields.has("mesh_scale")) settings.meshScale = fields.integer("mesh_scale", 1, 100);
+  if (fields.has("mesh_smoothen_pos")) settings.meshSmoothenPos = fields.integer("mesh_smoothen_pos", 0, 100);
+  if (fields.has("mesh_smoothen_neg")) settings.meshSmoothenNeg = fields.integer("mesh_smoothen_neg", 0, 100);
+  if (fields.has("mesh_concave_upper")) settings.meshConcaveUpper = fields.number("mesh_concave_upper", -1.0f, 10.0f);
+  if (fields.has("mesh_concave_lower")) settings.meshConcaveLower = fields.number("mesh_concave_lower", -1.0f, 10.0f);
+  if (fields.has("particle_number")) settings.particleNumber = fields.integer("particle_number", 1, 5);
+  if (fields.has("mesh_generator")) {
+    const std::string generator = fields.string("mesh_generator");
+    if (generator == "IMPROVED") settings.improvedMesh = true;
+    else if (generator == "UNION") settings.improvedMesh = false;
+    else fields.fail("mesh_generator", "\"" + generator + "\" is not one of IMPROVED, UNION");
+  }
+  if (fields.has("cell_size")) settings.cellSize = fields.number("cell_size", 0.0f, 1e30f);
+  return settings;
+}
+
+// Radius, surface offset and (when the scene gives none) world_from_file from the source's Mantaflow domain.
+void applyDomain(const JsonFields& fields, ParticleSource& source) {
+  const MantaflowDomainSettings settings = readDomainSettings(fields.child("domain"));
+  float cellSize = settings.cellSize;
+  const std::filesystem::path configPath = findMantaflowCacheConfig(source.path);
+  if (!configPath.empty()) {
+    const MantaflowCacheConfig config = readMantaflowCacheConfig(configPath);
+    if (cellSize == 0.0f) cellSize = config.cellSize();
+    if (!fields.has("world_from_file")) source.worldFromFile = config.worldFromFile();
+    // Mantaflow sets the outermost mesh_scale - 1 layers of mesh cells outside (0.5), so the mesh's face
+    // against a wall lies about one mesh cell less than that inside: (mesh_scale - 0.1) mesh cells.
+    const float inset = (float(settings.meshScale) - 0.1f) / float(settings.meshScale) * config.cellSize();
+    source.domainBox = DomainBox{config.worldFromFile(), glm::vec3(inset),
+                                 glm::vec3(config.resolution) * config.cellSize() - inset};
+  } else if (cellSize == 0.0f) {
+    fields.fail("domain", "no Mantaflow config file (cache/config/config_NNNN.uni) beside " + source.path.string() +
+                              ": give domain.cell_size");
+  }
+  const LiquidSurfaceFromDomain surface = liquidSurfaceFromDomain(settings, cellSize);
+  source.meshFlatOffset = surface.flatOffset;
+  if (!fields.has("radius")) {
+    source.radius = surface.radius;
+    source.radiusOrigin = surface.origin;
+  }
+}
+
 ParticleSource readParticleSource(const JsonFields& fields, const std::filesystem::path& baseDirectory) {
-  fields.allowOnly({"path", "grid", "role", "kind", "radius", "world_from_file"});
+  fields.allowOnly({"path", "grid", "role", "kind", "radius", "domain", "world_from_file"});
   ParticleSource source;
   source.path = fields.path("path", baseDirectory);
   const std::string extension = source.path.extension().string();
@@ -80,7 +135,25 @@ ParticleSource readParticleSource(const JsonFields& fields, const std::filesyste
     else if (kind == "foam") source.kind = ParticleKind::Foam;
     else fields.fail("kind", "\"" + kind + "\" is not one of spray, bubble, foam");
   }
-  source.radius = fields.number("radius", 0.0f, 1e30f);
+  if (fields.has("radius")) source.radius = fields.number("radius", 0.0f, 1e30f);
+  if (fields.has("world_from_file")) source.worldFromFile = fields.affineMatrix("world_from_file");
+  if (fields.has("domain")) {
+    if (source.role != ParticleRole::Liquid) fields.fail("domain", "only liquid sources have a domain");
+    applyDomain(fields, source);
+  } else if (!fields.has("radius")) {
+    fields.fail("radius", source.role == ParticleRole::Liquid
+                              ? "missing: give the particle radius, or the Mantaflow \"domain\" to derive it from"
+                              : "missing");
+  }
+  return source;
+}
+
+MeshSource readMeshSource(const JsonFields& fields, const std::filesystem::path& baseDirectory) {
+  fields.allowOnly({"path", "world_from_file"});
+  MeshSource source;
+  source.path = fields.path("path", baseDirectory);
+  if (source.path.extension() != ".obj") fields.fail("path", "expected a Wavefront .obj file");
+  requireExisting(fields, "path", source.path);
   if (fields.has("world_from_file")) source.worldFromFile = fields.affineMatrix("world_from_file");
   return source;
 }
@@ -138,6 +211,24 @@ Light readLight(const JsonFields& fields) {
   return light;
 }
 
+// Sources derived from Mantaflow domains set liquid.surface_offset, in radii, so the drawn surface stands where
+// Mantaflow's flat surface stands: its offset minus what Spindrift's own flat surface already reaches.
+void applyDerivedSurfaceOffset(const JsonFields& root, Scene& scene) {
+  float derived = -1.0f;
+  for (std::size_t i = 0; i < scene.particles.size(); ++i) {
+    const ParticleSource& source = scene.particles[i];
+    if (source.meshFlatOffset <= 0.0f) continue;
+    const float offset =
+        std::max(0.0f, source.meshFlatOffset / source.radius - kSpindriftFlatOffsetRadii);
+    if (derived >= 0.0f && std::abs(offset - derived) > 1e-3f * std::max(1.0f, derived))
+      root.fail("particles[" + std::to_string(i) + "].domain",
+                "its surface offset (" + std::to_string(offset) + " radii) differs from another liquid source's (" +
+                    std::to_string(derived) + "); set liquid.surface_offset");
+    derived = offset;
+  }
+  if (derived >= 0.0f) scene.parameters.liquid.surface_offset = std::min(derived, 100.0f);
+}
+
 }  // namespace
 
 Scene parseScene(const std::string& jsonText, const std::filesystem::path& sceneFile) {
@@ -145,11 +236,13 @@ Scene parseScene(const std::string& jsonText, const std::filesystem::path& scene
   json document;
   try {
     document = json::parse(jsonText);
-  } catch (const json::parse_error& error) {
+  } catch (const json::exception& error) {
+    // parse_error for bad syntax, out_of_range for a number beyond double (1e999): both are bad JSON here.
     throw Error(fileLabel + ": not valid JSON: " + error.what());
   }
   const JsonFields root(document, fileLabel, "");
-  root.allowOnly({"version", "frame", "camera", "particles", "background", "lights", "liquid", "foam", "light"});
+  root.allowOnly({"version", "frame", "camera", "particles", "background", "occluders", "liquid_mesh", "lights",
+                  "liquid", "foam", "light"});
   if (root.integer("version", 0, 1000) != 1)
     root.fail("version", "this Spindrift reads version 1 scene files");
 
@@ -165,6 +258,14 @@ Scene parseScene(const std::string& jsonText, const std::filesystem::path& scene
     scene.particles.push_back(
         readParticleSource(JsonFields(particles[i], fileLabel, "particles[" + std::to_string(i) + "]"), baseDirectory));
 
+  if (root.has("occluders")) {
+    const json& occluders = root.raw("occluders");
+    if (!occluders.is_array()) root.fail("occluders", "expected a list of meshes");
+    for (std::size_t i = 0; i < occluders.size(); ++i)
+      scene.occluders.push_back(
+          readMeshSource(JsonFields(occluders[i], fileLabel, "occluders[" + std::to_string(i) + "]"), baseDirectory));
+  }
+  if (root.has("liquid_mesh")) scene.liquidMesh = readMeshSource(root.child("liquid_mesh"), baseDirectory);
   if (root.has("background")) scene.background = readBackground(root.child("background"), baseDirectory);
   if (root.has("lights")) {
     const json& lights = root.raw("lights");
@@ -174,6 +275,9 @@ Scene parseScene(const std::string& jsonText, const std::filesystem::path& scene
   }
   for (const char* group : {"liquid", "foam", "light"})
     if (root.has(group)) setParameterGroup(scene.parameters, group, root.raw(group), fileLabel);
+  const bool offsetGiven = root.has("liquid") && root.raw("liquid").is_object() &&
+                           root.raw("liquid").contains("surface_offset");
+  if (!offsetGiven) applyDerivedSurfaceOffset(root, scene);
   return scene;
 }
 

@@ -1,0 +1,336 @@
+"""Blender data to what the native renderer takes: cache sources, particle arrays, triangles, the camera.
+
+Every function reads Blender's data on the main thread (or the render job's thread inside a render handler),
+never on the preview's worker thread. Problems with the user's data are appended to `issues` as one-line
+messages naming the object, not raised, so one bad object never stops the others from rendering.
+"""
+
+import os
+
+import bpy
+import numpy as np
+
+from . import scene_json
+from .scene_json import BadInput
+
+KIND_CODES = {"LIQUID": 0, "SPRAY": 2, "BUBBLE": 4, "FOAM": 8}
+TRIANGLE_TYPES = {"MESH", "CURVE", "SURFACE", "META", "FONT"}
+
+
+def fluid_modifier(obj):
+    for modifier in obj.modifiers:
+        if modifier.type == "FLUID":
+            return modifier
+    return None
+
+
+def liquid_domain_settings(obj):
+    """The domain settings of a Mantaflow liquid domain, or None for any other object."""
+    modifier = fluid_modifier(obj) if obj.type == "MESH" else None
+    if modifier is None or modifier.fluid_type != "DOMAIN":
+        return None
+    settings = modifier.domain_settings
+    return settings if settings.domain_type == "LIQUID" else None
+
+
+def enabled_objects(scene):
+    return sorted((obj for obj in scene.objects if obj.spindrift.enabled), key=lambda obj: obj.name)
+
+
+def primary_object(scene):
+    """The object whose parameters the frame uses: the first enabled liquid domain, else the first enabled
+    object (by name). One frame has one parameter set, as a scene file has."""
+    objects = enabled_objects(scene)
+    domains = [obj for obj in objects if liquid_domain_settings(obj) is not None]
+    return (domains or objects or [None])[0]
+
+
+# --- Mantaflow domains -----------------------------------------------------------------------------------------
+
+def domain_grid(obj):
+    """(world_from_file, dx, resolution) of a liquid domain (docs/mantaflow-caches.md)."""
+    settings = liquid_domain_settings(obj)
+    # The original mesh: once baked, the evaluated mesh (and obj.bound_box) is the liquid surface.
+    vertices = np.empty(len(obj.data.vertices) * 3, dtype=np.float64)
+    obj.data.vertices.foreach_get("co", vertices)
+    if vertices.size == 0:
+        raise BadInput(f"domain {obj.name}: its mesh has no vertices")
+    vertices = vertices.reshape(-1, 3)
+    return scene_json.mantaflow_grid(vertices.min(axis=0), vertices.max(axis=0), tuple(obj.scale),
+                                     [list(row) for row in obj.matrix_world], settings.resolution_max)
+
+
+def domain_sources(obj, frame, issues):
+    """The scene file's particle sources for a liquid domain's OpenVDB caches at `frame` (maybe fewer)."""
+    settings = liquid_domain_settings(obj)
+    if settings.cache_data_format != "OPENVDB":
+        issues.append(f"domain {obj.name}: its cache format is {settings.cache_data_format}; Spindrift reads "
+                      f"OpenVDB caches (set Cache > Format Volumes to OpenVDB and bake again)")
+        return []
+    directory = bpy.path.abspath(settings.cache_directory)
+    try:
+        world_from_file, dx, _ = domain_grid(obj)
+    except BadInput as error:
+        issues.append(str(error))
+        return []
+    props = obj.spindrift
+    sources = scene_json.mantaflow_sources(directory, world_from_file,
+                                           liquid_radius=props.liquid_radius_cells * dx,
+                                           foam_radius=props.foam_radius_cells * dx)
+    kept = []
+    for source in sources:
+        path = scene_json.frame_path(source["path"], frame)
+        if os.path.isfile(path):
+            kept.append(source)
+        elif source["role"] == "liquid":
+            issues.append(f"domain {obj.name}: no baked cache for frame {frame} ({path} is missing); bake the "
+                          f"domain (Cache type All or Replay) over this frame")
+        elif settings.use_spray_particles or settings.use_foam_particles or settings.use_bubble_particles:
+            issues.append(f"domain {obj.name}: no secondary particle cache for frame {frame} ({path})")
+    return kept
+
+
+def domain_mesh_triangles(obj_eval):
+    """The liquid surface Blender loaded for the frame (a baked domain's evaluated mesh), as triangles."""
+    return object_triangles(obj_eval, np.asarray(obj_eval.matrix_world, dtype=np.float64))
+
+
+# --- Particles from any object ---------------------------------------------------------------------------------
+
+class ParticleSet:
+    """Arrays of one object's particles in world space, float32, ready for the buffer protocol."""
+
+    def __init__(self, positions, radii, kinds, life=None):
+        self.positions = np.ascontiguousarray(positions, dtype=np.float32).reshape(-1, 3)
+        self.radii = np.ascontiguousarray(radii, dtype=np.float32).reshape(-1)
+        self.kinds = np.ascontiguousarray(kinds, dtype=np.uint8).reshape(-1)
+        self.life = None if life is None else np.ascontiguousarray(life, dtype=np.float32).reshape(-1)
+
+    def __len__(self):
+        return len(self.radii)
+
+
+def drop_non_finite(particles, name, issues):
+    """Removes particles whose position or radius is NaN or infinite, and says how many."""
+    finite = np.isfinite(particles.positions).all(axis=1) & np.isfinite(particles.radii) & (particles.radii > 0)
+    dropped = int(len(finite) - finite.sum())
+    if dropped:
+        issues.append(f"{name}: {dropped} of {len(finite)} particles have a non-finite location or a radius "
+                      f"that is not positive; they are skipped")
+        life = None if particles.life is None else particles.life[finite]
+        return ParticleSet(particles.positions[finite], particles.radii[finite], particles.kinds[finite], life)
+    return particles
+
+
+def particle_system_arrays(obj_eval, kind, radius_scale, frame, issues):
+    """Every visible particle of the object's particle systems (world space, as Blender stores them)."""
+    sets = []
+    for system in obj_eval.particle_systems:
+        particles = system.particles
+        count = len(particles)
+        name = f"{obj_eval.name}, particle system {system.name}"
+        if count == 0:
+            issues.append(f"{name}: no particles at this frame")
+            continue
+        positions = np.empty(count * 3, dtype=np.float32)
+        particles.foreach_get("location", positions)
+        sizes = np.empty(count, dtype=np.float32)
+        particles.foreach_get("size", sizes)
+        alive = np.empty(count, dtype=np.int32)
+        particles.foreach_get("alive_state", alive)
+        die_time = np.empty(count, dtype=np.float32)
+        particles.foreach_get("die_time", die_time)
+        # alive_state: 0 dead, 1 unborn, 2 alive, 3 dying; what Blender itself shows depends on the settings.
+        shown = alive == 2
+        if system.settings.show_unborn:
+            shown |= alive == 1
+        if system.settings.use_dead:
+            shown |= alive == 0
+        if not shown.any():
+            issues.append(f"{name}: no particle is alive at this frame")
+            continue
+        positions = positions.reshape(-1, 3)[shown]
+        sets.append(ParticleSet(positions, sizes[shown] * radius_scale, np.full(len(positions), kind, np.uint8),
+                                np.maximum(die_time - frame, 0.0)[shown]))
+    return sets
+
+
+def vertex_arrays(obj_eval, kind, radius, issues):
+    """The vertices of a mesh or the points of a point cloud (geometry-nodes output), in world space."""
+    data = obj_eval.data
+    if obj_eval.type == "POINTCLOUD":
+        elements = data.points
+    else:
+        elements = data.vertices
+    count = len(elements)
+    if count == 0:
+        issues.append(f"{obj_eval.name}: no points at this frame")
+        return []
+    local = np.empty(count * 3, dtype=np.float32)
+    elements.foreach_get("co", local)
+    radii = np.full(count, radius, dtype=np.float32)
+    attribute = data.attributes.get("radius") if hasattr(data, "attributes") else None
+    if attribute is not None and attribute.data_type == "FLOAT" and attribute.domain == "POINT":
+        attribute.data.foreach_get("value", radii)
+    matrix = np.asarray(obj_eval.matrix_world, dtype=np.float64)
+    positions = local.reshape(-1, 3).astype(np.float64) @ matrix[:3, :3].T + matrix[:3, 3]
+    return [ParticleSet(positions, radii, np.full(count, kind, np.uint8))]
+
+
+def object_particles(obj, depsgraph, frame, issues):
+    """The particles an enabled non-domain object contributes, after dropping non-finite ones."""
+    obj_eval = obj.evaluated_get(depsgraph)
+    props = obj.spindrift
+    kind = KIND_CODES[props.role]
+    if obj_eval.particle_systems:
+        sets = particle_system_arrays(obj_eval, kind, props.size_scale, frame, issues)
+    elif obj.type in ("MESH", "POINTCLOUD"):
+        sets = vertex_arrays(obj_eval, kind, props.radius, issues)
+    else:
+        issues.append(f"{obj.name}: a {obj.type.lower()} object has no particles or points for Spindrift")
+        sets = []
+    return [drop_non_finite(s, obj.name, issues) for s in sets if len(s)]
+
+
+def merge_particles(sets):
+    """One `particles` dict for the native renderer, or None when there is nothing."""
+    sets = [s for s in sets if len(s)]
+    if not sets:
+        return None
+    merged = {
+        "positions": np.ascontiguousarray(np.concatenate([s.positions for s in sets])),
+        "radii": np.ascontiguousarray(np.concatenate([s.radii for s in sets])),
+        "kinds": np.ascontiguousarray(np.concatenate([s.kinds for s in sets])),
+    }
+    if any(s.life is not None for s in sets):
+        merged["life"] = np.ascontiguousarray(np.concatenate(
+            [s.life if s.life is not None else np.zeros(len(s), np.float32) for s in sets]))
+    return merged
+
+
+# --- Triangles -------------------------------------------------------------------------------------------------
+
+def object_triangles(obj_eval, matrix):
+    """(vertices (V,3) float32 world, triangles (T,3) int32) of an evaluated object, or None."""
+    try:
+        mesh = obj_eval.to_mesh()
+    except RuntimeError:
+        return None
+    try:
+        if mesh is None or len(mesh.polygons) == 0:
+            return None
+        mesh.calc_loop_triangles()
+        vertex_count, triangle_count = len(mesh.vertices), len(mesh.loop_triangles)
+        local = np.empty(vertex_count * 3, dtype=np.float32)
+        mesh.vertices.foreach_get("co", local)
+        triangles = np.empty(triangle_count * 3, dtype=np.int32)
+        mesh.loop_triangles.foreach_get("vertices", triangles)
+    finally:
+        obj_eval.to_mesh_clear()
+    world = local.reshape(-1, 3).astype(np.float64) @ matrix[:3, :3].T + matrix[:3, 3]
+    return world.astype(np.float32), triangles.reshape(-1, 3)
+
+
+def occluder_triangles(depsgraph, excluded_names, for_render=True):
+    """Every solid the depsgraph shows (instances included) except `excluded_names`, as one triangle soup."""
+    cache = {}
+    vertex_blocks, triangle_blocks, offset = [], [], 0
+    for instance in depsgraph.object_instances:
+        obj = instance.object
+        if obj.type not in TRIANGLE_TYPES:
+            continue
+        original = obj.original
+        owner = instance.parent.original if instance.is_instance and instance.parent else original
+        if original.name in excluded_names or owner.name in excluded_names:
+            continue
+        if for_render and owner.hide_render:
+            continue
+        if liquid_domain_settings(original) is not None:
+            continue
+        key = obj.name
+        if key not in cache:
+            cache[key] = object_triangles(obj, np.identity(4))
+        local = cache[key]
+        if local is None:
+            continue
+        matrix = np.asarray(instance.matrix_world, dtype=np.float64)
+        vertices = local[0].astype(np.float64) @ matrix[:3, :3].T + matrix[:3, 3]
+        vertex_blocks.append(vertices.astype(np.float32))
+        triangle_blocks.append(local[1] + offset)
+        offset += len(vertices)
+    if not triangle_blocks:
+        return None
+    return {"vertices": np.ascontiguousarray(np.concatenate(vertex_blocks)),
+            "triangles": np.ascontiguousarray(np.concatenate(triangle_blocks))}
+
+
+# --- Camera and world ------------------------------------------------------------------------------------------
+
+def render_size(scene):
+    render = scene.render
+    return (max(int(render.resolution_x * render.resolution_percentage / 100), 1),
+            max(int(render.resolution_y * render.resolution_percentage / 100), 1))
+
+
+def scene_camera(scene, depsgraph):
+    """The scene file's camera for the scene's render camera at the render resolution."""
+    camera = scene.camera
+    if camera is None:
+        raise BadInput(f"scene {scene.name} has no camera")
+    if camera.type != "CAMERA":
+        raise BadInput(f"scene {scene.name}: the active camera {camera.name} is not a camera object")
+    if camera.data.type != "PERSP":
+        kind = {"ORTHO": "orthographic", "PANO": "panoramic"}.get(camera.data.type, camera.data.type.lower())
+        raise BadInput(f"camera {camera.name}: {kind} cameras are not supported "
+                       f"(Spindrift renders perspective cameras)")
+    width, height = render_size(scene)
+    camera_eval = camera.evaluated_get(depsgraph)
+    projection = camera_eval.calc_matrix_camera(depsgraph, x=width, y=height,
+                                                scale_x=scene.render.pixel_aspect_x,
+                                                scale_y=scene.render.pixel_aspect_y)
+    description, (left, bottom) = scene_json.camera_description(width, height, camera_eval.matrix_world,
+                                                                projection)
+    if description["width"] != width or description["height"] != height:
+        raise BadInput(f"camera {camera.name}: a lens shift is not supported for final renders "
+                       f"(shift {camera.data.shift_x:g}, {camera.data.shift_y:g})")
+    return description
+
+
+def world_color(scene):
+    """The world's background colour (times its strength), what Spindrift shows and refracts where the
+    background image has nothing."""
+    world = scene.world
+    if world is None:
+        return [0.05, 0.05, 0.06]
+    if world.use_nodes and world.node_tree:
+        for node in world.node_tree.nodes:
+            if node.type == "BACKGROUND" and not node.inputs["Color"].is_linked:
+                color = node.inputs["Color"].default_value
+                strength = node.inputs["Strength"].default_value
+                return [max(float(c) * strength, 0.0) for c in color[:3]]
+    return [float(c) for c in world.color]
+
+
+def frame_bounds(scene, inputs):
+    """World points whose box holds everything a frame draws: the corners of each enabled domain's grid and
+    of the in-memory particles' box (padded by the largest radius)."""
+    corners = []
+    for obj in enabled_objects(scene):
+        if liquid_domain_settings(obj) is None:
+            continue
+        vertices = np.empty(len(obj.data.vertices) * 3, dtype=np.float64)
+        obj.data.vertices.foreach_get("co", vertices)
+        if vertices.size == 0:
+            continue
+        vertices = vertices.reshape(-1, 3)
+        lo, hi = vertices.min(axis=0), vertices.max(axis=0)
+        matrix = np.asarray(obj.matrix_world, dtype=np.float64)
+        box = np.array([[x, y, z] for x in (lo[0], hi[0]) for y in (lo[1], hi[1]) for z in (lo[2], hi[2])])
+        corners.append(box @ matrix[:3, :3].T + matrix[:3, 3])
+    particles = inputs.kwargs.get("particles")
+    if particles is not None and len(particles["radii"]):
+        pad = float(particles["radii"].max())
+        lo = particles["positions"].min(axis=0) - pad
+        hi = particles["positions"].max(axis=0) + pad
+        corners.append(np.array([[x, y, z] for x in (lo[0], hi[0]) for y in (lo[1], hi[1]) for z in (lo[2], hi[2])]))
+    return np.concatenate(corners) if corners else np.zeros((0, 3))

@@ -1,0 +1,407 @@
+"""The live preview in the 3D viewport.
+
+Main thread (the draw callback, POST_PIXEL): when the view, the frame or the scene changed and the worker is
+idle, read the viewport's depth, collect the frame's inputs and hand them to the worker; then draw the latest
+finished image (premultiplied, with the gpu module). Worker thread: calls the native renderer (which releases
+the GIL while it renders on its own GL thread), turns the liquid and foam layers into one premultiplied sRGB
+image and posts it. A timer on the main thread notices new images and redraws the viewports.
+
+What the preview refracts: the world colour, not the scene's colour: reading the scene's colour needs
+`GPUOffScreen.draw_view3d`, which costs ~0.7 s of main-thread time per redraw on llvmpipe (docs/blender.md).
+"""
+
+import threading
+import time
+
+import bpy
+import gpu
+import numpy as np
+from gpu_extras.presets import draw_texture_2d
+
+from . import export, frame as frame_inputs, native, reports, scene_json
+from .scene_json import BadInput
+
+TIMER_INTERVAL = 0.05
+
+
+class Job:
+    def __init__(self, key, inputs, offset, scale):
+        self.key, self.inputs, self.offset, self.scale = key, inputs, offset, scale
+
+
+class Image:
+    """A finished preview: premultiplied display-space RGBA rows bottom first, and where to draw it."""
+
+    def __init__(self, job, pixels, width, height, seconds, stats):
+        self.key, self.offset, self.scale = job.key, job.offset, job.scale
+        self.pixels, self.width, self.height = pixels, width, height
+        self.seconds, self.stats = seconds, stats
+        self.texture = None
+
+
+class Worker:
+    """One thread, one pending job per viewport region: a newer job replaces one not yet started."""
+
+    def __init__(self):
+        self._condition = threading.Condition()
+        self._pending = {}
+        self._busy = set()
+        self._finished = {}
+        self._stop = False
+        self._fresh = False
+        self._thread = threading.Thread(target=self._run, name="spindrift-preview", daemon=True)
+        self._thread.start()
+
+    def submit(self, region_key, job):
+        with self._condition:
+            self._pending[region_key] = job
+            self._condition.notify()
+
+    def idle(self, region_key):
+        with self._condition:
+            return region_key not in self._pending and region_key not in self._busy
+
+    def latest(self, region_key):
+        with self._condition:
+            return self._finished.get(region_key)
+
+    def take_fresh(self):
+        with self._condition:
+            fresh, self._fresh = self._fresh, False
+            return fresh
+
+    def stop(self):
+        with self._condition:
+            self._stop = True
+            self._condition.notify()
+        self._thread.join(timeout=30)
+
+    def _run(self):
+        while True:
+            with self._condition:
+                while not self._pending and not self._stop:
+                    self._condition.wait()
+                if self._stop:
+                    return
+                region_key, job = self._pending.popitem()
+                self._busy.add(region_key)
+            result = self._render(job)
+            with self._condition:
+                self._busy.discard(region_key)
+                self._finished[region_key] = result
+                self._fresh = True
+
+    @staticmethod
+    def _render(job):
+        started = time.perf_counter()
+        try:
+            inputs = job.inputs
+            inputs.kwargs["background"] = {"depth": preview_background_depth(*job.depth)}
+            result = native.renderer().render(inputs.scene_text, inputs.document["frame"],
+                                              layers=["liquid", "foam"], **inputs.kwargs)
+            pixels = premultiplied_display(result)
+            return Image(job, pixels, result["width"], result["height"], time.perf_counter() - started,
+                         result.get("stats", {}))
+        except Exception as error:  # noqa: BLE001 - shown in the panel; the viewport keeps working
+            return str(error) or type(error).__name__
+
+
+def _layer(result, name):
+    channels, data = result["layers"][name]
+    pixels = np.frombuffer(data, dtype=np.float32).reshape(result["height"], result["width"], len(channels))
+    if len(channels) != 4:
+        raise ValueError(f"layer {name} has channels {channels}, expected RGBA")
+    return pixels
+
+
+def premultiplied_display(result):
+    """Foam over liquid, premultiplied, in display sRGB (the overlay buffer shows values as they are), rows
+    bottom first as a GL texture wants them."""
+    liquid = _layer(result, "liquid")
+    foam = _layer(result, "foam")
+    over = foam + (1.0 - foam[..., 3:4]) * liquid
+    alpha = np.clip(over[..., 3:4], 0.0, 1.0)
+    with np.errstate(divide="ignore", invalid="ignore"):
+        straight = np.where(alpha > 1e-6, over[..., :3] / alpha, 0.0)
+    straight = np.clip(np.nan_to_num(straight), 0.0, 1.0)
+    srgb = np.where(straight <= 0.0031308, straight * 12.92, 1.055 * np.power(straight, 1 / 2.4) - 0.055)
+    out = np.concatenate([srgb * alpha, alpha], axis=2)[::-1]
+    return np.ascontiguousarray(out, dtype=np.float32)
+
+
+# --- State shared by the callbacks -----------------------------------------------------------------------------
+
+_state = {"worker": None, "draw_handler": None, "timer": False, "version": 0, "submitted": {}, "status": {},
+          "redraw_ms": []}
+
+
+def settings_changed():
+    _state["version"] += 1
+    scene = bpy.context.scene
+    if _state["worker"] is not None and scene is not None and scene.spindrift.preview:
+        hide_own_drawing(scene)
+    _tag_redraw()
+
+
+def status(region_key=None):
+    """(message, frame ms) for the panel: the last region's status when no key is given."""
+    statuses = _state["status"]
+    if region_key is None:
+        return next(reversed(statuses.values()), ("", None)) if statuses else ("", None)
+    return statuses.get(region_key, ("", None))
+
+
+def redraw_times_ms():
+    """The draw callback's recent main-thread times: dicts of total_ms, and read_depth_ms, job_ms (a new
+    frame handed to the worker), texture (a new image uploaded), draw_ms where they happened."""
+    return list(_state["redraw_ms"])
+
+
+def _tag_redraw():
+    window_manager = bpy.context.window_manager if bpy.context else None
+    if window_manager is None:
+        return
+    for window in window_manager.windows:
+        for area in window.screen.areas:
+            if area.type == "VIEW_3D":
+                area.tag_redraw()
+
+
+def _poll():
+    worker = _state["worker"]
+    if worker is None:
+        _state["timer"] = False
+        return None
+    if worker.take_fresh():
+        _tag_redraw()
+    return TIMER_INTERVAL
+
+
+# --- Building a job on the main thread -------------------------------------------------------------------------
+
+def preview_size(region_width, region_height, scale):
+    width, height = int(region_width * scale), int(region_height * scale)
+    if width < 1 or height < 1:
+        raise BadInput(f"the viewport is {region_width}x{region_height} pixels: too small to preview at scale "
+                       f"{scale:g}")
+    return width, height
+
+
+def screen_rect(points, perspective, region_width, region_height, margin=8):
+    """The region's pixel rectangle (x, y, width, height) covering `points` (N,3 world) as seen through
+    `perspective` (window_matrix @ view_matrix), or the whole region when a point is behind the eye."""
+    if len(points) == 0:
+        return None
+    homogeneous = np.concatenate([points, np.ones((len(points), 1))], axis=1) @ np.asarray(perspective).T
+    if (homogeneous[:, 3] <= 1e-6).any():
+        return 0, 0, region_width, region_height
+    ndc = homogeneous[:, :2] / homogeneous[:, 3:4]
+    x0 = int(np.floor((ndc[:, 0].min() + 1) / 2 * region_width)) - margin
+    x1 = int(np.ceil((ndc[:, 0].max() + 1) / 2 * region_width)) + margin
+    y0 = int(np.floor((ndc[:, 1].min() + 1) / 2 * region_height)) - margin
+    y1 = int(np.ceil((ndc[:, 1].max() + 1) / 2 * region_height)) + margin
+    x0, y0 = max(x0, 0), max(y0, 0)
+    x1, y1 = min(x1, region_width), min(y1, region_height)
+    if x1 <= x0 or y1 <= y0:
+        return None
+    return x0, y0, x1 - x0, y1 - y0
+
+
+_depth_buffers = {}
+
+
+def read_depth_samples(region_width, region_height, width, height, rect):
+    """The viewport's window depth at the preview's pixel centres (rows top first), read only inside `rect`
+    (the screen box of what Spindrift draws; 1.0, nothing, elsewhere). Reading the whole 1280x800 depth costs
+    llvmpipe 12-27 ms and more under load; the liquid's box is usually a fraction of it. Reads into a reused
+    1-D gpu Buffer: its numpy view is exact, multi-dimensional Buffers have wrong strides (environment notes)."""
+    samples = np.ones((height, width), dtype=np.float32)
+    if rect is None:
+        return samples
+    x0, y0, rect_width, rect_height = rect
+    buffer = _depth_buffers.get((rect_width, rect_height))
+    if buffer is None:
+        _depth_buffers.clear()
+        buffer = _depth_buffers[(rect_width, rect_height)] = gpu.types.Buffer("FLOAT", rect_width * rect_height)
+    gpu.state.active_framebuffer_get().read_depth(x0, y0, rect_width, rect_height, data=buffer)
+    depth = np.asarray(buffer).reshape(rect_height, rect_width)
+    rows = ((np.arange(height) + 0.5) * region_height / height).astype(np.int64)[::-1] - y0
+    columns = ((np.arange(width) + 0.5) * region_width / width).astype(np.int64) - x0
+    row_inside = (rows >= 0) & (rows < rect_height)
+    column_inside = (columns >= 0) & (columns < rect_width)
+    samples[np.ix_(row_inside, column_inside)] = depth[np.ix_(rows[row_inside], columns[column_inside])]
+    return samples
+
+
+def preview_background_depth(window_depth, projection, camera, left, bottom):
+    """On the worker: planar eye depth for the preview's camera, padded with 'far' where an off-centre view's
+    larger camera reaches beyond the region. Rows top first."""
+    depth = scene_json.planar_depth(window_depth, projection)
+    height, width = depth.shape
+    full = np.full((camera["height"], camera["width"]), scene_json.FAR_DEPTH, dtype=np.float32)
+    x0, y0 = int(round(left)), int(round(bottom))
+    top = camera["height"] - y0 - height
+    full[top:top + height, x0:x0 + width] = depth
+    return full
+
+
+def build_job(context, region, region_data, key, phases):
+    scene = context.scene
+    settings = scene.spindrift
+    width, height = preview_size(region.width, region.height, settings.preview_scale)
+    projection = [list(row) for row in region_data.window_matrix]
+    camera, (left, bottom) = scene_json.camera_description(
+        width, height, region_data.view_matrix.inverted(), projection)
+    started = time.perf_counter()
+    inputs = frame_inputs.collect(scene, context.evaluated_depsgraph_get(), scene.frame_current, camera,
+                                  occluders=False, quality=settings.preview_quality, for_render=False,
+                                  mode="OVER")
+    perspective = np.asarray(projection) @ np.asarray([list(row) for row in region_data.view_matrix])
+    rect = screen_rect(export.frame_bounds(scene, inputs), perspective, region.width, region.height)
+    depth_started = time.perf_counter()
+    window_depth = read_depth_samples(region.width, region.height, width, height, rect)
+    phases["read_depth_ms"] = (time.perf_counter() - depth_started) * 1000
+    phases["depth_rect"] = rect
+    job = Job(key, inputs, (-round(left) * region.width / width, -round(bottom) * region.height / height),
+              region.width / width)
+    job.depth = (window_depth, projection, camera, left, bottom)
+    phases["job_ms"] = (time.perf_counter() - started) * 1000
+    return job
+
+
+def _view_key(context, region, region_data):
+    return (tuple(tuple(round(v, 6) for v in row) for row in region_data.view_matrix),
+            tuple(tuple(round(v, 6) for v in row) for row in region_data.window_matrix),
+            region.width, region.height, context.scene.frame_current, _state["version"])
+
+
+def draw():
+    started = time.perf_counter()
+    context = bpy.context
+    region, region_data = context.region, context.region_data
+    worker = _state["worker"]
+    if worker is None or region is None or region_data is None or not context.scene.spindrift.preview:
+        return
+    region_key = region.as_pointer()
+    phases = {}
+    try:
+        key = _view_key(context, region, region_data)
+        if _state["submitted"].get(region_key) != key and worker.idle(region_key):
+            _state["submitted"][region_key] = key
+            job = build_job(context, region, region_data, key, phases)
+            for issue in job.inputs.issues:
+                reports.warn(f"viewport: {issue}")
+            worker.submit(region_key, job)
+    except BadInput as error:
+        _state["status"][region_key] = (str(error), None)
+    except Exception as error:  # noqa: BLE001 - a draw callback must never raise into Blender's drawing
+        _state["status"][region_key] = (f"{type(error).__name__}: {error}", None)
+
+    image = worker.latest(region_key)
+    if isinstance(image, str):
+        _state["status"][region_key] = (image, None)
+    elif image is not None:
+        drawn = time.perf_counter()
+        try:
+            _draw_image(image, phases)
+        except Exception as error:  # noqa: BLE001 - never raise into Blender's drawing
+            _state["worker"]._finished[region_key] = f"{type(error).__name__}: {error}"
+            return
+        phases["draw_ms"] = (time.perf_counter() - drawn) * 1000
+        _state["status"][region_key] = (f"{image.width}x{image.height}", image.seconds * 1000)
+    phases["total_ms"] = (time.perf_counter() - started) * 1000
+    _state["redraw_ms"] = (_state["redraw_ms"] + [phases])[-200:]
+
+
+def _draw_image(image, phases):
+    if image.texture is None:
+        phases["texture"] = True
+        # gpu.types.GPUTexture takes FLOAT buffers only (Blender 3.4); the overlay it is drawn into is 8-bit.
+        buffer = gpu.types.Buffer("FLOAT", image.pixels.size, image.pixels.ravel())
+        image.texture = gpu.types.GPUTexture((image.width, image.height), format="RGBA8", data=buffer)
+    gpu.state.blend_set("ALPHA_PREMULT")
+    gpu.state.depth_test_set("NONE")
+    draw_texture_2d(image.texture, image.offset, image.width * image.scale, image.height * image.scale)
+    gpu.state.blend_set("NONE")
+
+
+# --- Switching on and off --------------------------------------------------------------------------------------
+
+# The preview's occlusion reads the viewport's depth, so what Blender itself draws of the liquid (a domain's
+# mesh drawn solid, its particles as points) would hide Spindrift's liquid behind its own stand-in. While the
+# preview is on, enabled objects draw as wire and their particles not at all; the originals come back after.
+SAVED_DISPLAY = "spindrift_saved_display"
+
+
+def hide_own_drawing(scene):
+    for obj in export.enabled_objects(scene):
+        if SAVED_DISPLAY in obj:
+            continue
+        saved = {"display_type": obj.display_type,
+                 "particles": {system.settings.name: system.settings.display_method
+                               for system in obj.particle_systems}}
+        obj[SAVED_DISPLAY] = repr(saved)
+        if obj.display_type in ("SOLID", "TEXTURED"):
+            obj.display_type = "WIRE"
+        for system in obj.particle_systems:
+            system.settings.display_method = "NONE"
+
+
+def restore_own_drawing():
+    import ast
+
+    for obj in bpy.data.objects:
+        if SAVED_DISPLAY not in obj:
+            continue
+        saved = ast.literal_eval(obj[SAVED_DISPLAY])
+        del obj[SAVED_DISPLAY]
+        obj.display_type = saved["display_type"]
+        for system in obj.particle_systems:
+            method = saved["particles"].get(system.settings.name)
+            if method is not None:
+                system.settings.display_method = method
+
+
+def enable(on):
+    if on:
+        for scene in bpy.data.scenes:
+            if scene.spindrift.preview:
+                hide_own_drawing(scene)
+        if _state["worker"] is None:
+            _state["worker"] = Worker()
+        if _state["draw_handler"] is None:
+            _state["draw_handler"] = bpy.types.SpaceView3D.draw_handler_add(draw, (), "WINDOW", "POST_PIXEL")
+        if not _state["timer"]:
+            bpy.app.timers.register(_poll, first_interval=TIMER_INTERVAL, persistent=True)
+            _state["timer"] = True
+    elif not any(scene.spindrift.preview for scene in bpy.data.scenes):
+        shutdown()
+    _tag_redraw()
+
+
+def shutdown():
+    restore_own_drawing()
+    if _state["draw_handler"] is not None:
+        bpy.types.SpaceView3D.draw_handler_remove(_state["draw_handler"], "WINDOW")
+        _state["draw_handler"] = None
+    if _state["worker"] is not None:
+        _state["worker"].stop()
+        _state["worker"] = None
+    if _state["timer"] and bpy.app.timers.is_registered(_poll):
+        bpy.app.timers.unregister(_poll)
+    _state["timer"] = False
+    _state["submitted"].clear()
+
+
+def on_depsgraph_update(_scene, _depsgraph=None):
+    _state["version"] += 1
+
+
+def register():
+    bpy.app.handlers.depsgraph_update_post.append(on_depsgraph_update)
+
+
+def unregister():
+    if on_depsgraph_update in bpy.app.handlers.depsgraph_update_post:
+        bpy.app.handlers.depsgraph_update_post.remove(on_depsgraph_update)
+    shutdown()

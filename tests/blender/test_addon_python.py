@@ -1,0 +1,229 @@
+"""Plain-Python tests of the add-on's pure parts (no Blender, no native module): properties generated from the
+parameter table, Mantaflow's cache-to-world formula, cameras from projection matrices, viewport depth.
+
+Run: /usr/bin/python3 -m pytest -q tests/blender/test_addon_python.py
+"""
+
+import importlib.util
+import math
+import pathlib
+import re
+
+import numpy as np
+import pytest
+
+ROOT = pathlib.Path(__file__).resolve().parents[2]
+ADDON = ROOT / "addon" / "spindrift"
+
+
+def load(name):
+    spec = importlib.util.spec_from_file_location(f"spindrift_{name}", ADDON / f"{name}.py")
+    module = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(module)
+    return module
+
+
+parameters = load("parameters")
+scene_json = load("scene_json")
+
+
+# --- The parameter table, read from parameters.def independently of the native module ------------------------
+
+def table_from_def():
+    """Rows of parameters.def as `_spindrift.parameter_table()` promises them (docs/python-module.md)."""
+    text = (ROOT / "native/include/spindrift/parameters.def").read_text()
+    rows = []
+    pattern = re.compile(r'X\((liquid|foam),\s*(\w+),\s*(\w+),\s*\(([^)]*)\),\s*([-\d.e+]+),\s*([-\d.e+]+),\s*"([^"]*)"')
+    for group, name, kind, default, low, high, choices in pattern.findall(text):
+        kind = kind.lower()
+        values = [v.strip().rstrip("f").strip('"') for v in default.split(",")]
+        if kind in ("color", "vec3"):
+            value = tuple(float(v) for v in values)
+        elif kind == "float":
+            value = float(values[0])
+        elif kind == "int":
+            value = int(values[0])
+        elif kind == "bool":
+            value = values[0] == "true"
+        else:
+            value = values[0]
+        rows.append({"group": group, "name": name, "type": kind, "default": value, "min": float(low),
+                     "max": float(high), "choices": choices.split("|") if choices else [], "doc": "doc " + name})
+    return rows
+
+
+class FakeProps:
+    """Stands in for bpy.props: each constructor returns (constructor name, keywords)."""
+
+    def __getattr__(self, name):
+        return lambda **keywords: (name, keywords)
+
+
+def test_every_parameter_becomes_a_property_of_its_type():
+    table = table_from_def()
+    assert len(table) > 40
+    expected = {"float": "FloatProperty", "int": "IntProperty", "bool": "BoolProperty",
+                "color": "FloatVectorProperty", "vec3": "FloatVectorProperty", "choice": "EnumProperty"}
+    for group in ("liquid", "foam"):
+        definitions = parameters.property_definitions(table, group, FakeProps())
+        rows = [row for row in table if row["group"] == group]
+        assert list(definitions) == [row["name"] for row in rows]
+        for row in rows:
+            constructor, keywords = definitions[row["name"]]
+            assert constructor == expected[row["type"]], row["name"]
+            assert keywords["description"] == row["doc"]
+            if row["type"] in ("float", "int"):
+                assert keywords["min"] == row["min"] and keywords["max"] == row["max"], row["name"]
+                assert keywords["min"] <= keywords["default"] <= keywords["max"], row["name"]
+            if row["type"] == "choice":
+                assert [item[0] for item in keywords["items"]] == row["choices"]
+                assert keywords["default"] == row["default"]
+            if row["type"] == "color":
+                assert keywords["subtype"] == "COLOR" and keywords["size"] == 3
+
+
+def test_known_rows_keep_their_defaults():
+    table = table_from_def()
+    definitions = parameters.property_definitions(table, "liquid", FakeProps())
+    assert definitions["ior"][1]["default"] == pytest.approx(1.33)
+    assert definitions["max_refractions"][1]["default"] == 4
+    assert definitions["absorption_rgb"][1]["default"] == pytest.approx((0.9, 0.3, 0.15))
+    assert definitions["smoothing"][1]["default"] == "plane_fit"
+
+
+def test_bad_rows_are_rejected_by_name():
+    row = {"group": "liquid", "name": "odd", "type": "matrix", "default": 0, "min": 0, "max": 1, "choices": [],
+           "doc": ""}
+    with pytest.raises(ValueError, match="liquid.odd: unknown type 'matrix'"):
+        parameters.property_definition(row, FakeProps())
+    row.update(type="choice", default="c", choices=["a", "b"])
+    with pytest.raises(ValueError, match="default 'c' is not one of"):
+        parameters.property_definition(row, FakeProps())
+    with pytest.raises(ValueError, match="no rows in group 'water'"):
+        parameters.property_definitions(table_from_def(), "water", FakeProps())
+
+
+def test_scene_file_values_are_only_the_changed_ones():
+    table = table_from_def()
+
+    class Settings:
+        pass
+
+    settings = Settings()
+    for row in table:
+        if row["group"] == "liquid":
+            setattr(settings, row["name"], row["default"])
+    # Blender stores floats in single precision: a default read back as float32 is still the default.
+    settings.ior = float(np.float32(1.33))
+    assert parameters.group_values(table, "liquid", settings) == {}
+    settings.ior = 1.5
+    settings.absorption_rgb = (0.1, 0.2, 0.3)
+    settings.smoothing = "bilateral"
+    values = parameters.group_values(table, "liquid", settings)
+    assert values == {"ior": 1.5, "absorption_rgb": [0.1, 0.2, 0.3], "smoothing": "bilateral"}
+    assert all(type(v) in (float, list, str) for v in values.values())
+
+
+# --- Mantaflow's grid ------------------------------------------------------------------------------------------
+
+def test_unscaled_cube_maps_cache_origin_to_its_minimum_corner():
+    # docs/mantaflow-caches.md: a cube of size 2 centred at (0, 0, 1) stores positions 0.05..1.95.
+    matrix = np.identity(4)
+    matrix[:3, 3] = (0, 0, 1)
+    world_from_file, dx, resolution = scene_json.mantaflow_grid((-1, -1, -1), (1, 1, 1), (1, 1, 1), matrix, 32)
+    assert dx == pytest.approx(2 / 32)
+    assert resolution == [32, 32, 32]
+    assert world_from_file @ np.array([0.05, 0.05, 0.05, 1]) == pytest.approx([-0.95, -0.95, 0.05, 1])
+
+
+def test_scaled_domains_give_blenders_resolution():
+    # The two domains of tests/fixtures/bake_blender_reference.py; Blender reported these resolutions.
+    for scale, expected in (((1.5, 1.1, 0.7), [24, 18, 11]), ((1.2, 1.45, 0.85), [20, 24, 14])):
+        _, dx, resolution = scene_json.mantaflow_grid((-1, -1, -1), (1, 1, 1), scale, np.identity(4), 24)
+        assert resolution == expected
+        assert dx == pytest.approx(2 * max(scale) / 24)
+
+
+def test_rotated_scaled_domain_keeps_the_grid_centred_on_the_bound_box():
+    rotation = np.array([[0, -1, 0], [1, 0, 0], [0, 0, 1]], dtype=float)  # 90 degrees about z
+    scale = np.array([1.5, 1.1, 0.7])
+    matrix = np.identity(4)
+    matrix[:3, :3] = rotation * scale
+    matrix[:3, 3] = (3, -2, 1.5)
+    world_from_file, dx, resolution = scene_json.mantaflow_grid((-1, -1, -1), (1, 1, 1), scale, matrix, 24)
+    centre_in_file = np.array(resolution) * dx / 2  # the grid's centre, in scaled units
+    centre = world_from_file @ np.array([*centre_in_file, 1])
+    assert centre[:3] == pytest.approx([3, -2, 1.5], abs=1e-9)
+    # One cell along file x is dx world units along the rotated x axis (the scale is undone, then redone).
+    step = world_from_file @ np.array([*(centre_in_file + [dx, 0, 0]), 1]) - centre
+    assert np.linalg.norm(step[:3]) == pytest.approx(dx)
+    assert step[:3] / dx == pytest.approx(rotation[:, 0], abs=1e-9)
+
+
+def test_degenerate_domains_are_reported():
+    with pytest.raises(scene_json.BadInput, match="zero scale"):
+        scene_json.mantaflow_grid((-1, -1, -1), (1, 1, 1), (1, 0, 1), np.identity(4), 32)
+    with pytest.raises(scene_json.BadInput, match="no extent"):
+        scene_json.mantaflow_grid((0, 0, 0), (0, 0, 0), (1, 1, 1), np.identity(4), 32)
+
+
+def test_cache_paths_and_frame_numbers():
+    paths = scene_json.mantaflow_cache_paths("/tmp/cache/")
+    assert paths["liquid"] == "/tmp/cache/data/fluid_data_####.vdb"
+    assert scene_json.frame_path(paths["secondary"], 7) == "/tmp/cache/particles/fluid_particles_0007.vdb"
+    assert scene_json.frame_path("a_##.exr", 123) == "a_123.exr"
+
+
+# --- Cameras and depth -----------------------------------------------------------------------------------------
+
+def perspective(fov_y, aspect, near, far, shift=(0.0, 0.0)):
+    """OpenGL's perspective matrix, as Blender's window_matrix (with a lens shift in NDC)."""
+    f = 1 / math.tan(fov_y / 2)
+    return np.array([[f / aspect, 0, shift[0], 0], [0, f, shift[1], 0],
+                     [0, 0, (far + near) / (near - far), 2 * far * near / (near - far)], [0, 0, -1, 0]])
+
+
+def test_centred_projection_gives_the_same_camera():
+    projection = perspective(math.radians(40), 1280 / 800, 0.1, 100)
+    camera, window = scene_json.camera_description(1280, 800, np.identity(4), projection)
+    assert (camera["width"], camera["height"]) == (1280, 800)
+    assert camera["fov_y_deg"] == pytest.approx(40)
+    assert camera["near"] == pytest.approx(0.1) and camera["far"] == pytest.approx(100)
+    assert window == pytest.approx((0, 0))
+
+
+def test_offcentre_projection_is_covered_by_a_larger_symmetric_one():
+    width, height, fov = 400, 200, math.radians(30)
+    projection = perspective(fov, width / height, 0.1, 100, shift=(0.5, -0.25))
+    camera, (left, bottom) = scene_json.camera_description(width, height, np.identity(4), projection)
+    assert (camera["width"], camera["height"]) == (600, 250)
+    # Project a point with the wanted (off-centre) matrix and with the larger camera: same pixel.
+    point = np.array([0.3, -0.1, -2.0, 1.0])
+    clip = projection @ point
+    wanted = ((clip[0] / clip[3] + 1) / 2 * width, (clip[1] / clip[3] + 1) / 2 * height)
+    tan_y = math.tan(math.radians(camera["fov_y_deg"]) / 2)
+    tan_x = tan_y * camera["width"] / camera["height"]
+    full = ((point[0] / -point[2] / tan_x + 1) / 2 * camera["width"],
+            (point[1] / -point[2] / tan_y + 1) / 2 * camera["height"])
+    assert (full[0] - left, full[1] - bottom) == pytest.approx(wanted, abs=1e-6)
+
+
+def test_orthographic_and_empty_views_are_bad_input():
+    ortho = np.identity(4)
+    with pytest.raises(scene_json.BadInput, match="orthographic"):
+        scene_json.camera_description(100, 100, np.identity(4), ortho)
+    with pytest.raises(scene_json.BadInput, match="0x100 pixels"):
+        scene_json.camera_description(0, 100, np.identity(4), perspective(1, 1, 0.1, 10))
+
+
+def test_window_depth_becomes_planar_eye_depth():
+    near, far = 0.1, 50.0
+    projection = perspective(math.radians(50), 1.5, near, far)
+    eye_depth = np.array([[0.1, 0.5, 3.0], [10.0, 49.0, 1.0]])
+    clip_z = projection[2, 2] * -eye_depth + projection[2, 3]
+    window = (clip_z / eye_depth + 1) / 2
+    window_with_sky = np.concatenate([window, [[1.0, 1.0, 1.0]]])
+    depth = scene_json.planar_depth(window_with_sky.astype(np.float32), projection)
+    assert depth.dtype == np.float32
+    assert depth[:2] == pytest.approx(eye_depth, rel=2e-3)
+    assert (depth[2] == scene_json.FAR_DEPTH).all()

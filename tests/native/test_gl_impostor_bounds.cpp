@@ -1,0 +1,122 @@
+// The ellipsoid impostors' screen rectangles (ellipsoid_impostor.vert, tight bounds after Sigg et al. 2006)
+// never cut off a pixel of an ellipsoid: the front and back depth layers the GPU draws from the preparation's
+// own ellipsoids are compared, pixel by pixel, with a double-precision CPU ray cast of every ellipsoid against
+// every pixel (drawing all of them everywhere). Anisotropic, flattened ellipsoids at a grazing view are the
+// case the rectangles shrink most.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <random>
+#include <vector>
+
+#include <glm/glm.hpp>
+
+#include "LiquidTestScenes.h"
+#include "prep/LiquidPreparation.h"
+#include "spindrift/Renderer.h"
+
+using namespace spindrift;
+
+namespace {
+
+struct CpuLayers {
+  std::vector<double> front, back;  // planar eye depth; 1e10 where empty
+  std::vector<bool> ambiguous;      // a ray that grazes a silhouette, where float and double may differ
+};
+
+// Casts each pixel centre's ray against every ellipsoid: nearest entry (front) and farthest exit (back).
+CpuLayers rayCast(const std::vector<EllipsoidInstance>& ellipsoids, const Camera& camera) {
+  const int width = camera.width, height = camera.height;
+  CpuLayers layers{std::vector<double>(std::size_t(width) * height, 1e10),
+                   std::vector<double>(std::size_t(width) * height, 1e10),
+                   std::vector<bool>(std::size_t(width) * height, false)};
+  const glm::dvec3 origin = glm::dvec3(camera.position());
+  for (int row = 0; row < height; ++row)
+    for (int column = 0; column < width; ++column) {
+      // A direction whose planar eye depth grows by one per unit of t.
+      const glm::dvec3 direction =
+          glm::dvec3(camera.worldFromPixelAndDepth({column + 0.5f, row + 0.5f}, 1.0f)) - origin;
+      const std::size_t index = std::size_t(row) * width + column;
+      double nearest = 1e10, farthest = -1.0;
+      for (const EllipsoidInstance& ellipsoid : ellipsoids) {
+        const glm::dmat3 inverseAxes = glm::transpose(glm::dmat3(glm::dvec3(ellipsoid.inverseAxesRows[0]),
+                                                                 glm::dvec3(ellipsoid.inverseAxesRows[1]),
+                                                                 glm::dvec3(ellipsoid.inverseAxesRows[2])));
+        const glm::dvec3 o = inverseAxes * (origin - glm::dvec3(ellipsoid.centreAndBoundingRadius));
+        const glm::dvec3 d = inverseAxes * direction;
+        const double a = glm::dot(d, d), closest = -glm::dot(o, d) / a;
+        const glm::dvec3 closestPoint = o + closest * d;
+        const double miss = 1.0 - glm::dot(closestPoint, closestPoint);  // > 0: the ray enters
+        if (std::abs(miss) < 2e-3) layers.ambiguous[index] = true;
+        if (miss < 0.0) continue;
+        const double halfChord = std::sqrt(miss / a);
+        nearest = std::min(nearest, closest - halfChord);
+        farthest = std::max(farthest, closest + halfChord);
+      }
+      if (nearest < 1e10) {
+        layers.front[index] = nearest;
+        layers.back[index] = farthest;
+      }
+    }
+  return layers;
+}
+
+// A wavy sheet of liquid four particles thick with jitter: its surface particles become flattened ellipsoids.
+Particles wavySheet() {
+  std::mt19937 random(7);
+  std::uniform_real_distribution<float> jitter(-0.004f, 0.004f);
+  std::vector<glm::vec3> positions;
+  const float spacing = 0.02f;
+  for (int i = 0; i < 40; ++i)
+    for (int j = 0; j < 40; ++j)
+      for (int k = 0; k < 4; ++k) {
+        const float x = -0.4f + i * spacing, y = -0.4f + j * spacing;
+        const float z = 0.05f * std::sin(6.0f * x) * std::cos(5.0f * y) + k * spacing;
+        positions.emplace_back(x + jitter(random), y + jitter(random), z + jitter(random));
+      }
+  return liquid_test::particlesOf(positions, 0.02f);
+}
+
+}  // namespace
+
+TEST(GLImpostorBounds, TightRectanglesLoseNoPixelOfAnyEllipsoid) {
+  Scene scene;
+  scene.camera = Camera::lookAt(160, 120, 40.0f, {0.0f, -1.3f, 0.35f}, {0.0f, 0.0f, 0.0f}, {0.0f, 0.0f, 1.0f});
+  scene.camera.nearClip = 0.05f;
+  scene.camera.farClip = 20.0f;
+  const Particles particles = wavySheet();
+  const LiquidPreparation preparation = prepareLiquid(particles, scene.camera, scene.parameters.liquid);
+  ASSERT_GT(preparation.aggregates.size(), 1000u);
+
+  Renderer renderer;
+  renderer.setIntermediateLayers(true);
+  renderer.setLayers({"depth"});
+  const RenderResult result = renderer.renderParticles(scene, particles, 1);
+  const ImageLayer* front = result.layer("aggregate_front_depth");
+  const ImageLayer* back = result.layer("aggregate_back_depth");
+  ASSERT_NE(front, nullptr);
+  ASSERT_NE(back, nullptr);
+  const CpuLayers reference = rayCast(preparation.aggregates, scene.camera);
+
+  std::size_t covered = 0, lost = 0, extra = 0, frontMismatch = 0, backMismatch = 0, compared = 0;
+  for (std::size_t i = 0; i < reference.front.size(); ++i) {
+    ASSERT_TRUE(std::isfinite(front->pixels[i]) && std::isfinite(back->pixels[i]));
+    if (reference.ambiguous[i]) continue;
+    const bool cpuCovered = reference.front[i] < 1e9, gpuCovered = front->pixels[i] < 1e9f;
+    covered += cpuCovered;
+    lost += cpuCovered && !gpuCovered;
+    extra += !cpuCovered && gpuCovered;
+    if (cpuCovered && gpuCovered) {
+      ++compared;
+      frontMismatch += std::abs(front->pixels[i] - reference.front[i]) > 1e-4 * reference.front[i];
+      backMismatch += std::abs(back->pixels[i] - reference.back[i]) > 1e-4 * reference.back[i];
+    }
+  }
+  RecordProperty("covered_pixels", int(covered));
+  EXPECT_GT(covered, 2000u) << "the sheet fills much of the view";
+  EXPECT_EQ(lost, 0u) << "pixels an ellipsoid covers that the impostors did not draw";
+  EXPECT_EQ(extra, 0u);
+  // Two ellipsoids whose surfaces cross within float precision may swap; nothing else may differ.
+  EXPECT_LE(frontMismatch, compared / 500) << frontMismatch << " of " << compared;
+  EXPECT_LE(backMismatch, compared / 500) << backMismatch << " of " << compared;
+}

@@ -1,0 +1,254 @@
+// The ray-marched surface (liquid.surface = raymarch, docs/raymarch.md) on llvmpipe-sized scenes: the binary
+// density grid against a brute-force CPU density, adaptive against uniform stepping, tile resolutions of flat
+// and splashing water, a one-particle-thick sheet, a lone particle against the analytic sphere, and
+// degenerate frames.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <random>
+
+#include "LiquidTestScenes.h"
+#include "RaymarchGridCheck.h"
+
+using namespace spindrift;
+using liquid_test::at;
+using liquid_test::block;
+using liquid_test::particlesOf;
+
+namespace {
+
+constexpr float kRadius = 0.05f;  // particle radius r; the blocks' spacing is r, as in Mantaflow's caches
+constexpr int kWidth = 96, kHeight = 72;
+
+Scene raymarchScene(const glm::vec3& eye, const glm::vec3& target) {
+  Scene scene;
+  scene.camera = Camera::lookAt(kWidth, kHeight, 40.0f, eye, target, {0, 0, 1});
+  scene.background.color = {0.2f, 0.3f, 0.4f};
+  scene.parameters.liquid.surface = "raymarch";
+  return scene;
+}
+
+std::vector<glm::vec3> randomPoints(std::size_t count, const glm::vec3& low, const glm::vec3& high,
+                                    unsigned seed) {
+  std::mt19937 generator(seed);
+  std::uniform_real_distribution<float> unit(0.0f, 1.0f);
+  std::vector<glm::vec3> points;
+  for (std::size_t i = 0; i < count; ++i)
+    points.push_back(low + (high - low) * glm::vec3(unit(generator), unit(generator), unit(generator)));
+  return points;
+}
+
+// A pool 1 x 1 x 0.15 and droplets above it, so that rays pass splashes on their way to the body.
+std::vector<glm::vec3> poolWithDroplets() {
+  std::vector<glm::vec3> positions = block({-0.5f, -0.5f, -0.15f}, {0.5f, 0.5f, 0.0f}, kRadius);
+  for (const glm::vec3& p : randomPoints(60, {-0.4f, -0.4f, 0.15f}, {0.4f, 0.4f, 0.6f}, 7))
+    positions.push_back(p);
+  return positions;
+}
+
+RenderResult render(const Scene& scene, const std::vector<glm::vec3>& positions) {
+  return liquid_test::renderer().renderParticles(scene, particlesOf(positions, kRadius), 1);
+}
+
+float depthAt(const RenderResult& result, int column, int row) {
+  return at(*result.layer("depth"), result.width, column, row, 0);
+}
+
+std::vector<glm::vec4> withRadius(const std::vector<glm::vec3>& positions) {
+  std::vector<glm::vec4> particles;
+  for (const glm::vec3& p : positions)
+    particles.emplace_back(p, kRadius);
+  return particles;
+}
+
+}  // namespace
+
+TEST(GLRaymarch, DensityGridIsConservativeOnRandomParticles) {
+  LiquidParameters parameters;
+  const float h = parameters.raymarch_smoothing_radius * kRadius;
+  // Sparse enough that many cells hold one or two particles, where a too-small kernel weight shows.
+  const auto particles = withRadius(randomPoints(1500, glm::vec3(0.0f), glm::vec3(1.2f), 3));
+  const raymarch_test::GridCheck check = raymarch_test::checkDensityGrid(particles, h, parameters);
+  EXPECT_GT(check.crossingCells, 500u) << "the iso-surface crosses many cells";
+  EXPECT_LT(check.markedCells, check.cells) << "some cells are empty, else the grid skips nothing";
+  EXPECT_EQ(check.missedCells, 0u) << "a cell marked 0 holds density at or above the iso-value";
+
+  // The check has teeth: with b^3 below the iso-value, lone particles near a cell's corner are missed.
+  parameters.raymarch_kernel_side = 0.5f;
+  EXPECT_GT(raymarch_test::checkDensityGrid(particles, h, parameters).missedCells, 0u);
+}
+
+TEST(GLRaymarch, AdaptiveSteppingFindsTheUniformSurfaceInFewerSteps) {
+  Scene scene = raymarchScene({0.0f, -1.6f, 1.0f}, {0.0f, 0.0f, 0.1f});
+  scene.parameters.liquid.raymarch_resolution = "full";
+  // With the default iso-value a droplet's iso-surface is its drawn sphere, so every ray that enters one hits
+  // it at once and no ray crosses empty space. An iso-value above one particle's peak (droplets vanish) makes
+  // the rays that enter at a droplet travel on to the pool, as the paper's splashes do; the all-ones kernel
+  // of equation 4 keeps the grid conservative at any iso-value.
+  scene.parameters.liquid.raymarch_iso = 1.5f;
+  scene.parameters.liquid.raymarch_kernel_centre = 1.0f;
+  scene.parameters.liquid.raymarch_kernel_side = 1.0f;
+  const std::vector<glm::vec3> positions = poolWithDroplets();
+  scene.parameters.liquid.raymarch_stepping = "uniform";
+  const RenderResult uniform = render(scene, positions);
+  scene.parameters.liquid.raymarch_stepping = "adaptive";
+  const RenderResult adaptive = render(scene, positions);
+
+  int both = 0, onlyOne = 0, far = 0;
+  for (int row = 0; row < kHeight; ++row)
+    for (int column = 0; column < kWidth; ++column) {
+      const float a = depthAt(adaptive, column, row), u = depthAt(uniform, column, row);
+      const bool hitA = a < 1e9f, hitU = u < 1e9f;
+      if (hitA != hitU) ++onlyOne;
+      if (!hitA || !hitU) continue;
+      ++both;
+      far += std::abs(a - u) > 0.25f * kRadius;
+    }
+  ASSERT_GT(both, 2000);
+  // The adaptive ray jumps to D_agg after max_skip_steps, and a uniform step may pass the grazing edge of a
+  // droplet: a few pixels may differ, no more.
+  EXPECT_LT(far, both / 100) << "pixels whose depths differ by more than 0.25 r";
+  EXPECT_LT(onlyOne, both / 100) << "pixels where only one of the two found the surface";
+  const RaymarchFrameStats& a = adaptive.stats.raymarch;
+  const RaymarchFrameStats& u = uniform.stats.raymarch;
+  ASSERT_TRUE(a.enabled && u.enabled);
+  EXPECT_EQ(a.raysCast, u.raysCast) << "full resolution: the same rays";
+  // Measured 5.98 against 6.46 steps per ray: most rays reach the pool within a few steps either way.
+  EXPECT_LT(a.totalSteps, u.totalSteps)
+      << "adaptive " << a.averageStepsPerRay << " steps per ray, uniform " << u.averageStepsPerRay;
+}
+
+TEST(GLRaymarch, FlatWaterUsesLowerTileResolutionsThanASplash) {
+  // The same camera over a flat pool and over a rough, splashing one: both cover the whole frame.
+  const Scene scene = raymarchScene({0.0f, -0.5f, 1.0f}, {0.0f, 0.0f, 0.0f});
+  const RenderResult flat = render(scene, block({-1.0f, -1.0f, -0.1f}, {1.0f, 1.0f, 0.0f}, kRadius));
+  std::vector<glm::vec3> rough = block({-1.0f, -1.0f, -0.1f}, {1.0f, 1.0f, 0.0f}, kRadius);
+  for (const glm::vec3& p : randomPoints(1500, {-1.0f, -1.0f, 0.0f}, {1.0f, 1.0f, 0.25f}, 11))
+    rough.push_back(p);
+  const RenderResult splash = render(scene, rough);
+  auto raysPerLiquidTile = [](const RaymarchFrameStats& stats) {
+    const double tiles = double(stats.tiles[0] + stats.tiles[1] + stats.tiles[2]);
+    return (stats.tiles[0] + stats.tiles[1] / 4.0 + stats.tiles[2] / 16.0) / tiles;
+  };
+  const RaymarchFrameStats& f = flat.stats.raymarch;
+  const RaymarchFrameStats& s = splash.stats.raymarch;
+  EXPECT_EQ(f.tiles[3], 0u) << "the pool fills the frame";
+  EXPECT_GT(f.tiles[2], f.tiles[0]) << "flat water: more quarter- than full-resolution tiles";
+  EXPECT_GT(s.tiles[0], f.tiles[0]);
+  EXPECT_LT(raysPerLiquidTile(f), 0.5 * raysPerLiquidTile(s));
+  EXPECT_LT(f.raysCast, s.raysCast);
+}
+
+TEST(GLRaymarch, LoneParticleIsASphereOfItsRadius) {
+  // liquid.raymarch_iso = 0.42 with h = 2 r puts a lone particle's surface at r: (1 - 0.5^2)^3 = 0.42.
+  Scene scene = raymarchScene({0.0f, -1.0f, 0.0f}, {0.0f, 0.0f, 0.0f});
+  liquid_test::renderer().setIntermediateLayers(true);
+  const RenderResult result = render(scene, {glm::vec3(0.0f)});
+  liquid_test::renderer().setIntermediateLayers(false);
+  liquid_test::expectAllChannelsFinite(result);
+  for (const char* layer : {"raymarch_steps", "raymarch_ray_spacing", "raymarch_entry_depth"})
+    EXPECT_NE(result.layer(layer), nullptr) << layer;
+  // The pixel centres around the image centre look straight at the particle: depth 1 - r, within the
+  // bisection's resolution (step / 2^6) plus the iso-value's rounding.
+  double worst = 0.0;
+  for (int row = kHeight / 2 - 1; row <= kHeight / 2; ++row)
+    for (int column = kWidth / 2 - 1; column <= kWidth / 2; ++column)
+      worst = std::max(worst, std::abs(double(depthAt(result, column, row)) - (1.0 - kRadius)));
+  EXPECT_LT(worst, 0.03 * kRadius);
+  // D_all is the drawn sphere of radius r, and the iso-surface lies 0.2 % outside it: every ray hits.
+  EXPECT_GT(result.stats.raymarch.raysCast, 50u);  // the sphere is about 5 pixels in radius
+  EXPECT_EQ(result.stats.raymarch.hits, result.stats.raymarch.raysCast);
+}
+
+TEST(GLRaymarch, EmptyFrameAndCulledParticlesRenderWithoutNaN) {
+  const Scene scene = raymarchScene({0.0f, -1.0f, 0.0f}, {0.0f, 0.0f, 0.0f});
+  liquid_test::renderer().setIntermediateLayers(true);
+  const RenderResult empty = render(scene, {});
+  const RenderResult behind = render(scene, {glm::vec3(0.0f, -3.0f, 0.0f)});
+  liquid_test::renderer().setIntermediateLayers(false);
+  for (const RenderResult* result : {&empty, &behind}) {
+    liquid_test::expectAllChannelsFinite(*result);
+    EXPECT_EQ(result->stats.raymarch.raysCast, 0u);
+    const ImageLayer& depth = *result->layer("depth");
+    for (float value : depth.pixels)
+      ASSERT_EQ(value, 1e10f);
+  }
+}
+
+namespace {
+
+// The named scene "one-particle-thick sheet": one layer of particles 1.6 r apart (a sheet stretched thin in a
+// splash) in the plane through the origin spanned by x and (0, cos 0.7, sin 0.7), 1 x 1.
+constexpr float kSheetTilt = 0.7f, kSheetSpacing = 1.6f * kRadius;
+
+std::vector<glm::vec3> oneParticleThickSheet() {
+  std::vector<glm::vec3> positions;
+  for (float u = -0.5f; u <= 0.5f + 1e-6f; u += kSheetSpacing)
+    for (float v = -0.5f; v <= 0.5f + 1e-6f; v += kSheetSpacing)
+      positions.emplace_back(u, v * std::cos(kSheetTilt), v * std::sin(kSheetTilt));
+  return positions;
+}
+
+struct SheetCoverage {
+  int inside = 0;          ///< Pixels whose ray meets the sheet's interior (analytic, inset by r).
+  int covered = 0;         ///< Of those, pixels with liquid.
+  double medianAngle = 0;  ///< Median angle between the rendered normal and the plane's, degrees.
+};
+
+SheetCoverage sheetCoverage(const Scene& scene, const RenderResult& result) {
+  const Camera& camera = scene.camera;
+  const glm::dvec3 planeNormal(0.0, -std::sin(kSheetTilt), std::cos(kSheetTilt));
+  const glm::dvec3 along(0.0, std::cos(kSheetTilt), std::sin(kSheetTilt));
+  const glm::dvec3 eye(camera.worldFromCamera[3]);
+  const double tanHalfY = std::tan(glm::radians(double(camera.fovYDegrees)) * 0.5);
+  const double tanHalfX = tanHalfY * double(camera.width) / double(camera.height);
+  const double last =
+      -0.5 + std::floor(1.0 / kSheetSpacing + 1e-6) * kSheetSpacing;  // the last row's coordinate
+  SheetCoverage coverage;
+  std::vector<double> angles;
+  for (int row = 0; row < camera.height; ++row)
+    for (int column = 0; column < camera.width; ++column) {
+      const glm::dvec3 cameraRay((column + 0.5) / camera.width * 2.0 - 1.0,
+                                 1.0 - (row + 0.5) / camera.height * 2.0, -1.0);
+      const glm::dvec3 ray =
+          glm::dmat3(camera.worldFromCamera) * (cameraRay * glm::dvec3(tanHalfX, tanHalfY, 1.0));
+      const double t = -glm::dot(eye, planeNormal) / glm::dot(ray, planeNormal);
+      const glm::dvec3 hit = eye + t * ray;
+      const double u = hit.x, v = glm::dot(hit, along);
+      if (t <= 0.0 || u < -0.5 + kRadius || u > last - kRadius || v < -0.5 + kRadius || v > last - kRadius)
+        continue;
+      ++coverage.inside;
+      if (at(*result.layer("depth"), camera.width, column, row, 0) > 1e9f) continue;
+      ++coverage.covered;
+      const glm::dvec3 normal(at(*result.layer("normal"), camera.width, column, row, 0),
+                              at(*result.layer("normal"), camera.width, column, row, 1),
+                              at(*result.layer("normal"), camera.width, column, row, 2));
+      angles.push_back(
+          glm::degrees(std::acos(std::clamp(glm::dot(glm::normalize(normal), planeNormal), -1.0, 1.0))));
+    }
+  if (!angles.empty()) {
+    std::nth_element(angles.begin(), angles.begin() + angles.size() / 2, angles.end());
+    coverage.medianAngle = angles[angles.size() / 2];
+  }
+  return coverage;
+}
+
+}  // namespace
+
+TEST(GLRaymarch, OneParticleThickSheetIsKeptWherePlaneFittingLosesIt) {
+  Scene scene = raymarchScene({0.3f, -2.0f, 0.9f}, {0.0f, 0.0f, 0.0f});
+  const std::vector<glm::vec3> sheet = oneParticleThickSheet();
+  const SheetCoverage marched = sheetCoverage(scene, render(scene, sheet));
+  scene.parameters.liquid.surface = "screen";
+  const SheetCoverage spheres = sheetCoverage(scene, render(scene, sheet));
+  scene.parameters.liquid.layers = "merged";  // every particle an aggregate, plane-fit smoothed
+  const SheetCoverage planeFit = sheetCoverage(scene, render(scene, sheet));
+
+  ASSERT_GT(marched.inside, 1000);
+  EXPECT_GT(marched.covered, 0.97 * marched.inside) << "the marched sheet is closed";
+  EXPECT_LT(marched.medianAngle, 10.0) << "and has the plane's normal";
+  // The screen-space surface loses it: plane-fit aggregates (under-sampled, so small spheres) leave most of
+  // it open; as splashes it is a curtain of spheres whose normals are the spheres'.
+  EXPECT_LT(planeFit.covered, 0.6 * planeFit.inside);
+  EXPECT_GT(spheres.medianAngle, 25.0);
+}
