@@ -8,7 +8,10 @@
 namespace spindrift::cli {
 
 Progress::Progress(int total, bool quiet)
-    : total_(total), quiet_(quiet), terminal_(isatty(fileno(stderr))), start_(std::chrono::steady_clock::now()) {}
+    : total_(total),
+      quiet_(quiet),
+      terminal_(isatty(fileno(stderr))),
+      start_(std::chrono::steady_clock::now()) {}
 
 void Progress::frameDone(int frame, double frameSeconds) {
   ++done_;
@@ -16,15 +19,16 @@ void Progress::frameDone(int frame, double frameSeconds) {
   const double elapsed = std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
   const double remaining = elapsed / done_ * (total_ - done_);
   if (!terminal_) {
-    std::fprintf(stderr, "frame %d done in %.2f s (%d/%d, %.0f s left)\n", frame, frameSeconds, done_, total_, remaining);
+    std::fprintf(stderr, "frame %d done in %.2f s (%d/%d, %.0f s left)\n", frame, frameSeconds, done_, total_,
+                 remaining);
     return;
   }
   constexpr int kBarWidth = 30;
   const int filled = total_ > 0 ? done_ * kBarWidth / total_ : kBarWidth;
   std::string bar(std::size_t(filled), '#');
   bar.resize(kBarWidth, '-');
-  std::fprintf(stderr, "\r[%s] %d/%d  frame %d  %.2f s/frame  %.0f s left   ", bar.c_str(), done_, total_, frame,
-               elapsed / done_, remaining);
+  std::fprintf(stderr, "\r[%s] %d/%d  frame %d  %.2f s/frame  %.0f s left   ", bar.c_str(), done_, total_,
+               frame, elapsed / done_, remaining);
   std::fflush(stderr);
 }
 
@@ -54,8 +58,10 @@ std::vector<int> parseFrameList(const std::string& text) {
     std::string rest;
     if (in >> rest) throw std::invalid_argument("bad frame range \"" + part + "\"");
     if (last < first) throw std::invalid_argument("frame range \"" + part + "\" runs backwards");
-    if ((long long)(last - first) / step > 1000000) throw std::invalid_argument("frame range \"" + part + "\" is too long");
-    for (int frame = first; frame <= last; frame += step) frames.push_back(frame);
+    if ((long long)(last - first) / step > 1000000)
+      throw std::invalid_argument("frame range \"" + part + "\" is too long");
+    for (int frame = first; frame <= last; frame += step)
+      frames.push_back(frame);
   }
   if (frames.empty()) throw std::invalid_argument("no frames in \"" + text + "\"");
   return frames;

@@ -43,7 +43,9 @@ StopSignals::~StopSignals() {
   sigaction(SIGTERM, &previousTerminate, nullptr);
 }
 
-int StopSignals::received() { return receivedSignal.load(); }
+int StopSignals::received() {
+  return receivedSignal.load();
+}
 
 std::vector<std::filesystem::path> perFrameOutputs(const std::vector<std::string>& patterns, int frame,
                                                    bool singleFrame) {
@@ -67,7 +69,8 @@ int removeStaleTemporaries(const std::filesystem::path& target) {
   int removed = 0;
   for (const auto& entry : std::filesystem::directory_iterator(directory, error)) {
     const std::string name = entry.path().filename().string();
-    if (name.compare(0, prefix.size(), prefix) == 0 && std::filesystem::remove(entry.path(), error)) ++removed;
+    if (name.compare(0, prefix.size(), prefix) == 0 && std::filesystem::remove(entry.path(), error))
+      ++removed;
   }
   return removed;
 }

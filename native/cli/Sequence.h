@@ -8,9 +8,9 @@ namespace spindrift::cli {
 
 /// The exit codes of `spindrift` (docs/reliability.md lists them for farm schedulers).
 enum ExitCode : int {
-  kExitSuccess = 0,       ///< Every frame was written (or skipped because it existed).
-  kExitError = 1,         ///< A scene, file or rendering error; in a sequence, a frame failed without --keep-going.
-  kExitUsage = 2,         ///< Bad command line.
+  kExitSuccess = 0,  ///< Every frame was written (or skipped because it existed).
+  kExitError = 1,  ///< A scene, file or rendering error; in a sequence, a frame failed without --keep-going.
+  kExitUsage = 2,  ///< Bad command line.
   kExitFramesFailed = 3,  ///< --keep-going: the sequence ran to its end, but at least one frame failed.
   // 128 + signal number (130 SIGINT, 143 SIGTERM): stopped by a signal; every file written is complete.
 };
@@ -31,7 +31,8 @@ class StopSignals {
 };
 
 /// Every file that rendering `frame` writes: the non-empty output patterns with #### replaced. In a sequence
-/// (`singleFrame` false) names without #### (the combined stats file) are left out, as they are not per frame.
+/// (`singleFrame` false) names without #### (the combined stats file) are left out, as they are not per
+/// frame.
 std::vector<std::filesystem::path> perFrameOutputs(const std::vector<std::string>& patterns, int frame,
                                                    bool singleFrame);
 

@@ -1,14 +1,15 @@
 // `spindrift`: renders scene files from a shell, lists parameters, and reports the OpenGL it finds.
-// Exit codes (cli/Sequence.h, docs/reliability.md): 0 success, 1 a scene, file or rendering error (one line on
-// stderr), 2 a usage error, 3 frames failed under --keep-going, 128 + signal when stopped by SIGINT or SIGTERM.
+// Exit codes (cli/Sequence.h, docs/reliability.md): 0 success, 1 a scene, file or rendering error (one line
+// on stderr), 2 a usage error, 3 frames failed under --keep-going, 128 + signal when stopped by SIGINT or
+// SIGTERM.
 
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
 #include <fstream>
 #include <future>
-#include <memory>
 #include <iostream>
+#include <memory>
 #include <optional>
 
 #include <CLI/CLI.hpp>
@@ -54,7 +55,9 @@ void applyAssignments(Scene& scene, const std::vector<std::string>& assignments)
   }
 }
 
-bool hasFramePattern(const std::string& path) { return path.find('#') != std::string::npos; }
+bool hasFramePattern(const std::string& path) {
+  return path.find('#') != std::string::npos;
+}
 
 // The frame's stats, with the radius of every liquid source and where it came from (the scene file, or the
 // Mantaflow domain it was derived from) and the surface offset the frame was drawn with.
@@ -63,7 +66,9 @@ nlohmann::json statsJson(const RenderResult& result, const Scene& scene) {
   nlohmann::json sources = nlohmann::json::array();
   for (const ParticleSource& source : scene.particles)
     if (source.role == ParticleRole::Liquid)
-      sources.push_back({{"path", source.path.string()}, {"radius", source.radius}, {"radius_origin", source.radiusOrigin},
+      sources.push_back({{"path", source.path.string()},
+                         {"radius", source.radius},
+                         {"radius_origin", source.radiusOrigin},
                          {"mantaflow_flat_offset", source.meshFlatOffset}});
   stats["liquid_sources"] = sources;
   stats["liquid_surface_offset_radii"] = scene.parameters.liquid.surface_offset;
@@ -72,7 +77,8 @@ nlohmann::json statsJson(const RenderResult& result, const Scene& scene) {
 
 int runRender(const RenderOptions& options) {
   // Usage errors first: a bad frame list is reported as such even when the scene is also wrong.
-  const std::vector<int> requestedFrames = options.frames.empty() ? std::vector<int>{} : cli::parseFrameList(options.frames);
+  const std::vector<int> requestedFrames =
+      options.frames.empty() ? std::vector<int>{} : cli::parseFrameList(options.frames);
   Scene scene = loadScene(options.scenePath);
   applyAssignments(scene, options.assignments);
   const std::vector<int> frames = requestedFrames.empty() ? std::vector<int>{scene.frame} : requestedFrames;
@@ -95,9 +101,9 @@ int runRender(const RenderOptions& options) {
   nlohmann::json allStats = nlohmann::json::array();
   cli::StopSignals stopSignals;
   std::vector<int> failedFrames;
-  // Frame N's files are written on another thread while frame N+1 renders. A write's error is reported with its
-  // frame when the next frame (or the end) waits for it; a stop signal waits for the write in flight, so every
-  // file the sequence leaves is complete.
+  // Frame N's files are written on another thread while frame N+1 renders. A write's error is reported with
+  // its frame when the next frame (or the end) waits for it; a stop signal waits for the write in flight, so
+  // every file the sequence leaves is complete.
   std::future<void> pendingWrite;
   int pendingFrame = 0;
   auto finishPendingWrite = [&]() -> bool {  // False: the sequence stops.
@@ -120,7 +126,8 @@ int runRender(const RenderOptions& options) {
       progress.frameSkipped(frame);
       continue;
     }
-    for (const std::filesystem::path& output : outputs) cli::removeStaleTemporaries(output);
+    for (const std::filesystem::path& output : outputs)
+      cli::removeStaleTemporaries(output);
     const auto start = std::chrono::steady_clock::now();
     std::shared_ptr<const RenderResult> result;
     try {
@@ -145,22 +152,25 @@ int runRender(const RenderOptions& options) {
       if (!options.statsPath.empty() && hasFramePattern(options.statsPath))
         cli::writeTextFile(pathForFrame(options.statsPath, frame), statsJson(*result, scene).dump(2) + "\n");
     });
-    progress.frameDone(frame, std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
+    progress.frameDone(frame,
+                       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
   }
   if (!finishPendingWrite()) return cli::kExitError;
   progress.finish();
   if (!options.statsPath.empty() && !hasFramePattern(options.statsPath) && !allStats.empty())
-    cli::writeTextFile(options.statsPath,
-                       (frames.size() == 1 ? allStats[0] : nlohmann::json{{"frames", allStats}}).dump(2) + "\n");
+    cli::writeTextFile(
+        options.statsPath,
+        (frames.size() == 1 ? allStats[0] : nlohmann::json{{"frames", allStats}}).dump(2) + "\n");
   if (const int signalNumber = cli::StopSignals::received()) {
     std::fprintf(stderr, "spindrift: stopped by signal %d; every file written is complete\n", signalNumber);
     return 128 + signalNumber;
   }
   if (!failedFrames.empty()) {
     std::string list;
-    for (int frame : failedFrames) list += (list.empty() ? "" : ",") + std::to_string(frame);
-    std::fprintf(stderr, "spindrift: error: %zu of %zu frames failed: %s\n", failedFrames.size(), frames.size(),
-                 list.c_str());
+    for (int frame : failedFrames)
+      list += (list.empty() ? "" : ",") + std::to_string(frame);
+    std::fprintf(stderr, "spindrift: error: %zu of %zu frames failed: %s\n", failedFrames.size(),
+                 frames.size(), list.c_str());
     return cli::kExitFramesFailed;
   }
   return 0;
@@ -173,15 +183,21 @@ int runParams(bool markdown) {
   }
   nlohmann::json table = nlohmann::json::array();
   for (const ParameterInfo& row : parameterTable())
-    table.push_back({{"key", row.key}, {"type", row.type}, {"default", row.defaultValue}, {"minimum", row.minimum},
-                     {"maximum", row.maximum}, {"choices", row.choices}, {"doc", row.doc}});
+    table.push_back({{"key", row.key},
+                     {"type", row.type},
+                     {"default", row.defaultValue},
+                     {"minimum", row.minimum},
+                     {"maximum", row.maximum},
+                     {"choices", row.choices},
+                     {"doc", row.doc}});
   std::cout << table.dump(2) << "\n";
   return 0;
 }
 
 int runInfo() {
   Renderer renderer;
-  std::cout << "OpenGL renderer: " << renderer.glRenderer() << "\nOpenGL version:  " << renderer.glVersion() << "\n";
+  std::cout << "OpenGL renderer: " << renderer.glRenderer() << "\nOpenGL version:  " << renderer.glVersion()
+            << "\n";
   return 0;
 }
 
@@ -195,18 +211,21 @@ int main(int argc, char** argv) {
   RenderOptions render;
   CLI::App* renderCommand = app.add_subcommand("render", "Render frames of a scene file");
   renderCommand->add_option("scene", render.scenePath, "Scene file (JSON, version 1)")->required();
-  renderCommand->add_option("-o,--output", render.exrPath, "Multilayer OpenEXR of every pass; #### = frame number");
+  renderCommand->add_option("-o,--output", render.exrPath,
+                            "Multilayer OpenEXR of every pass; #### = frame number");
   renderCommand->add_option("--png", render.pngPath, "The composite as 8-bit sRGB PNG; #### = frame number");
   renderCommand->add_option("--stats", render.statsPath, "Per-pass timings and particle counts as JSON");
-  renderCommand->add_option("--frames", render.frames, "Frames to render: 12, 1-240, 1-240:2 or a comma list "
-                                                       "(default: the scene's `frame`, else 1)");
+  renderCommand->add_option("--frames", render.frames,
+                            "Frames to render: 12, 1-240, 1-240:2 or a comma list "
+                            "(default: the scene's `frame`, else 1)");
   renderCommand->add_option("--set", render.assignments, "Override a parameter: key=value (value is JSON)");
-  renderCommand->add_option("--layers", render.layers,
-                            "Layers to compute and write, comma-separated (default: all): composite, liquid, "
-                            "liquid_splash, liquid_class, depth, normal, thickness, refraction_uv, "
-                            "transmittance, reflection, foam, foam_spray, foam_surface, foam_bubble, "
-                            "foam_shadow, foam_irradiance, foam_thickness, liquid_shadow, caustics, liquid_sky "
-                            "(the last three when the scene has lights)")
+  renderCommand
+      ->add_option("--layers", render.layers,
+                   "Layers to compute and write, comma-separated (default: all): composite, liquid, "
+                   "liquid_splash, liquid_class, depth, normal, thickness, refraction_uv, "
+                   "transmittance, reflection, foam, foam_spray, foam_surface, foam_bubble, "
+                   "foam_shadow, foam_irradiance, foam_thickness, liquid_shadow, caustics, liquid_sky "
+                   "(the last three when the scene has lights)")
       ->delimiter(',');
   renderCommand->add_flag("-q,--quiet", render.quiet, "No progress output");
   renderCommand->add_flag("--intermediate", render.intermediate,
@@ -215,7 +234,8 @@ int main(int argc, char** argv) {
                           "Skip frames whose output files all exist (resume a stopped sequence)");
   renderCommand->add_flag("--keep-going", render.keepGoing,
                           "Go on after a frame fails; exit with 3 at the end if any did");
-  renderCommand->add_option("--threads", render.threads, "Worker threads of the CPU preparation (default: all)")
+  renderCommand
+      ->add_option("--threads", render.threads, "Worker threads of the CPU preparation (default: all)")
       ->check(CLI::PositiveNumber);
 
   bool markdown = false;

@@ -1,7 +1,7 @@
 #include "spindrift/Camera.h"
 
-#include <glm/gtc/matrix_transform.hpp>
 #include <glm/gtc/matrix_inverse.hpp>
+#include <glm/gtc/matrix_transform.hpp>
 
 namespace spindrift {
 
@@ -16,7 +16,9 @@ Camera Camera::lookAt(int width, int height, float fovYDegrees, const glm::vec3&
   return camera;
 }
 
-glm::mat4 Camera::cameraFromWorld() const { return glm::affineInverse(worldFromCamera); }
+glm::mat4 Camera::cameraFromWorld() const {
+  return glm::affineInverse(worldFromCamera);
+}
 
 glm::mat4 Camera::clipFromCamera() const {
   return glm::perspective(glm::radians(fovYDegrees), aspect(), nearClip, farClip);

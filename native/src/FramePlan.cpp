@@ -78,8 +78,9 @@ FramePlan planFrame(const FrameContents& contents) {
   const char* noLight = contents.lights == 0               ? "no lights in the scene"
                         : contents.lightsSeeingLiquid == 0 ? "no light sees the liquid"
                         : !lightShown ? "no light layer, liquid layer, composite or foam asked for (--layers)"
-                                                           : nullptr;
-  for (Pass pass : {Pass::LightDepthLayers, Pass::LiquidShadow}) decide(pass, noLight);
+                                      : nullptr;
+  for (Pass pass : {Pass::LightDepthLayers, Pass::LiquidShadow})
+    decide(pass, noLight);
   decide(Pass::Caustics, noLight                       ? noLight
                          : !contents.caustics          ? "light.caustics is off"
                          : contents.causticLights == 0 ? "no sun or spot light sees the liquid"

@@ -45,10 +45,11 @@ struct FrameContents {
   bool liquidMesh = false;              ///< The liquid's own surface given as triangles.
   // What the caller reads back (`--layers`): a pass whose result reaches no wanted layer is not run.
   bool compositeWanted = true;
-  bool liquidLayersWanted = true;   ///< Any liquid layer: liquid, depth, normal, thickness, refraction split ...
-  bool foamLayersWanted = true;     ///< Any foam layer.
-  bool intermediateWanted = false;  ///< The depth layers before and after smoothing (`--intermediate`).
-  std::string surface = "screen";       ///< liquid.surface.
+  bool liquidLayersWanted =
+      true;                      ///< Any liquid layer: liquid, depth, normal, thickness, refraction split ...
+  bool foamLayersWanted = true;  ///< Any foam layer.
+  bool intermediateWanted = false;     ///< The depth layers before and after smoothing (`--intermediate`).
+  std::string surface = "screen";      ///< liquid.surface.
   std::size_t lights = 0;              ///< Lights in the scene.
   std::size_t lightsSeeingLiquid = 0;  ///< Lights whose view of the liquid is drawn.
   std::size_t causticLights = 0;       ///< Of those, suns and spots (point lights cast no caustics).

@@ -28,7 +28,8 @@ void recordRefraction(const RefractionStatistics& rays, LiquidFrameStats& stats)
   stats.raysWithSecondBody = rays.raysWithSecondBody;
   stats.totalInternalReflections = rays.totalInternalReflections;
   stats.exitsOffScreen = rays.exitsOffScreen;
-  for (int i = 0; i < 4; ++i) stats.orders[i] = rays.orders[i];
+  for (int i = 0; i < 4; ++i)
+    stats.orders[i] = rays.orders[i];
 }
 
 void recordFoamOcclusion(const FoamOcclusionStatistics& occlusion, FoamFrameStats& stats) {

@@ -55,14 +55,17 @@ std::uint64_t cgroupHeadroom() {
 
 }  // namespace
 
-int GlLimits::maxImageWidth() const { return std::min({maxTextureSize, maxViewportWidth, maxFramebufferWidth}); }
+int GlLimits::maxImageWidth() const {
+  return std::min({maxTextureSize, maxViewportWidth, maxFramebufferWidth});
+}
 int GlLimits::maxImageHeight() const {
   return std::min({maxTextureSize, maxViewportHeight, maxFramebufferHeight});
 }
 
 void validateCamera(const Camera& camera) {
   auto fail = [](const std::string& problem) { throw Error("camera: " + problem); };
-  if (camera.width < 1 || camera.width > kMaximumImageSide || camera.height < 1 || camera.height > kMaximumImageSide)
+  if (camera.width < 1 || camera.width > kMaximumImageSide || camera.height < 1 ||
+      camera.height > kMaximumImageSide)
     fail("the image is " + std::to_string(camera.width) + "x" + std::to_string(camera.height) +
          "; each side must be in [1, " + std::to_string(kMaximumImageSide) + "]");
   if (!(camera.fovYDegrees > 0.0f && camera.fovYDegrees < 180.0f))
@@ -86,8 +89,8 @@ void validateParticles(const Particles& particles) {
   const std::size_t count = particles.positions.size();
   auto checkLength = [count](std::size_t length, const char* name) {
     if (length != count)
-      throw Error(std::string("particles: ") + name + " has " + std::to_string(length) + " entries, positions " +
-                  std::to_string(count));
+      throw Error(std::string("particles: ") + name + " has " + std::to_string(length) +
+                  " entries, positions " + std::to_string(count));
   };
   checkLength(particles.radii.size(), "radii");
   checkLength(particles.kinds.size(), "kinds");
@@ -122,14 +125,17 @@ std::uint64_t availableMemoryBytes() {
   return limit;
 }
 
-void setMemoryLimitBytes(std::uint64_t bytes) { explicitLimit.store(bytes); }
+void setMemoryLimitBytes(std::uint64_t bytes) {
+  explicitLimit.store(bytes);
+}
 
 void requireMemory(std::uint64_t bytes, const std::string& what) {
   const std::uint64_t available = availableMemoryBytes();
   if (bytes <= available) return;
-  const char* source = explicitLimit.load() && explicitLimit.load() == available ? "the limit set by the caller"
-                       : std::getenv("SPINDRIFT_MEMORY_LIMIT_MB")              ? "SPINDRIFT_MEMORY_LIMIT_MB or MemAvailable"
-                                                                                : "MemAvailable and the cgroup's memory.max";
+  const char* source =
+      explicitLimit.load() && explicitLimit.load() == available ? "the limit set by the caller"
+      : std::getenv("SPINDRIFT_MEMORY_LIMIT_MB")                ? "SPINDRIFT_MEMORY_LIMIT_MB or MemAvailable"
+                                                                : "MemAvailable and the cgroup's memory.max";
   throw Error(what + " needs " + std::to_string(bytes >> 20) + " MiB, more than the " +
               std::to_string(available >> 20) + " MiB available (" + source + ")");
 }

@@ -22,7 +22,9 @@ void Particles::append(const glm::vec3& position, float radius, ParticleKind kin
 }
 
 std::size_t appendValidParticles(Particles& into, const Particles& from) {
-  auto finite = [](const glm::vec3& v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); };
+  auto finite = [](const glm::vec3& v) {
+    return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z);
+  };
   std::size_t dropped = 0;
   into.reserve(into.size() + from.size());
   for (std::size_t i = 0; i < from.size(); ++i) {
@@ -41,10 +43,14 @@ std::size_t appendValidParticles(Particles& into, const Particles& from) {
 
 const char* particleKindName(ParticleKind kind) {
   switch (kind) {
-    case ParticleKind::Liquid: return "liquid";
-    case ParticleKind::Spray: return "spray";
-    case ParticleKind::Bubble: return "bubble";
-    case ParticleKind::Foam: return "foam";
+    case ParticleKind::Liquid:
+      return "liquid";
+    case ParticleKind::Spray:
+      return "spray";
+    case ParticleKind::Bubble:
+      return "bubble";
+    case ParticleKind::Foam:
+      return "foam";
   }
   return "unknown";
 }
@@ -53,10 +59,18 @@ ParticleCounts countByKind(const Particles& particles) {
   ParticleCounts counts;
   for (ParticleKind kind : particles.kinds) {
     switch (kind) {
-      case ParticleKind::Liquid: ++counts.liquid; break;
-      case ParticleKind::Spray: ++counts.spray; break;
-      case ParticleKind::Bubble: ++counts.bubble; break;
-      case ParticleKind::Foam: ++counts.foam; break;
+      case ParticleKind::Liquid:
+        ++counts.liquid;
+        break;
+      case ParticleKind::Spray:
+        ++counts.spray;
+        break;
+      case ParticleKind::Bubble:
+        ++counts.bubble;
+        break;
+      case ParticleKind::Foam:
+        ++counts.foam;
+        break;
     }
   }
   return counts;

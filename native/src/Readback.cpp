@@ -8,11 +8,11 @@ namespace spindrift {
 
 namespace {
 
-const std::vector<std::string> kLiquidLayers = {"liquid",    "liquid_splash", "liquid_class",  "depth",
-                                                "normal",    "thickness",     "refraction_uv", "transmittance",
-                                                "reflection"};
-const std::vector<std::string> kFoamLayers = {"foam",        "foam_spray",      "foam_surface",  "foam_bubble",
-                                              "foam_shadow", "foam_irradiance", "foam_thickness"};
+const std::vector<std::string> kLiquidLayers = {"liquid",        "liquid_splash", "liquid_class",
+                                                "depth",         "normal",        "thickness",
+                                                "refraction_uv", "transmittance", "reflection"};
+const std::vector<std::string> kFoamLayers = {
+    "foam", "foam_spray", "foam_surface", "foam_bubble", "foam_shadow", "foam_irradiance", "foam_thickness"};
 const std::vector<std::string> kLightLayers = {"liquid_shadow", "caustics", "liquid_sky"};
 
 bool contains(const std::vector<std::string>& names, const std::string& name) {
@@ -36,23 +36,29 @@ LayerSelection::LayerSelection(const std::vector<std::string>& names) : names_(n
   for (const std::string& name : names_)
     if (!contains(allNames(), name)) {
       std::string valid;
-      for (const std::string& known : allNames()) valid += (valid.empty() ? "" : ", ") + known;
+      for (const std::string& known : allNames())
+        valid += (valid.empty() ? "" : ", ") + known;
       throw Error("unknown layer \"" + name + "\" (layers: " + valid + ")");
     }
 }
 
-bool LayerSelection::wants(const std::string& layer) const { return names_.empty() || contains(names_, layer); }
+bool LayerSelection::wants(const std::string& layer) const {
+  return names_.empty() || contains(names_, layer);
+}
 
 bool LayerSelection::wantsLiquidLayers() const {
-  return std::any_of(kLiquidLayers.begin(), kLiquidLayers.end(), [this](const auto& name) { return wants(name); });
+  return std::any_of(kLiquidLayers.begin(), kLiquidLayers.end(),
+                     [this](const auto& name) { return wants(name); });
 }
 
 bool LayerSelection::wantsLightLayers() const {
-  return std::any_of(kLightLayers.begin(), kLightLayers.end(), [this](const auto& name) { return wants(name); });
+  return std::any_of(kLightLayers.begin(), kLightLayers.end(),
+                     [this](const auto& name) { return wants(name); });
 }
 
 bool LayerSelection::wantsFoamLayers() const {
-  return std::any_of(kFoamLayers.begin(), kFoamLayers.end(), [this](const auto& name) { return wants(name); });
+  return std::any_of(kFoamLayers.begin(), kFoamLayers.end(),
+                     [this](const auto& name) { return wants(name); });
 }
 
 ImageLayer readLayer(const Texture2D& texture, const std::string& name,
@@ -146,7 +152,8 @@ void readLiquidLayers(const LiquidData* liquid, int width, int height, const Lay
 }
 
 void readFrameLayers(const CompositeData* composite, const LiquidData* liquid, const FoamLayerData* foam,
-                     int width, int height, const LayerSelection& selection, std::vector<ImageLayer>& layers) {
+                     int width, int height, const LayerSelection& selection,
+                     std::vector<ImageLayer>& layers) {
   if (composite && selection.wantsComposite())
     layers.push_back(readLayer(composite->color, "composite", {"R", "G", "B", "A"}));
   readLiquidLayers(liquid, width, height, selection, layers);
@@ -163,11 +170,13 @@ void IntermediateLayers::keep(const SurfaceLayers& layers, const std::string& na
 
 void IntermediateLayers::keep(std::vector<ImageLayer> layers) {
   if (!enabled_) return;
-  for (ImageLayer& layer : layers) kept_.push_back(std::move(layer));
+  for (ImageLayer& layer : layers)
+    kept_.push_back(std::move(layer));
 }
 
 void IntermediateLayers::appendTo(std::vector<ImageLayer>& layers) {
-  for (ImageLayer& layer : kept_) layers.push_back(std::move(layer));
+  for (ImageLayer& layer : kept_)
+    layers.push_back(std::move(layer));
   kept_.clear();
 }
 

@@ -3,12 +3,12 @@
 #include <string>
 #include <vector>
 
-#include "gl/GlObjects.h"
 #include "framedata/CompositeData.h"
 #include "framedata/DepthLayers.h"
 #include "framedata/FoamLayerData.h"
 #include "framedata/LightData.h"
 #include "framedata/LiquidData.h"
+#include "gl/GlObjects.h"
 #include "spindrift/RenderResult.h"
 
 namespace spindrift {
@@ -53,7 +53,8 @@ void readFoamLayers(const FoamLayerData* foam, int width, int height, const Laye
 
 /// Appends the liquid layers (liquid, liquid_splash, liquid_class, depth, normal, thickness, refraction_uv,
 /// transmittance, reflection); `liquid` null (no
-/// liquid in view) gives the same layers, empty (depth 1e10), so every frame of a sequence has the same channels.
+/// liquid in view) gives the same layers, empty (depth 1e10), so every frame of a sequence has the same
+/// channels.
 void readLiquidLayers(const LiquidData* liquid, int width, int height, const LayerSelection& selection,
                       std::vector<ImageLayer>& layers);
 
@@ -78,9 +79,9 @@ class IntermediateLayers {
   std::vector<ImageLayer> kept_;
 };
 
-/// Appends liquid_shadow, caustics and liquid_sky (RGB) when the scene has lights (`sceneHasLights`): read from
-/// `lit`, or filled with 1, 0 and 1 on a frame that lit nothing, so every frame of a sequence has the same
-/// channels. Only the layers `selection` wants.
+/// Appends liquid_shadow, caustics and liquid_sky (RGB) when the scene has lights (`sceneHasLights`): read
+/// from `lit`, or filled with 1, 0 and 1 on a frame that lit nothing, so every frame of a sequence has the
+/// same channels. Only the layers `selection` wants.
 void readLightLayers(const LitBackgroundData* lit, bool sceneHasLights, int width, int height,
                      const LayerSelection& selection, std::vector<ImageLayer>& layers);
 

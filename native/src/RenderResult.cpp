@@ -11,7 +11,8 @@ const ImageLayer* RenderResult::layer(const std::string& name) const {
 nlohmann::json FrameStats::toJson() const {
   nlohmann::json passesJson = nlohmann::json::array();
   for (const PassTiming& pass : passes)
-    passesJson.push_back({{"name", pass.name}, {"gpu_ms", pass.gpuMilliseconds}, {"cpu_ms", pass.cpuMilliseconds}});
+    passesJson.push_back(
+        {{"name", pass.name}, {"gpu_ms", pass.gpuMilliseconds}, {"cpu_ms", pass.cpuMilliseconds}});
   nlohmann::json skippedJson = nlohmann::json::array();
   nlohmann::json raymarchJson = nullptr;  // null unless liquid.surface = raymarch
   if (raymarch.enabled)
@@ -28,7 +29,8 @@ nlohmann::json FrameStats::toJson() const {
                       {"half", raymarch.tiles[1]},
                       {"quarter", raymarch.tiles[2]},
                       {"empty", raymarch.tiles[3]}}}};
-  for (const SkippedPass& pass : skipped) skippedJson.push_back({{"name", pass.name}, {"reason", pass.reason}});
+  for (const SkippedPass& pass : skipped)
+    skippedJson.push_back({{"name", pass.name}, {"reason", pass.reason}});
   return {
       {"frame", frame},
       {"resolution", {width, height}},

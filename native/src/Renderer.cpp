@@ -7,9 +7,14 @@
 #include <optional>
 #include <utility>
 
+#include "FramePlan.h"
+#include "FrameStatsRecording.h"
+#include "LiquidLighting.h"
+#include "RaymarchSurface.h"
+#include "Readback.h"
 #include "gl/GlThread.h"
-#include "gl/QueryGlLimits.h"
 #include "gl/PassTimer.h"
+#include "gl/QueryGlLimits.h"
 #include "gl/ShaderLibrary.h"
 #include "passes/BackgroundPass.h"
 #include "passes/CompositePass.h"
@@ -29,11 +34,6 @@
 #include "prep/LightViews.h"
 #include "prep/LiquidPreparation.h"
 #include "prep/RaymarchPreparation.h"
-#include "FramePlan.h"
-#include "FrameStatsRecording.h"
-#include "LiquidLighting.h"
-#include "RaymarchSurface.h"
-#include "Readback.h"
 #include "spindrift/Error.h"
 #include "spindrift/Limits.h"
 
@@ -150,12 +150,22 @@ Renderer::Renderer(const std::filesystem::path& shaderDirectory) {
 
 Renderer::~Renderer() = default;
 
-void Renderer::setIntermediateLayers(bool enabled) { impl_->intermediateLayers = enabled; }
-void Renderer::setLayers(const std::vector<std::string>& names) { impl_->layers = LayerSelection(names); }
+void Renderer::setIntermediateLayers(bool enabled) {
+  impl_->intermediateLayers = enabled;
+}
+void Renderer::setLayers(const std::vector<std::string>& names) {
+  impl_->layers = LayerSelection(names);
+}
 
-std::string Renderer::glRenderer() const { return impl_->glThread.renderer(); }
-std::string Renderer::glVersion() const { return impl_->glThread.version(); }
-const GlLimits& Renderer::glLimits() const { return impl_->glLimits; }
+std::string Renderer::glRenderer() const {
+  return impl_->glThread.renderer();
+}
+std::string Renderer::glVersion() const {
+  return impl_->glThread.version();
+}
+const GlLimits& Renderer::glLimits() const {
+  return impl_->glLimits;
+}
 
 // Everything that could make a frame fail halfway or allocate without bound is checked first, with an
 // error that names the limit (docs/reliability.md, "Limits").
@@ -207,9 +217,10 @@ RenderResult Renderer::renderFrame(const Scene& scene, int frame, const FrameInp
 
 // The frame, top to bottom, as the liquid paper's figure 4 draws it: prepare the particles on the CPU (split
 // into splashes and aggregates, anisotropic ellipsoids; foam culled and packed) and plan the passes, then on
-// the GL thread the background, the light through the liquid onto it, the front and back depth layers of splashes and of aggregates, smoothing of
-// the aggregate layers, refraction, the foam paper's seven passes (figure 2), and the composite; then read the
-// layers back. A pass the plan leaves out is not run, and the stats say why (FramePlan.cpp).
+// the GL thread the background, the light through the liquid onto it, the front and back depth layers of
+// splashes and of aggregates, smoothing of the aggregate layers, refraction, the foam paper's seven passes
+// (figure 2), and the composite; then read the layers back. A pass the plan leaves out is not run, and the
+// stats say why (FramePlan.cpp).
 RenderResult Renderer::renderParticles(const Scene& scene, const Particles& particles, int frame) {
   return renderPrepared(scene, particles, frame, FrameExtras{});
 }
@@ -254,17 +265,18 @@ RenderResult Renderer::renderPrepared(const Scene& scene, const Particles& parti
   if (extras.backgroundColor || extras.backgroundDepth)
     backgroundImages.generation = ++impl_->hostBackgroundGeneration;
   if (backgroundImages.environment)
-    checkImageFitsGl(impl_->glLimits, backgroundImages.environment->width, backgroundImages.environment->height,
+    checkImageFitsGl(impl_->glLimits, backgroundImages.environment->width,
+                     backgroundImages.environment->height,
                      "background.environment " + pathForFrame(scene.background.environment, frame).string());
   const LightingPreparation lighting = prepareLighting(particles, scene.lights, scene.parameters);
   stats.prepareMilliseconds = millisecondsSince(prepareStart);
   recordPreparation(liquid, foam, stats);
   recordLighting(scene.lights.size(), lighting, backgroundImages.lightPasses != nullptr, stats.light);
   const LayerSelection& layers = impl_->layers;
-  FrameContents contents{liquid.splashes.size(), liquid.aggregates.size(), foam.instances.size(),
-                         liquidParameters.smoothing, extras.occluders.size(), extras.liquidMesh != nullptr,
-                         layers.wantsComposite(), layers.wantsLiquidLayers(), layers.wantsFoamLayers(),
-                         impl_->intermediateLayers, liquidParameters.surface};
+  FrameContents contents{liquid.splashes.size(),     liquid.aggregates.size(),   foam.instances.size(),
+                         liquidParameters.smoothing, extras.occluders.size(),    extras.liquidMesh != nullptr,
+                         layers.wantsComposite(),    layers.wantsLiquidLayers(), layers.wantsFoamLayers(),
+                         impl_->intermediateLayers,  liquidParameters.surface};
   contents.lights = scene.lights.size();
   contents.lightsSeeingLiquid = lighting.lights.size();
   contents.causticLights = causticLights(lighting);
@@ -276,7 +288,9 @@ RenderResult Renderer::renderPrepared(const Scene& scene, const Particles& parti
 
   impl_->glThread.run([&] {
     FramePipeline& pipeline = *impl_->pipeline;
-    auto timed = [&](Pass pass, auto&& issuePass) { return timePass(pipeline.timer, passName(pass), issuePass); };
+    auto timed = [&](Pass pass, auto&& issuePass) {
+      return timePass(pipeline.timer, passName(pass), issuePass);
+    };
     IntermediateLayers intermediate(impl_->intermediateLayers);
     pipeline.frameUniforms.update(camera);
 
@@ -284,15 +298,16 @@ RenderResult Renderer::renderPrepared(const Scene& scene, const Particles& parti
         timed(Pass::Background, [&] { return pipeline.background.run(backgroundImages, width, height); });
     // Solid geometry handed as triangles joins the background's depth, so every later pass that tests against
     // solids sees it; the liquid's own mesh stands in for (or joins) background.liquid_depth.
-    auto meshDepth = [&](Pass pass, OccluderDepthPass& prepass, const std::vector<const TriangleMesh*>& meshes,
+    auto meshDepth = [&](Pass pass, OccluderDepthPass& prepass,
+                         const std::vector<const TriangleMesh*>& meshes,
                          const Texture2D* start) -> const Texture2D* {
       if (!plan.runs(pass)) return start;
       return &timed(pass, [&] { return prepass.run(meshes, start, width, height); }).eyeDepth;
     };
     const Texture2D& solidDepth =
         *meshDepth(Pass::OccluderDepth, pipeline.occluderDepth, extras.occluders, &resolved.eyeDepth);
-    const Texture2D* liquidDepth =
-        meshDepth(Pass::LiquidMeshDepth, pipeline.liquidMeshDepth, {extras.liquidMesh}, resolved.liquidEyeDepth);
+    const Texture2D* liquidDepth = meshDepth(Pass::LiquidMeshDepth, pipeline.liquidMeshDepth,
+                                             {extras.liquidMesh}, resolved.liquidEyeDepth);
     const BackgroundData unlit{resolved.color,         solidDepth,  resolved.environment,
                                resolved.fallbackColor, liquidDepth, resolved.lightPasses};
     // Light through the liquid onto the background (shadows, caustics, submerged points), before anything
@@ -339,13 +354,14 @@ RenderResult Renderer::renderPrepared(const Scene& scene, const Particles& parti
         return pipeline.refraction.run(splashes, aggregates, background, liquidParameters, width, height);
       }));
 
-    // Foam (foam paper, figure 2): the solids' and the liquid's depth, the foam's nearest depth, its thickness,
-    // intensity, shadow and irradiance, then blur and the foam layer. The plan runs all six or none.
+    // Foam (foam paper, figure 2): the solids' and the liquid's depth, the foam's nearest depth, its
+    // thickness, intensity, shadow and irradiance, then blur and the foam layer. The plan runs all six or
+    // none.
     std::optional<FoamLayerData> foamLayer;
     if (plan.runs(Pass::FoamDepth)) {
       const FoamSceneDepth sceneDepth = timed(Pass::FoamSceneDepth, [&] {
-        return pipeline.foamSceneDepth.run(background, liquidLayer ? &liquidLayer->frontDepth : nullptr, width,
-                                           height);
+        return pipeline.foamSceneDepth.run(background, liquidLayer ? &liquidLayer->frontDepth : nullptr,
+                                           width, height);
       });
       const FoamSurfaceData foamSurface = timed(
           Pass::FoamDepth, [&] { return pipeline.foamDepth.run(foam.instances, sceneDepth, width, height); });

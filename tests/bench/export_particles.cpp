@@ -32,7 +32,8 @@ int main(int argc, char** argv) {
     std::ofstream out(argv[3], std::ios::binary);
     out << "ply\nformat binary_little_endian 1.0\nelement vertex " << rows.size() / 4
         << "\nproperty float x\nproperty float y\nproperty float z\nproperty float radius\nend_header\n";
-    out.write(reinterpret_cast<const char*>(rows.data()), static_cast<std::streamsize>(rows.size() * sizeof(float)));
+    out.write(reinterpret_cast<const char*>(rows.data()),
+              static_cast<std::streamsize>(rows.size() * sizeof(float)));
     if (!out) throw std::runtime_error(std::string("cannot write ") + argv[3]);
     std::printf("%zu liquid particles\n", rows.size() / 4);
   } catch (const std::exception& error) {

@@ -29,17 +29,18 @@ inline const std::filesystem::path& scratchDirectory() {
 
 inline std::filesystem::path writeInput(const std::uint8_t* data, std::size_t size, const std::string& name) {
   const std::filesystem::path path = scratchDirectory() / name;
-  std::ofstream(path, std::ios::binary | std::ios::trunc).write(reinterpret_cast<const char*>(data), std::streamsize(size));
+  std::ofstream(path, std::ios::binary | std::ios::trunc)
+      .write(reinterpret_cast<const char*>(data), std::streamsize(size));
   return path;
 }
 
 // A broken invariant is a finding: abort so libFuzzer saves the input.
-#define FUZZ_REQUIRE(condition)                                                     \
-  do {                                                                              \
-    if (!(condition)) {                                                             \
+#define FUZZ_REQUIRE(condition)                                                               \
+  do {                                                                                        \
+    if (!(condition)) {                                                                       \
       std::fprintf(stderr, "invariant broken: %s (%s:%d)\n", #condition, __FILE__, __LINE__); \
-      std::abort();                                                                 \
-    }                                                                               \
+      std::abort();                                                                           \
+    }                                                                                         \
   } while (0)
 
 // What every particle reader promises: each optional array is empty or has one entry per position.

@@ -32,7 +32,8 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     const spindrift::FloatImage color = spindrift::readColorImage(path);
     checkImage(color, 4);
     // The resampling a background goes through when the camera's size differs.
-    const spindrift::FloatImage smaller = spindrift::resizeImage(color, 1 + color.width / 3, 1 + color.height / 3, false);
+    const spindrift::FloatImage smaller =
+        spindrift::resizeImage(color, 1 + color.width / 3, 1 + color.height / 3, false);
     checkImage(smaller, 4);
   } catch (const spindrift::Error&) {
   }

@@ -20,7 +20,8 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     const spindrift::Scene scene = spindrift::parseScene(text, fuzz::scratchDirectory() / "scene.json");
     spindrift::validateCamera(scene.camera);  // Throws only if the parser let a bad camera through.
     FUZZ_REQUIRE(scene.camera.width >= 1 && scene.camera.height >= 1);
-    for (const spindrift::ParticleSource& source : scene.particles) FUZZ_REQUIRE(source.radius > 0.0f);
+    for (const spindrift::ParticleSource& source : scene.particles)
+      FUZZ_REQUIRE(source.radius > 0.0f);
   } catch (const spindrift::Error& error) {
     const std::string message = error.what();
     // validateCamera's messages start with "camera: "; the parser's name the scene file first.

@@ -28,7 +28,8 @@ inline std::vector<glm::vec3> block(const glm::vec3& low, const glm::vec3& high,
   std::vector<glm::vec3> positions;
   for (float z = low.z; z <= high.z + 1e-6f; z += spacing)
     for (float y = low.y; y <= high.y + 1e-6f; y += spacing)
-      for (float x = low.x; x <= high.x + 1e-6f; x += spacing) positions.emplace_back(x, y, z);
+      for (float x = low.x; x <= high.x + 1e-6f; x += spacing)
+        positions.emplace_back(x, y, z);
   return positions;
 }
 
@@ -47,8 +48,8 @@ inline void expectAllChannelsFinite(const spindrift::RenderResult& result) {
   std::string where;
   const std::size_t bad = nonFiniteValues(result, &where);
   EXPECT_EQ(bad, 0u) << "non-finite values, first in layer " << where;
-  for (const char* layer : {"composite", "liquid", "liquid_splash", "liquid_class", "depth", "normal", "thickness",
-                            "refraction_uv", "transmittance", "reflection"})
+  for (const char* layer : {"composite", "liquid", "liquid_splash", "liquid_class", "depth", "normal",
+                            "thickness", "refraction_uv", "transmittance", "reflection"})
     EXPECT_NE(result.layer(layer), nullptr) << layer;
 }
 

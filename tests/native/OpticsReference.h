@@ -15,7 +15,8 @@ struct Ray {
 };
 
 // Both roots of a ray with a sphere, or nothing.
-inline std::optional<std::pair<double, double>> sphereRoots(const Ray& ray, const glm::dvec3& centre, double radius) {
+inline std::optional<std::pair<double, double>> sphereRoots(const Ray& ray, const glm::dvec3& centre,
+                                                            double radius) {
   const glm::dvec3 offset = ray.origin - centre;
   const double b = glm::dot(offset, ray.direction);
   const glm::dvec3 closest = offset - b * ray.direction;
@@ -27,7 +28,8 @@ inline std::optional<std::pair<double, double>> sphereRoots(const Ray& ray, cons
 
 // Snell's law for a unit direction and a unit normal facing the incoming ray; nothing on total internal
 // reflection. `ratio` = n_from / n_to.
-inline std::optional<glm::dvec3> refract(const glm::dvec3& direction, const glm::dvec3& facingNormal, double ratio) {
+inline std::optional<glm::dvec3> refract(const glm::dvec3& direction, const glm::dvec3& facingNormal,
+                                         double ratio) {
   const double cosine = -glm::dot(facingNormal, direction);
   const double k = 1.0 - ratio * ratio * (1.0 - cosine * cosine);
   if (k < 0.0) return std::nullopt;

@@ -25,7 +25,8 @@ inline std::optional<SphereHit> raySphere(const spindrift::Camera& camera, int c
   const glm::dvec3 ray(ndcX * tanHalfX, ndcY * tanHalfY, -1.0);
   const glm::dmat4 cameraFromWorld = glm::inverse(glm::dmat4(camera.worldFromCamera));
   const glm::dvec3 centre = glm::dvec3(cameraFromWorld * glm::dvec4(worldCentre, 1.0));
-  const double a = glm::dot(ray, ray), b = glm::dot(ray, centre), c = glm::dot(centre, centre) - radius * radius;
+  const double a = glm::dot(ray, ray), b = glm::dot(ray, centre),
+               c = glm::dot(centre, centre) - radius * radius;
   const double discriminant = b * b - a * c;
   if (discriminant < 0.0) return std::nullopt;
   const double depth = (b - std::sqrt(discriminant)) / a;

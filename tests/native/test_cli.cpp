@@ -20,14 +20,16 @@ namespace {
 
 // Eight particles around the origin, one of them NaN, seen by a camera on -Y.
 std::filesystem::path writeScene(const TempDirectory& directory, const std::string& extra = "") {
-  directory.write("particles.ply",
-                  "ply\nformat ascii 1.0\nelement vertex 8\nproperty float x\nproperty float y\nproperty float z\n"
-                  "end_header\n0 0 0\n0.3 0 0\n-0.3 0 0\n0 0 0.3\n0 0 -0.3\n0.2 0.2 0.2\n-0.2 -0.2 0.1\nnan 0 0\n");
+  directory.write(
+      "particles.ply",
+      "ply\nformat ascii 1.0\nelement vertex 8\nproperty float x\nproperty float y\nproperty float z\n"
+      "end_header\n0 0 0\n0.3 0 0\n-0.3 0 0\n0 0 0.3\n0 0 -0.3\n0.2 0.2 0.2\n-0.2 -0.2 0.1\nnan 0 0\n");
   return directory.write("scene.json", R"({"version": 1, "frame": 3,
       "camera": {"width": 64, "height": 48, "fov_y_deg": 40, "position": [0, -3, 0], "target": [0, 0, 0],
                  "up": [0, 0, 1]},
       "particles": [{"path": "particles.ply", "radius": 0.2}],
-      "background": {"color": [0.2, 0.3, 0.4]})" + extra + "}");
+      "background": {"color": [0.2, 0.3, 0.4]})" +
+                                           extra + "}");
 }
 
 }  // namespace
@@ -37,8 +39,8 @@ TEST(CLI, RendersExrPngAndStats) {
   const std::filesystem::path scene = writeScene(directory);
   const auto exr = directory.path() / "out.exr", png = directory.path() / "out.png",
              stats = directory.path() / "stats.json";
-  const CommandResult result =
-      runCli("render " + scene.string() + " -o " + exr.string() + " --png " + png.string() + " --stats " + stats.string());
+  const CommandResult result = runCli("render " + scene.string() + " -o " + exr.string() + " --png " +
+                                      png.string() + " --stats " + stats.string());
   ASSERT_EQ(result.exitCode, 0) << result.stderrText;
   EXPECT_TRUE(std::filesystem::exists(png));
 
@@ -48,21 +50,24 @@ TEST(CLI, RendersExrPngAndStats) {
   EXPECT_EQ(spec.width, 64);
   EXPECT_EQ(spec.height, 48);
   const std::set<std::string> channels(spec.channelnames.begin(), spec.channelnames.end());
-  std::set<std::string> expected{"composite.R", "composite.G", "composite.B", "composite.A",
-                                       "liquid.R",    "liquid.G",    "liquid.B",    "liquid.A",
-                                       "depth.Z",     "normal.X",    "normal.Y",    "normal.Z",
-                                       "liquid_splash.R", "liquid_splash.G", "liquid_splash.B", "liquid_splash.A",
-                                       "liquid_class.Y",  "thickness.Y"};
+  std::set<std::string> expected{"composite.R",     "composite.G",     "composite.B",     "composite.A",
+                                 "liquid.R",        "liquid.G",        "liquid.B",        "liquid.A",
+                                 "depth.Z",         "normal.X",        "normal.Y",        "normal.Z",
+                                 "liquid_splash.R", "liquid_splash.G", "liquid_splash.B", "liquid_splash.A",
+                                 "liquid_class.Y",  "thickness.Y"};
   for (const char* layer : {"foam", "foam_spray", "foam_surface", "foam_bubble"})
-    for (const char* channel : {".R", ".G", ".B", ".A"}) expected.insert(std::string(layer) + channel);
+    for (const char* channel : {".R", ".G", ".B", ".A"})
+      expected.insert(std::string(layer) + channel);
   for (const char* layer : {"foam_shadow", "foam_irradiance", "refraction_uv", "transmittance", "reflection"})
-    for (const char* channel : {".R", ".G", ".B"}) expected.insert(std::string(layer) + channel);
+    for (const char* channel : {".R", ".G", ".B"})
+      expected.insert(std::string(layer) + channel);
   expected.insert("foam_thickness.Y");
   EXPECT_EQ(channels, expected);
   std::vector<float> pixels(std::size_t(spec.width) * spec.height * spec.nchannels);
   ASSERT_TRUE(input->read_image(0, 0, 0, spec.nchannels, OIIO::TypeDesc::FLOAT, pixels.data()));
   std::size_t nonFinite = 0;
-  for (float value : pixels) nonFinite += !std::isfinite(value);
+  for (float value : pixels)
+    nonFinite += !std::isfinite(value);
   EXPECT_EQ(nonFinite, 0u);
 
   nlohmann::json json;
@@ -71,7 +76,8 @@ TEST(CLI, RendersExrPngAndStats) {
   EXPECT_EQ(json["particles"]["liquid"], 7);
   EXPECT_EQ(json["particles"]["dropped_invalid"], 1);
   std::vector<std::string> passes;
-  for (const auto& pass : json["passes"]) passes.push_back(pass["name"]);
+  for (const auto& pass : json["passes"])
+    passes.push_back(pass["name"]);
   EXPECT_EQ(passes.front(), "background");
   EXPECT_EQ(passes.back(), "composite");
   EXPECT_NE(std::find(passes.begin(), passes.end(), "refraction"), passes.end());
@@ -107,7 +113,8 @@ TEST(CLI, UsageErrorsExitWithTwo) {
 TEST(CLI, SeveralFramesNeedAFramePatternInTheOutput) {
   TempDirectory directory;
   const std::filesystem::path scene = writeScene(directory);
-  const CommandResult result = runCli("render " + scene.string() + " --frames 1-2 -o " + (directory.path() / "x.exr").string());
+  const CommandResult result =
+      runCli("render " + scene.string() + " --frames 1-2 -o " + (directory.path() / "x.exr").string());
   EXPECT_EQ(result.exitCode, 1);
   EXPECT_NE(result.stderrText.find("####"), std::string::npos) << result.stderrText;
 }
@@ -155,26 +162,30 @@ TEST(CLI, LayersChooseWhatIsComputedAndWrittenAndMatchTheFullPipeline) {
   ASSERT_EQ(result.exitCode, 0) << result.stderrText;
   const auto fullChannels = readChannels(full), reducedChannels = readChannels(reduced);
   std::set<std::string> names;
-  for (const auto& [name, values] : reducedChannels) names.insert(name);
+  for (const auto& [name, values] : reducedChannels)
+    names.insert(name);
   EXPECT_EQ(names, (std::set<std::string>{"depth.Z", "normal.X", "normal.Y", "normal.Z"}));
   std::size_t covered = 0;
   for (const auto& [name, values] : reducedChannels) {
     ASSERT_EQ(values, fullChannels.at(name)) << name;
-    for (float value : values) EXPECT_TRUE(std::isfinite(value)) << name;
+    for (float value : values)
+      EXPECT_TRUE(std::isfinite(value)) << name;
   }
-  for (float depth : reducedChannels.at("depth.Z")) covered += depth < 1e9f;
+  for (float depth : reducedChannels.at("depth.Z"))
+    covered += depth < 1e9f;
   EXPECT_GT(covered, 0u) << "the scene shows liquid";
   const nlohmann::json json = nlohmann::json::parse(std::ifstream(stats));
   std::set<std::string> skipped;
-  for (const auto& pass : json["skipped"]) skipped.insert(pass["name"].get<std::string>());
+  for (const auto& pass : json["skipped"])
+    skipped.insert(pass["name"].get<std::string>());
   EXPECT_TRUE(skipped.count("composite"));
 }
 
 TEST(CLI, UnknownLayerIsOneErrorLine) {
   TempDirectory directory;
   const std::filesystem::path scene = writeScene(directory);
-  const CommandResult result =
-      runCli("render -q " + scene.string() + " --layers depth,colour -o " + (directory.path() / "x.exr").string());
+  const CommandResult result = runCli("render -q " + scene.string() + " --layers depth,colour -o " +
+                                      (directory.path() / "x.exr").string());
   EXPECT_EQ(result.exitCode, 1);
   EXPECT_NE(result.stderrText.find("unknown layer \"colour\""), std::string::npos) << result.stderrText;
 }

@@ -31,14 +31,16 @@ std::filesystem::path writeSequenceScene(const TempDirectory& directory, const s
     directory.write(name, kPly);
   }
   return directory.write("scene.json", R"({"version": 1,
-      "camera": {"width": )" + std::to_string(size) + R"(, "height": )" + std::to_string(size) + R"(, "fov_y_deg": 40,
+      "camera": {"width": )" + std::to_string(size) +
+                                           R"(, "height": )" + std::to_string(size) + R"(, "fov_y_deg": 40,
                  "position": [0, -3, 0], "target": [0, 0, 0], "up": [0, 0, 1]},
       "particles": [{"path": "p_####.ply", "radius": 0.2}]})");
 }
 
 std::vector<std::string> filesIn(const std::filesystem::path& directory) {
   std::vector<std::string> names;
-  for (const auto& entry : std::filesystem::directory_iterator(directory)) names.push_back(entry.path().filename());
+  for (const auto& entry : std::filesystem::directory_iterator(directory))
+    names.push_back(entry.path().filename());
   std::sort(names.begin(), names.end());
   return names;
 }
@@ -66,8 +68,8 @@ TEST(CLISequences, SkipExistingRendersOnlyWhatIsMissingAndRemovesStaleTemporarie
   TempDirectory directory;
   const std::filesystem::path scene = writeSequenceScene(directory, {1, 2, 3});
   const std::filesystem::path out = directory.path() / "out";
-  const std::string render = "render " + scene.string() + " --frames 1-3 -o " + (out / "f_####.exr").string() +
-                             " --png " + (out / "f_####.png").string();
+  const std::string render = "render " + scene.string() + " --frames 1-3 -o " +
+                             (out / "f_####.exr").string() + " --png " + (out / "f_####.png").string();
   ASSERT_EQ(runCli(render).exitCode, 0);
   const std::string frame1 = readBytes(out / "f_0001.exr");
   // A sequence killed while writing frame 2: its PNG never came, and a temporary was left behind.
@@ -82,8 +84,10 @@ TEST(CLISequences, SkipExistingRendersOnlyWhatIsMissingAndRemovesStaleTemporarie
   const CommandResult resumed = runCli(render + " --skip-existing");
   ASSERT_EQ(resumed.exitCode, 0) << resumed.stderrText;
   EXPECT_NE(resumed.stderrText.find("frame 1 skipped"), std::string::npos) << resumed.stderrText;
-  EXPECT_EQ(std::filesystem::last_write_time(out / "f_0001.exr"), frame1Time) << "a complete frame is not redone";
-  EXPECT_NE(std::filesystem::last_write_time(out / "f_0002.exr"), frame2ExrTime) << "a partial frame is redone whole";
+  EXPECT_EQ(std::filesystem::last_write_time(out / "f_0001.exr"), frame1Time)
+      << "a complete frame is not redone";
+  EXPECT_NE(std::filesystem::last_write_time(out / "f_0002.exr"), frame2ExrTime)
+      << "a partial frame is redone whole";
   EXPECT_EQ(filesIn(out), (std::vector<std::string>{"f_0001.exr", "f_0001.png", "f_0002.exr", "f_0002.png",
                                                     "f_0003.exr", "f_0003.png"}));
   EXPECT_EQ(readBytes(out / "f_0002.exr"), frame1) << "the same particles give the same bytes";
@@ -92,8 +96,8 @@ TEST(CLISequences, SkipExistingRendersOnlyWhatIsMissingAndRemovesStaleTemporarie
 TEST(CLISequences, MissingCacheFrameNamesTheFrameAndStopsTheSequence) {
   TempDirectory directory;
   const std::filesystem::path scene = writeSequenceScene(directory, {1, 3});
-  const CommandResult result =
-      runCli("render " + scene.string() + " --frames 1-3 -q -o " + (directory.path() / "f_####.exr").string());
+  const CommandResult result = runCli("render " + scene.string() + " --frames 1-3 -q -o " +
+                                      (directory.path() / "f_####.exr").string());
   EXPECT_EQ(result.exitCode, 1);
   EXPECT_NE(result.stderrText.find("frame 2"), std::string::npos) << result.stderrText;
   EXPECT_NE(result.stderrText.find("p_0002.ply"), std::string::npos) << result.stderrText;
@@ -109,7 +113,8 @@ TEST(CLISequences, KeepGoingRendersTheRestAndExitsWithThree) {
                                       (directory.path() / "f_####.exr").string());
   EXPECT_EQ(result.exitCode, 3) << result.stderrText;
   EXPECT_NE(result.stderrText.find("2 of 5 frames failed: 2,4"), std::string::npos) << result.stderrText;
-  for (int frame : {1, 3, 5}) EXPECT_TRUE(isCompleteExr(directory.path() / ("f_000" + std::to_string(frame) + ".exr")));
+  for (int frame : {1, 3, 5})
+    EXPECT_TRUE(isCompleteExr(directory.path() / ("f_000" + std::to_string(frame) + ".exr")));
   EXPECT_FALSE(std::filesystem::exists(directory.path() / "f_0002.exr"));
 }
 
@@ -151,9 +156,14 @@ void checkStopsCleanlyOn(int signalNumber) {
   EXPECT_EQ(names.size() % 2, 0u) << "every frame has both files or neither";
   for (const std::string& name : names) {
     EXPECT_NE(name[0], '.') << "stray temporary " << name;
-    if (name.size() > 4 && name.substr(name.size() - 4) == ".exr") EXPECT_TRUE(isCompleteExr(out / name)) << name;
+    if (name.size() > 4 && name.substr(name.size() - 4) == ".exr")
+      EXPECT_TRUE(isCompleteExr(out / name)) << name;
   }
 }
 
-TEST(CLISequences, SigtermStopsAfterTheFrameInFlightWithExitCode143) { checkStopsCleanlyOn(SIGTERM); }
-TEST(CLISequences, SigintStopsAfterTheFrameInFlightWithExitCode130) { checkStopsCleanlyOn(SIGINT); }
+TEST(CLISequences, SigtermStopsAfterTheFrameInFlightWithExitCode143) {
+  checkStopsCleanlyOn(SIGTERM);
+}
+TEST(CLISequences, SigintStopsAfterTheFrameInFlightWithExitCode130) {
+  checkStopsCleanlyOn(SIGINT);
+}

@@ -58,9 +58,11 @@ TEST(Determinism, SameProcessTwiceGivesIdenticalLayersAndFiles) {
     const auto& b = second.layers[i].pixels;
     ASSERT_EQ(a.size(), b.size()) << first.layers[i].name;
     EXPECT_EQ(std::memcmp(a.data(), b.data(), a.size() * sizeof(float)), 0) << first.layers[i].name;
-    for (float value : a) ASSERT_TRUE(std::isfinite(value)) << first.layers[i].name;
+    for (float value : a)
+      ASSERT_TRUE(std::isfinite(value)) << first.layers[i].name;
     if (first.layers[i].name == "liquid_class")
-      for (float value : a) liquidPixels += value > 0.0f;
+      for (float value : a)
+        liquidPixels += value > 0.0f;
   }
   EXPECT_GT(liquidPixels, 2000u) << "the scene must exercise the liquid";
   EXPECT_GT(first.stats.liquid.splashParticles, 0u);

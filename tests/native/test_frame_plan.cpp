@@ -39,24 +39,13 @@ TEST(FramePlan, FullFrameRunsEveryPassInRecipeOrder) {
   contents.causticLights = 1;
   contents.caustics = true;
   const FramePlan plan = planFrame(contents);
-  const std::vector<std::string> expected = {"background",
-                                             "occluder_depth",
-                                             "liquid_mesh_depth",
-                                             "light_depth_layers",
-                                             "liquid_shadow",
-                                             "caustics",
-                                             "lit_background",
-                                             "splash_depth_layers",
-                                             "aggregate_depth_layers",
-                                             "smoothing",
-                                             "refraction",
-                                             "foam_scene_depth",
-                                             "foam_depth",
-                                             "foam_thickness",
-                                             "foam_intensity",
-                                             "foam_occlusion",
-                                             "foam_blur",
-                                             "composite"};
+  const std::vector<std::string> expected = {
+      "background",         "occluder_depth",      "liquid_mesh_depth",
+      "light_depth_layers", "liquid_shadow",       "caustics",
+      "lit_background",     "splash_depth_layers", "aggregate_depth_layers",
+      "smoothing",          "refraction",          "foam_scene_depth",
+      "foam_depth",         "foam_thickness",      "foam_intensity",
+      "foam_occlusion",     "foam_blur",           "composite"};
   EXPECT_EQ(names(plan.passes), expected);
   EXPECT_TRUE(plan.skipped.empty());
 }
@@ -68,7 +57,8 @@ TEST(FramePlan, EmptyFrameRunsBackgroundAndCompositeOnly) {
   EXPECT_EQ(plan.skipped.front().name, "occluder_depth");
   EXPECT_EQ(reasonFor(plan, "occluder_depth"), "no occluders");
   EXPECT_EQ(reasonFor(plan, "liquid_mesh_depth"), "no liquid mesh");
-  for (const std::string& pass : kLightPasses) EXPECT_EQ(reasonFor(plan, pass), "no lights in the scene");
+  for (const std::string& pass : kLightPasses)
+    EXPECT_EQ(reasonFor(plan, pass), "no lights in the scene");
   EXPECT_EQ(reasonFor(plan, "refraction"), "no liquid particles in view");
   EXPECT_EQ(reasonFor(plan, "smoothing"), "no aggregate particles in view");
   for (const std::string& pass : kFoamPasses)
@@ -119,7 +109,8 @@ TEST(FramePlan, LightsRunTheLightPasses) {
   const FramePlan causticsOff = planFrame(withLights(1, 1, 1, false));
   EXPECT_EQ(reasonFor(causticsOff, "caustics"), "light.caustics is off");
   const FramePlan unseen = planFrame(withLights(1, 0, 0, true));
-  for (const std::string& pass : kLightPasses) EXPECT_EQ(reasonFor(unseen, pass), "no light sees the liquid");
+  for (const std::string& pass : kLightPasses)
+    EXPECT_EQ(reasonFor(unseen, pass), "no light sees the liquid");
   const FramePlan withCaustics = planFrame(withLights(1, 1, 1, true));
   for (Pass pass : {Pass::LightDepthLayers, Pass::LiquidShadow, Pass::Caustics, Pass::LitBackground})
     EXPECT_TRUE(withCaustics.runs(pass)) << passName(pass);
@@ -156,29 +147,30 @@ TEST(FramePlan, EveryPassIsEitherRunOrSkippedExactlyOnce) {
       for (std::size_t foam : {0, 1})
         for (const char* smoothing : {"plane_fit", "none"}) {
           for (int wanted = 0; wanted < 16; ++wanted) {
-          FrameContents contents{splash, aggregate, foam, smoothing};
-          contents.occluderMeshes = splash;
-          contents.liquidMesh = aggregate > 0;
-          contents.lights = splash + foam;
-          contents.lightsSeeingLiquid = foam;
-          contents.causticLights = aggregate * foam;
-          contents.caustics = smoothing[0] == 'p';
-          contents.compositeWanted = wanted & 1;
-          contents.liquidLayersWanted = wanted & 2;
-          contents.foamLayersWanted = wanted & 4;
-          contents.intermediateWanted = wanted & 8;
-          const FramePlan plan = planFrame(contents);
-          std::vector<std::string> all = names(plan.passes);
-          for (const SkippedPass& skipped : plan.skipped) {
-            EXPECT_FALSE(skipped.reason.empty());
-            all.push_back(skipped.name);
-          }
-          std::sort(all.begin(), all.end());
-          EXPECT_EQ(std::adjacent_find(all.begin(), all.end()), all.end());
-          EXPECT_EQ(all.size(), 18u);
-          // A pass runs only when what it reads runs.
-          if (plan.runs(Pass::Smoothing)) EXPECT_TRUE(plan.runs(Pass::AggregateDepthLayers));
-          if (plan.runs(Pass::FoamSceneDepth) && (splash || aggregate)) EXPECT_TRUE(plan.runs(Pass::Refraction));
+            FrameContents contents{splash, aggregate, foam, smoothing};
+            contents.occluderMeshes = splash;
+            contents.liquidMesh = aggregate > 0;
+            contents.lights = splash + foam;
+            contents.lightsSeeingLiquid = foam;
+            contents.causticLights = aggregate * foam;
+            contents.caustics = smoothing[0] == 'p';
+            contents.compositeWanted = wanted & 1;
+            contents.liquidLayersWanted = wanted & 2;
+            contents.foamLayersWanted = wanted & 4;
+            contents.intermediateWanted = wanted & 8;
+            const FramePlan plan = planFrame(contents);
+            std::vector<std::string> all = names(plan.passes);
+            for (const SkippedPass& skipped : plan.skipped) {
+              EXPECT_FALSE(skipped.reason.empty());
+              all.push_back(skipped.name);
+            }
+            std::sort(all.begin(), all.end());
+            EXPECT_EQ(std::adjacent_find(all.begin(), all.end()), all.end());
+            EXPECT_EQ(all.size(), 18u);
+            // A pass runs only when what it reads runs.
+            if (plan.runs(Pass::Smoothing)) EXPECT_TRUE(plan.runs(Pass::AggregateDepthLayers));
+            if (plan.runs(Pass::FoamSceneDepth) && (splash || aggregate))
+              EXPECT_TRUE(plan.runs(Pass::Refraction));
           }
         }
 }
@@ -214,7 +206,8 @@ TEST(FramePlan, FoamLayersAloneWithoutFoamInViewNeedNoLiquid) {
   const FramePlan plan = planFrame(contents);
   EXPECT_EQ(names(plan.passes), (std::vector<std::string>{"background"}));
   EXPECT_EQ(reasonFor(plan, "refraction"), "no liquid layer, composite or foam asked for (--layers)");
-  EXPECT_EQ(reasonFor(plan, "aggregate_depth_layers"), "no liquid layer, composite or foam asked for (--layers)");
+  EXPECT_EQ(reasonFor(plan, "aggregate_depth_layers"),
+            "no liquid layer, composite or foam asked for (--layers)");
 }
 
 TEST(FramePlan, IntermediateLayersKeepTheDepthLayers) {

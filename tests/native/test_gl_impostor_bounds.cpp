@@ -1,8 +1,8 @@
 // The ellipsoid impostors' screen rectangles (ellipsoid_impostor.vert, tight bounds after Sigg et al. 2006)
 // never cut off a pixel of an ellipsoid: the front and back depth layers the GPU draws from the preparation's
-// own ellipsoids are compared, pixel by pixel, with a double-precision CPU ray cast of every ellipsoid against
-// every pixel (drawing all of them everywhere). Anisotropic, flattened ellipsoids at a grazing view are the
-// case the rectangles shrink most.
+// own ellipsoids are compared, pixel by pixel, with a double-precision CPU ray cast of every ellipsoid
+// against every pixel (drawing all of them everywhere). Anisotropic, flattened ellipsoids at a grazing view
+// are the case the rectangles shrink most.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -81,7 +81,8 @@ Particles wavySheet() {
 
 TEST(GLImpostorBounds, TightRectanglesLoseNoPixelOfAnyEllipsoid) {
   Scene scene;
-  scene.camera = Camera::lookAt(160, 120, 40.0f, {0.0f, -1.3f, 0.35f}, {0.0f, 0.0f, 0.0f}, {0.0f, 0.0f, 1.0f});
+  scene.camera =
+      Camera::lookAt(160, 120, 40.0f, {0.0f, -1.3f, 0.35f}, {0.0f, 0.0f, 0.0f}, {0.0f, 0.0f, 1.0f});
   scene.camera.nearClip = 0.05f;
   scene.camera.farClip = 20.0f;
   const Particles particles = wavySheet();

@@ -28,7 +28,8 @@ Scene rampScene(const TempDirectory& directory) {
     return glm::vec3((world.x + 4.0f) / 8.0f, (world.y + 3.0f) / 6.0f, 0.25f);
   };
   scene.background.image = directory.path() / "plane.exr";
-  writeBackgroundExr(scene.background.image, kWidth, kHeight, planeColor, [](int, int) { return float(kPlaneDepth); });
+  writeBackgroundExr(scene.background.image, kWidth, kHeight, planeColor,
+                     [](int, int) { return float(kPlaneDepth); });
   return scene;
 }
 
@@ -39,7 +40,8 @@ glm::dvec3 planeAlong(const Camera& camera, const optics::Ray& ray, glm::dvec2* 
   if (t <= 0.0) return glm::dvec3(0.0);
   const glm::dvec3 hit = ray.origin + t * ray.direction;
   const glm::vec3 pixel = camera.pixelAndDepthFromWorld(glm::vec3(hit));
-  if (pixel.x < 0 || pixel.y < 0 || pixel.x >= camera.width || pixel.y >= camera.height) return glm::dvec3(0.0);
+  if (pixel.x < 0 || pixel.y < 0 || pixel.x >= camera.width || pixel.y >= camera.height)
+    return glm::dvec3(0.0);
   if (planePoint) *planePoint = glm::dvec2(hit);
   return glm::dvec3((hit.x + 4.0) / 8.0, (hit.y + 3.0) / 6.0, 0.25);
 }
@@ -55,7 +57,8 @@ TEST(GLLiquidAccuracy, TwoRefractionsThroughASphereMatchTheClosedForm) {
   scene.parameters.liquid.absorption = 0.0f;
   const glm::dvec3 centre(0.0, 0.0, -5.0);
   const double radius = 1.0, ior = scene.parameters.liquid.ior;
-  const RenderResult result = renderer().renderParticles(scene, particlesOf({glm::vec3(centre)}, float(radius)), 1);
+  const RenderResult result =
+      renderer().renderParticles(scene, particlesOf({glm::vec3(centre)}, float(radius)), 1);
   expectAllChannelsFinite(result);
   const ImageLayer& liquid = *result.layer("liquid");
 
@@ -64,7 +67,8 @@ TEST(GLLiquidAccuracy, TwoRefractionsThroughASphereMatchTheClosedForm) {
   const double planePixelSize = 2.0 * std::tan(glm::radians(20.0)) * kPlaneDepth / kHeight;
   for (int row = 0; row < kHeight; ++row)
     for (int column = 0; column < kWidth; ++column) {
-      const glm::dvec3 through = glm::dvec3(scene.camera.worldFromPixelAndDepth({column + 0.5f, row + 0.5f}, 1.0f));
+      const glm::dvec3 through =
+          glm::dvec3(scene.camera.worldFromPixelAndDepth({column + 0.5f, row + 0.5f}, 1.0f));
       const optics::Ray view{glm::dvec3(0.0), glm::normalize(through)};
       const auto entry = optics::sphereRoots(view, centre, radius);
       // Skip the silhouette's outer ring, where a pixel's footprint straddles the edge.
@@ -86,20 +90,24 @@ TEST(GLLiquidAccuracy, TwoRefractionsThroughASphereMatchTheClosedForm) {
                                 at(liquid, kWidth, column, row, 2));
       if (transmitted == glm::dvec3(0.0)) continue;  // The refracted ray left the screen.
       // Undo the reflected terms to read the plane coordinates the renderer's transmitted ray landed on.
-      const glm::dvec3 renderedTransmitted = (rendered - f1 * reflected1 - (1 - f1) * f2 * reflected2) / ((1 - f1) * (1 - f2));
+      const glm::dvec3 renderedTransmitted =
+          (rendered - f1 * reflected1 - (1 - f1) * f2 * reflected2) / ((1 - f1) * (1 - f2));
       const glm::dvec2 renderedPoint(renderedTransmitted.r * 8.0 - 4.0, renderedTransmitted.g * 6.0 - 3.0);
       const double positionError = glm::length(renderedPoint - expectedPoint) / planePixelSize;
       positionErrorSum += positionError;
       worstPositionError = std::max(worstPositionError, positionError);
-      colourErrorSum += (std::abs(rendered.r - expected.r) + std::abs(rendered.g - expected.g) + std::abs(rendered.b - expected.b)) / 3.0;
+      colourErrorSum += (std::abs(rendered.r - expected.r) + std::abs(rendered.g - expected.g) +
+                         std::abs(rendered.b - expected.b)) /
+                        3.0;
       ++compared;
     }
   ASSERT_GT(compared, 1500);
   const double meanPositionError = positionErrorSum / compared, meanColourError = colourErrorSum / compared;
   RecordProperty("mean_position_error_px", std::to_string(meanPositionError));
   RecordProperty("mean_colour_error", std::to_string(meanColourError));
-  std::printf("sphere: %d pixels, refracted position error mean %.3f px (worst %.2f px), colour error mean %.4f\n",
-              compared, meanPositionError, worstPositionError, meanColourError);
+  std::printf(
+      "sphere: %d pixels, refracted position error mean %.3f px (worst %.2f px), colour error mean %.4f\n",
+      compared, meanPositionError, worstPositionError, meanColourError);
   EXPECT_LT(meanPositionError, 1.0);
   EXPECT_LT(meanColourError, 0.01);
 }
@@ -120,8 +128,11 @@ TEST(GLLiquidAccuracy, BeerLambertThroughTheSphereCentre) {
   const double f0 = optics::schlick(1.0, ior);
   const glm::dvec3 behind = planeAlong(scene.camera, {glm::dvec3(0.0), glm::normalize(glm::dvec3(centre))});
   for (int channel = 0; channel < 3; ++channel) {
-    const double expected = (1 - f0) * (1 - f0) * std::exp(-scene.parameters.liquid.absorption_rgb[channel] * 2.0 * radius) * behind[channel];
-    EXPECT_NEAR(at(*result.layer("liquid"), kWidth, 80, 60, channel), expected, 0.01 * expected + 2e-3) << "channel " << channel;
+    const double expected = (1 - f0) * (1 - f0) *
+                            std::exp(-scene.parameters.liquid.absorption_rgb[channel] * 2.0 * radius) *
+                            behind[channel];
+    EXPECT_NEAR(at(*result.layer("liquid"), kWidth, 80, 60, channel), expected, 0.01 * expected + 2e-3)
+        << "channel " << channel;
   }
   EXPECT_NEAR(at(*result.layer("thickness"), kWidth, 80, 60, 0), 2.0 * radius, 0.02 * radius);
 }

@@ -20,8 +20,9 @@ Scene frontalScene(const TempDirectory& directory, const glm::vec3& backgroundCo
   scene.camera = Camera::lookAt(kWidth, kHeight, 30.0f, {0, 0, 3}, {0, 0, 0}, {0, 1, 0});
   scene.background.color = glm::vec3(0.0f);
   scene.background.image = directory.path() / "wall.exr";
-  writeBackgroundExr(scene.background.image, kWidth, kHeight, [&](int, int) { return backgroundColour; },
-                     [](int, int) { return 10.0f; });
+  writeBackgroundExr(
+      scene.background.image, kWidth, kHeight, [&](int, int) { return backgroundColour; },
+      [](int, int) { return 10.0f; });
   return scene;
 }
 
@@ -50,7 +51,8 @@ TEST(GLLiquidLayers, SlabFollowsBeerLambert) {
   int count = 0;
   for (int row = kHeight / 2 - 8; row < kHeight / 2 + 8; ++row)
     for (int column = kWidth / 2 - 8; column < kWidth / 2 + 8; ++column) {
-      for (int c = 0; c < 3; ++c) mean[c] += at(*result.layer("liquid"), kWidth, column, row, c);
+      for (int c = 0; c < 3; ++c)
+        mean[c] += at(*result.layer("liquid"), kWidth, column, row, c);
       meanThickness += at(*result.layer("thickness"), kWidth, column, row, 0);
       ++count;
     }
@@ -59,8 +61,9 @@ TEST(GLLiquidLayers, SlabFollowsBeerLambert) {
   // Two channels give the path length without knowing the transmission; the third checks it.
   const double pathLength = std::log(mean.r / mean.b) / (4.0 - 1.0);
   const double geometricThickness = (layers - 1) * kSpacing;
-  std::printf("slab: path length from colour %.4f, thickness layer %.4f, particle centres span %.4f (r = %.3f)\n",
-              pathLength, meanThickness, geometricThickness, kRadius);
+  std::printf(
+      "slab: path length from colour %.4f, thickness layer %.4f, particle centres span %.4f (r = %.3f)\n",
+      pathLength, meanThickness, geometricThickness, kRadius);
   EXPECT_GT(pathLength, geometricThickness);
   EXPECT_LT(pathLength, geometricThickness + 2.0 * kRadius);
   EXPECT_NEAR(meanThickness, pathLength, 0.05 * pathLength);
@@ -85,7 +88,8 @@ TEST(GLLiquidLayers, SplitLayersFindTheSplashBackSurfaceAndMergedDoNot) {
   const RenderResult split = renderer().renderParticles(scene, particlesOf(positions, kRadius), 1);
   expectAllChannelsFinite(split);
   EXPECT_EQ(split.stats.liquid.splashParticles, 1u);
-  EXPECT_EQ(at(*split.layer("liquid_class"), kWidth, column, row, 0), 1.0f) << "the first surface is the splash";
+  EXPECT_EQ(at(*split.layer("liquid_class"), kWidth, column, row, 0), 1.0f)
+      << "the first surface is the splash";
   const float splitThickness = at(*split.layer("thickness"), kWidth, column, row, 0);
 
   scene.parameters.liquid.layers = "merged";
@@ -93,8 +97,8 @@ TEST(GLLiquidLayers, SplitLayersFindTheSplashBackSurfaceAndMergedDoNot) {
   expectAllChannelsFinite(merged);
   EXPECT_EQ(merged.stats.liquid.splashParticles, 0u);
   const float mergedThickness = at(*merged.layer("thickness"), kWidth, column, row, 0);
-  std::printf("splash before body: path in liquid %.4f with split layers, %.4f merged (2r = %.3f)\n", splitThickness,
-              mergedThickness, 2 * kRadius);
+  std::printf("splash before body: path in liquid %.4f with split layers, %.4f merged (2r = %.3f)\n",
+              splitThickness, mergedThickness, 2 * kRadius);
   // Split: in and out of the splash (about 2r = 0.1), then into the body and out again (about 0.45). Merged:
   // one path from the splash's front (0.65) to the body's back (about -0.23), the air gap counted as liquid.
   EXPECT_GT(split.stats.liquid.raysWithSecondBody, 0u);

@@ -13,7 +13,8 @@ using namespace liquid_test;
 
 namespace {
 
-Scene sceneLookingAt(const glm::vec3& position, const glm::vec3& target, float nearClip = 0.01f, float farClip = 1000.0f) {
+Scene sceneLookingAt(const glm::vec3& position, const glm::vec3& target, float nearClip = 0.01f,
+                     float farClip = 1000.0f) {
   Scene scene;
   scene.camera = Camera::lookAt(96, 72, 40.0f, position, target, {0, 0, 1});
   scene.camera.nearClip = nearClip;
@@ -28,7 +29,8 @@ RenderResult renderCase(const Scene& scene, const std::vector<glm::vec3>& positi
 
 std::size_t coveredPixels(const RenderResult& result) {
   std::size_t covered = 0;
-  for (float depth : result.layer("depth")->pixels) covered += depth < 1e9f;
+  for (float depth : result.layer("depth")->pixels)
+    covered += depth < 1e9f;
   return covered;
 }
 
@@ -36,21 +38,23 @@ std::size_t coveredPixels(const RenderResult& result) {
 
 TEST(GLLiquidStability, ColinearCluster) {
   std::vector<glm::vec3> positions;
-  for (int i = 0; i < 40; ++i) positions.emplace_back(0.04f * i - 0.8f, 0.0f, 0.0f);
+  for (int i = 0; i < 40; ++i)
+    positions.emplace_back(0.04f * i - 0.8f, 0.0f, 0.0f);
   const RenderResult result = renderCase(sceneLookingAt({0, -3, 0.5f}, {0, 0, 0}), positions, 0.05f);
   expectAllChannelsFinite(result);
   EXPECT_GT(coveredPixels(result), 50u);
 }
 
 TEST(GLLiquidStability, CoplanarCluster) {
-  const RenderResult result =
-      renderCase(sceneLookingAt({0, -3, 1}, {0, 0, 0}), block({-0.5f, -0.5f, 0}, {0.5f, 0.5f, 0}, 0.045f), 0.05f);
+  const RenderResult result = renderCase(sceneLookingAt({0, -3, 1}, {0, 0, 0}),
+                                         block({-0.5f, -0.5f, 0}, {0.5f, 0.5f, 0}, 0.045f), 0.05f);
   expectAllChannelsFinite(result);
   EXPECT_GT(coveredPixels(result), 300u);
 }
 
 TEST(GLLiquidStability, SingleNeighbourPair) {
-  const RenderResult result = renderCase(sceneLookingAt({0, -3, 0}, {0, 0, 0}), {{0, 0, 0}, {0.05f, 0, 0}}, 0.05f);
+  const RenderResult result =
+      renderCase(sceneLookingAt({0, -3, 0}, {0, 0, 0}), {{0, 0, 0}, {0.05f, 0, 0}}, 0.05f);
   expectAllChannelsFinite(result);
   EXPECT_GT(coveredPixels(result), 10u);
 }
@@ -65,7 +69,8 @@ TEST(GLLiquidStability, CoincidentParticles) {
 TEST(GLLiquidStability, StraddlingTheNearPlaneAndBehindTheCamera) {
   Scene scene = sceneLookingAt({0, -1, 0}, {0, 0, 0}, 0.1f);
   // Spheres whose centres sit on the near plane, behind the camera, and one in plain view.
-  const RenderResult result = renderCase(scene, {{0, -0.9f, 0}, {0.05f, -0.9f, 0.02f}, {0, -2, 0}, {0, -1.5f, 0}, {0, 0, 0}}, 0.1f);
+  const RenderResult result =
+      renderCase(scene, {{0, -0.9f, 0}, {0.05f, -0.9f, 0.02f}, {0, -2, 0}, {0, -1.5f, 0}, {0, 0, 0}}, 0.1f);
   expectAllChannelsFinite(result);
   EXPECT_GT(coveredPixels(result), 10u);
 }
@@ -73,7 +78,8 @@ TEST(GLLiquidStability, StraddlingTheNearPlaneAndBehindTheCamera) {
 TEST(GLLiquidStability, GrazingViewOfAFlatSurface) {
   // A flat sheet of liquid seen from 1 degree above its plane.
   const glm::vec3 eye(0.0f, -3.0f, 3.0f * std::tan(glm::radians(1.0f)));
-  const RenderResult result = renderCase(sceneLookingAt(eye, {0, 0, 0}), block({-1, -1, -0.05f}, {1, 1, 0}, 0.045f), 0.05f);
+  const RenderResult result =
+      renderCase(sceneLookingAt(eye, {0, 0, 0}), block({-1, -1, -0.05f}, {1, 1, 0}, 0.045f), 0.05f);
   expectAllChannelsFinite(result);
   EXPECT_GT(coveredPixels(result), 50u);
 }
@@ -83,7 +89,8 @@ TEST(GLLiquidStability, TotalInternalReflection) {
   // past water's critical angle of 48.8 degrees, so light inside reflects totally.
   std::vector<glm::vec3> wedge;
   for (const glm::vec3& position : block({-0.5f, -0.5f, -0.5f}, {0.5f, 0.5f, 0.5f}, 0.045f))
-    if (position.y <= -0.5f + (position.z + 0.5f) * std::tan(glm::radians(65.0f)) * 0.45f) wedge.push_back(position);
+    if (position.y <= -0.5f + (position.z + 0.5f) * std::tan(glm::radians(65.0f)) * 0.45f)
+      wedge.push_back(position);
   Scene scene = sceneLookingAt({0, -3, 0}, {0, 0, 0});
   const RenderResult result = renderCase(scene, wedge, 0.05f);
   expectAllChannelsFinite(result);
@@ -91,7 +98,8 @@ TEST(GLLiquidStability, TotalInternalReflection) {
 }
 
 TEST(GLLiquidStability, CameraInsideTheLiquid) {
-  const RenderResult result = renderCase(sceneLookingAt({0, 0, 0}, {0, 1, 0}), block({-0.6f, -0.6f, -0.6f}, {0.6f, 0.6f, 0.6f}, 0.09f), 0.1f);
+  const RenderResult result = renderCase(sceneLookingAt({0, 0, 0}, {0, 1, 0}),
+                                         block({-0.6f, -0.6f, -0.6f}, {0.6f, 0.6f, 0.6f}, 0.09f), 0.1f);
   expectAllChannelsFinite(result);
 }
 
@@ -114,11 +122,13 @@ TEST(GLLiquidStability, DepthRangesFromAThousandthToTenThousandUnits) {
   std::mt19937 random(3);
   std::uniform_real_distribution<float> jitter(-1.0f, 1.0f);
   std::vector<glm::vec3> cluster;
-  for (int i = 0; i < 200; ++i) cluster.emplace_back(0.3f * jitter(random), 0.3f * jitter(random), 0.3f * jitter(random));
+  for (int i = 0; i < 200; ++i)
+    cluster.emplace_back(0.3f * jitter(random), 0.3f * jitter(random), 0.3f * jitter(random));
   for (float scale : {1e-3f, 1.0f, 1e4f}) {
     Scene scene = sceneLookingAt(glm::vec3(0, -3, 0) * scale, {0, 0, 0}, 0.01f * scale, 1000.0f * scale);
     std::vector<glm::vec3> scaled;
-    for (const glm::vec3& p : cluster) scaled.push_back(p * scale);
+    for (const glm::vec3& p : cluster)
+      scaled.push_back(p * scale);
     const RenderResult result = renderCase(scene, scaled, 0.06f * scale);
     expectAllChannelsFinite(result);
     EXPECT_GT(coveredPixels(result), 200u) << "scale " << scale;

@@ -15,7 +15,8 @@ using namespace spindrift;
 
 namespace {
 
-// A compute shader that writes lib/value.glsl's constant, so a test can tell which source a program came from.
+// A compute shader that writes lib/value.glsl's constant, so a test can tell which source a program came
+// from.
 const char* kWriter = R"(#version 450 core
 #include "lib/value.glsl"
 layout(local_size_x = 1) in;
@@ -36,7 +37,9 @@ class GLProgramCache : public ::testing::Test {
     shaders_.write("writer.comp", kWriter);
     setValue("1.5");
   }
-  void setValue(const std::string& value) { shaders_.write("lib/value.glsl", "const float kValue = " + value + ";\n"); }
+  void setValue(const std::string& value) {
+    shaders_.write("lib/value.glsl", "const float kValue = " + value + ";\n");
+  }
   std::filesystem::path cacheDirectory() const { return cache_.path() / "programs"; }
 
   // Builds the program through a fresh library and cache (as a new process would) and runs it.
@@ -62,7 +65,8 @@ class GLProgramCache : public ::testing::Test {
   std::vector<std::filesystem::path> cacheFiles() const {
     std::vector<std::filesystem::path> files;
     if (std::filesystem::exists(cacheDirectory()))
-      for (const auto& entry : std::filesystem::directory_iterator(cacheDirectory())) files.push_back(entry.path());
+      for (const auto& entry : std::filesystem::directory_iterator(cacheDirectory()))
+        files.push_back(entry.path());
     return files;
   }
 

@@ -23,7 +23,8 @@ long residentKilobytes() {
 
 std::array<long, std::size_t(GlObjectType::Count)> liveObjects() {
   std::array<long, std::size_t(GlObjectType::Count)> counts{};
-  for (std::size_t i = 0; i < counts.size(); ++i) counts[i] = liveGlObjectCount(GlObjectType(i));
+  for (std::size_t i = 0; i < counts.size(); ++i)
+    counts[i] = liveGlObjectCount(GlObjectType(i));
   return counts;
 }
 
@@ -31,9 +32,10 @@ Particles randomParticles(std::mt19937& random, int count) {
   std::uniform_real_distribution<float> coordinate(-1.0f, 1.0f);
   Particles particles;
   // Every fourth particle is foam, so the foam passes run (and must not leak) too.
-  const ParticleKind kinds[] = {ParticleKind::Liquid, ParticleKind::Liquid, ParticleKind::Liquid, ParticleKind::Spray,
-                                ParticleKind::Liquid, ParticleKind::Liquid, ParticleKind::Liquid, ParticleKind::Foam,
-                                ParticleKind::Liquid, ParticleKind::Liquid, ParticleKind::Liquid, ParticleKind::Bubble};
+  const ParticleKind kinds[] = {ParticleKind::Liquid, ParticleKind::Liquid, ParticleKind::Liquid,
+                                ParticleKind::Spray,  ParticleKind::Liquid, ParticleKind::Liquid,
+                                ParticleKind::Liquid, ParticleKind::Foam,   ParticleKind::Liquid,
+                                ParticleKind::Liquid, ParticleKind::Liquid, ParticleKind::Bubble};
   for (int i = 0; i < count; ++i)
     particles.append({coordinate(random), coordinate(random), coordinate(random)}, 0.05f, kinds[i % 12], 0.0f,
                      glm::vec3(0.0f));

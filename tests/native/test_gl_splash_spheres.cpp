@@ -25,7 +25,8 @@ Scene sphereScene() {
 
 Particles particlesAt(std::initializer_list<std::pair<glm::vec3, float>> spheres) {
   Particles particles;
-  for (const auto& [centre, radius] : spheres) particles.append(centre, radius, ParticleKind::Liquid, 0.0f, glm::vec3(0));
+  for (const auto& [centre, radius] : spheres)
+    particles.append(centre, radius, ParticleKind::Liquid, 0.0f, glm::vec3(0));
   return particles;
 }
 
@@ -36,7 +37,8 @@ float channel(const ImageLayer& layer, int width, int column, int row, int chann
 void expectAllFinite(const RenderResult& result) {
   for (const ImageLayer& layer : result.layers) {
     std::size_t bad = 0;
-    for (float value : layer.pixels) bad += !std::isfinite(value);
+    for (float value : layer.pixels)
+      bad += !std::isfinite(value);
     EXPECT_EQ(bad, 0u) << "non-finite values in layer " << layer.name;
   }
 }
@@ -53,7 +55,8 @@ TEST(GLSplashSpheres, DepthAndNormalMatchTheAnalyticSphere) {
   const Scene scene = sphereScene();
   const glm::dvec3 centre(0.2, 0.0, 0.1);
   const double radius = 0.8;
-  const RenderResult result = sharedRenderer().renderParticles(scene, particlesAt({{glm::vec3(centre), float(radius)}}), 1);
+  const RenderResult result =
+      sharedRenderer().renderParticles(scene, particlesAt({{glm::vec3(centre), float(radius)}}), 1);
   ASSERT_NE(result.layer("depth"), nullptr);
   ASSERT_NE(result.layer("normal"), nullptr);
   const ImageLayer& depth = *result.layer("depth");
@@ -76,7 +79,8 @@ TEST(GLSplashSpheres, DepthAndNormalMatchTheAnalyticSphere) {
       if (!hit) continue;
       ++compared;
       worstDepthError = std::max(worstDepthError, std::abs(renderedDepth - hit->eyeDepth));
-      const glm::dvec3 rendered(channel(normal, width, column, row, 0), channel(normal, width, column, row, 1),
+      const glm::dvec3 rendered(channel(normal, width, column, row, 0),
+                                channel(normal, width, column, row, 1),
                                 channel(normal, width, column, row, 2));
       worstNormalError = std::max(worstNormalError, glm::length(rendered - hit->worldNormal));
     }
@@ -125,7 +129,8 @@ TEST(GLSplashSpheres, BackgroundDepthHidesSpheresBehindSolids) {
   scene.background.depth = depthFile;
   scene.background.depthExplicit = true;
   const glm::dvec3 centre(0, 0, 0);
-  const RenderResult result = sharedRenderer().renderParticles(scene, particlesAt({{glm::vec3(centre), 0.8f}}), 1);
+  const RenderResult result =
+      sharedRenderer().renderParticles(scene, particlesAt({{glm::vec3(centre), 0.8f}}), 1);
   const ImageLayer& depth = *result.layer("depth");
   int mismatches = 0, visibleOnLeft = 0;
   for (int row = 0; row < height; ++row)
@@ -149,7 +154,8 @@ TEST(GLSplashSpheres, CompositeIsLiquidOverBackground) {
   const ImageLayer& liquid = *result.layer("liquid");
   const int width = scene.camera.width;
   // A corner shows the background colour; the centre shows the liquid, opaque.
-  for (int c = 0; c < 3; ++c) EXPECT_NEAR(channel(composite, width, 0, 0, c), scene.background.color[c], 1e-6f);
+  for (int c = 0; c < 3; ++c)
+    EXPECT_NEAR(channel(composite, width, 0, 0, c), scene.background.color[c], 1e-6f);
   EXPECT_EQ(channel(liquid, width, 0, 0, 3), 0.0f);
   const int column = width / 2, row = scene.camera.height / 2;
   EXPECT_EQ(channel(liquid, width, column, row, 3), 1.0f);
@@ -165,11 +171,15 @@ TEST(GLSplashSpheres, EmptyFrameSkipsLiquidPassesAndKeepsLayers) {
   EXPECT_EQ(result.stats.liquid.splashParticles + result.stats.liquid.aggregateParticles, 0u);
   EXPECT_EQ(result.stats.liquid.culled, 1u);
   bool splashLayersSkipped = false;
-  for (const SkippedPass& pass : result.stats.skipped) splashLayersSkipped |= pass.name == "splash_depth_layers";
+  for (const SkippedPass& pass : result.stats.skipped)
+    splashLayersSkipped |= pass.name == "splash_depth_layers";
   EXPECT_TRUE(splashLayersSkipped);
-  for (const char* name : {"composite", "liquid", "depth", "normal"}) EXPECT_NE(result.layer(name), nullptr) << name;
-  for (float value : result.layer("depth")->pixels) ASSERT_EQ(value, 1e10f);
-  for (const PassTiming& pass : result.stats.passes) EXPECT_GE(pass.gpuMilliseconds, 0.0) << pass.name;
+  for (const char* name : {"composite", "liquid", "depth", "normal"})
+    EXPECT_NE(result.layer(name), nullptr) << name;
+  for (float value : result.layer("depth")->pixels)
+    ASSERT_EQ(value, 1e10f);
+  for (const PassTiming& pass : result.stats.passes)
+    EXPECT_GE(pass.gpuMilliseconds, 0.0) << pass.name;
   expectAllFinite(result);
 }
 

@@ -18,7 +18,9 @@ using namespace spindrift;
 
 namespace {
 
-Camera goodCamera() { return Camera::lookAt(64, 48, 40.0f, {0, -3, 0}, {0, 0, 0}, {0, 0, 1}); }
+Camera goodCamera() {
+  return Camera::lookAt(64, 48, 40.0f, {0, -3, 0}, {0, 0, 0}, {0, 0, 1});
+}
 
 std::string cameraError(const Camera& camera) {
   try {
@@ -37,7 +39,9 @@ struct MemoryCeiling {
 
 }  // namespace
 
-TEST(Limits, AGoodCameraPasses) { EXPECT_EQ(cameraError(goodCamera()), ""); }
+TEST(Limits, AGoodCameraPasses) {
+  EXPECT_EQ(cameraError(goodCamera()), "");
+}
 
 TEST(Limits, CameraFovOfZeroOr180IsRejected) {
   for (float fov : {0.0f, -10.0f, 180.0f, 270.0f, std::nanf("")}) {
@@ -50,10 +54,12 @@ TEST(Limits, CameraFovOfZeroOr180IsRejected) {
 TEST(Limits, CameraNearMustBePositiveAndBeforeFar) {
   Camera camera = goodCamera();
   camera.nearClip = 0.0f;
-  EXPECT_NE(cameraError(camera).find("near 0 must be finite and > 0"), std::string::npos) << cameraError(camera);
+  EXPECT_NE(cameraError(camera).find("near 0 must be finite and > 0"), std::string::npos)
+      << cameraError(camera);
   camera.nearClip = 5.0f;
   camera.farClip = 5.0f;
-  EXPECT_NE(cameraError(camera).find("far 5 must be finite and > near (5)"), std::string::npos) << cameraError(camera);
+  EXPECT_NE(cameraError(camera).find("far 5 must be finite and > near (5)"), std::string::npos)
+      << cameraError(camera);
   camera.farClip = INFINITY;
   EXPECT_NE(cameraError(camera).find("far"), std::string::npos);
 }
@@ -61,7 +67,8 @@ TEST(Limits, CameraNearMustBePositiveAndBeforeFar) {
 TEST(Limits, CameraMatrixMustBeFiniteAffineAndInvertible) {
   Camera camera = goodCamera();
   camera.worldFromCamera[3][1] = NAN;
-  EXPECT_NE(cameraError(camera).find("non-finite element (row 1, column 3)"), std::string::npos) << cameraError(camera);
+  EXPECT_NE(cameraError(camera).find("non-finite element (row 1, column 3)"), std::string::npos)
+      << cameraError(camera);
   camera = goodCamera();
   camera.worldFromCamera[2][3] = 1.0f;
   EXPECT_NE(cameraError(camera).find("affine"), std::string::npos);
@@ -133,8 +140,9 @@ TEST(Limits, AFrameLargerThanTheMemoryAvailableIsRefusedBeforeRendering) {
     FAIL() << "rendered a frame needing ~15 GiB under a 64 MiB ceiling";
   } catch (const Error& error) {
     const std::string message = error.what();
-    EXPECT_NE(message.find("a 4000x4000 frame of 0 particles needs 15625 MiB, more than the 64 MiB available"),
-              std::string::npos)
+    EXPECT_NE(
+        message.find("a 4000x4000 frame of 0 particles needs 15625 MiB, more than the 64 MiB available"),
+        std::string::npos)
         << message;
   }
 }
@@ -164,21 +172,26 @@ TEST(Limits, AnImageWhoseHeaderClaimsTooMuchIsRefusedBeforeReading) {
     readColorImage(path);
     FAIL() << "read an image larger than the memory ceiling";
   } catch (const Error& error) {
-    EXPECT_NE(std::string(error.what()).find("big.exr: a 2000x2000 image needs"), std::string::npos) << error.what();
+    EXPECT_NE(std::string(error.what()).find("big.exr: a 2000x2000 image needs"), std::string::npos)
+        << error.what();
   }
 }
 
 TEST(Limits, APlyWhoseVerticesExceedMemoryIsRefused) {
   TempDirectory directory;
   std::string body;
-  for (int i = 0; i < 100000; ++i) body += "0 0 0\n";
-  const auto path = directory.write("many.ply", "ply\nformat ascii 1.0\nelement vertex 100000\nproperty float x\n"
-                                                "property float y\nproperty float z\nend_header\n" + body);
+  for (int i = 0; i < 100000; ++i)
+    body += "0 0 0\n";
+  const auto path = directory.write("many.ply",
+                                    "ply\nformat ascii 1.0\nelement vertex 100000\nproperty float x\n"
+                                    "property float y\nproperty float z\nend_header\n" +
+                                        body);
   MemoryCeiling ceiling(std::uint64_t(2) << 20);
   try {
     readPly(path);
     FAIL() << "read 100,000 vertices under a 2 MiB ceiling";
   } catch (const Error& error) {
-    EXPECT_NE(std::string(error.what()).find("the vertex arrays needs 3 MiB"), std::string::npos) << error.what();
+    EXPECT_NE(std::string(error.what()).find("the vertex arrays needs 3 MiB"), std::string::npos)
+        << error.what();
   }
 }

@@ -26,7 +26,8 @@ TEST(Parameters, SetValidatesTypeAndRange) {
   EXPECT_THROW(setParameter(parameters, "liquid.ior", 5.0), Error);
   EXPECT_THROW(setParameter(parameters, "liquid.ior", "high"), Error);
   EXPECT_THROW(setParameter(parameters, "liquid.absorption_rgb", nlohmann::json::array({0.1, 0.2})), Error);
-  EXPECT_THROW(setParameter(parameters, "liquid.absorption_rgb", nlohmann::json::array({0.1, 0.2, -1.5})), Error);
+  EXPECT_THROW(setParameter(parameters, "liquid.absorption_rgb", nlohmann::json::array({0.1, 0.2, -1.5})),
+               Error);
   EXPECT_THROW(setParameter(parameters, "liquid.no_such_thing", 1), Error);
   EXPECT_FLOAT_EQ(parameters.liquid.ior, 1.5f) << "a rejected value must leave the old one";
 }
@@ -45,7 +46,8 @@ TEST(Parameters, GroupErrorsNameFileAndKey) {
 // docs/parameters.md is generated from the table; this fails when someone edits one without the other.
 TEST(Parameters, DocsMatchTheTable) {
   std::ifstream file(std::string(SPINDRIFT_SOURCE_DIR) + "/docs/parameters.md");
-  ASSERT_TRUE(file) << "docs/parameters.md is missing: run `spindrift params --markdown > docs/parameters.md`";
+  ASSERT_TRUE(file)
+      << "docs/parameters.md is missing: run `spindrift params --markdown > docs/parameters.md`";
   std::stringstream text;
   text << file.rdbuf();
   EXPECT_EQ(text.str(), parametersMarkdown())

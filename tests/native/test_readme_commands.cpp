@@ -43,7 +43,9 @@ std::vector<std::string> readmeCommands() {
   return commands;
 }
 
-bool startsWith(const std::string& text, const std::string& prefix) { return text.rfind(prefix, 0) == 0; }
+bool startsWith(const std::string& text, const std::string& prefix) {
+  return text.rfind(prefix, 0) == 0;
+}
 
 int runShell(const std::string& command, std::string* output) {
   TempDirectory logs;
@@ -66,7 +68,8 @@ std::string tinyScene() {
 }
 
 const char* kParticles =
-    "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\nproperty float z\nend_header\n"
+    "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\nproperty float "
+    "z\nend_header\n"
     "0 0 0\n0.3 0 0\n0 0 0.3\n";
 
 }  // namespace
@@ -110,7 +113,8 @@ TEST(ReadmeCommands, ScriptsExistAndAcceptTheirArguments) {
     EXPECT_EQ(access(path.c_str(), X_OK), 0) << command << ": " << program << " is not an executable file";
     if (startsWith(program, "tests/bench/")) {
       std::string output;
-      EXPECT_EQ(runShell("cd '" + source + "' && " + command + " --help", &output), 0) << command << "\n" << output;
+      EXPECT_EQ(runShell("cd '" + source + "' && " + command + " --help", &output), 0) << command << "\n"
+                                                                                       << output;
     }
   }
 }

@@ -56,8 +56,8 @@ TEST(SceneFile, WorldFromCameraIsRowMajor) {
   TempDirectory directory;
   directory.write("p.ply", kParticlesPly);
   // Row-major: the translation is the last column of the rows as written.
-  const Scene scene = parseScene(
-      sceneWith(R"(, "world_from_camera": [1,0,0,3, 0,1,0,4, 0,0,1,5, 0,0,0,1])"), directory.path() / "s.json");
+  const Scene scene = parseScene(sceneWith(R"(, "world_from_camera": [1,0,0,3, 0,1,0,4, 0,0,1,5, 0,0,0,1])"),
+                                 directory.path() / "s.json");
   EXPECT_EQ(scene.camera.position(), glm::vec3(3, 4, 5));
 }
 
@@ -108,10 +108,10 @@ TEST(SceneFile, ReadsBackgroundLiquidDepth) {
   directory.write("p.ply", kParticlesPly);
   directory.write("with_liquid.exr", "");
   directory.write("background.exr", "");
-  const Scene scene = parseScene(
-      sceneWith(kLookAt, R"(, "background": {"image": "with_liquid.exr", "depth": "background.exr",
+  const Scene scene =
+      parseScene(sceneWith(kLookAt, R"(, "background": {"image": "with_liquid.exr", "depth": "background.exr",
                               "liquid_depth": "with_liquid.exr"}, "foam": {"ao_passes": 2})"),
-      directory.path() / "scene.json");
+                 directory.path() / "scene.json");
   EXPECT_EQ(scene.background.liquidDepth, directory.path() / "with_liquid.exr");
   EXPECT_EQ(scene.background.depth, directory.path() / "background.exr");
   EXPECT_EQ(scene.parameters.foam.ao_passes, 2);
@@ -122,12 +122,11 @@ TEST(SceneFile, ReadsBackgroundLiquidDepth) {
 TEST(SceneFile, ReadsLights) {
   TempDirectory directory;
   directory.write("p.ply", kParticlesPly);
-  const Scene scene = parseScene(
-      sceneWith(kLookAt, R"(, "lights": [
+  const Scene scene = parseScene(sceneWith(kLookAt, R"(, "lights": [
         {"type": "sun", "direction": [0, 3, -4], "strength": 3.5, "color": [1, 0.9, 0.8]},
         {"type": "spot", "position": [1, 2, 3], "direction": [0, 0, -1], "strength": 800, "spot_angle_deg": 30},
         {"type": "point", "position": [0, 0, 5], "strength": 1000}], "light": {"shadow_map_size": 256})"),
-      directory.path() / "scene.json");
+                                 directory.path() / "scene.json");
   ASSERT_EQ(scene.lights.size(), 3u);
   EXPECT_EQ(scene.lights[0].type, Light::Type::Sun);
   EXPECT_NEAR(scene.lights[0].direction.y, 0.6f, 1e-6f);
@@ -146,8 +145,8 @@ TEST(SceneFile, ReadsLights) {
 TEST(SceneFile, DomainSettingsWithACellSizeDeriveTheRadius) {
   TempDirectory directory;
   directory.write("p.ply", kParticlesPly);
-  // particle_number 3: particles a third of a cell apart, r = 1.1 spacings; no cache beside p.ply, so the cell
-  // size is the scene's.
+  // particle_number 3: particles a third of a cell apart, r = 1.1 spacings; no cache beside p.ply, so the
+  // cell size is the scene's.
   const Scene scene = parseScene(
       R"({"version": 1, "camera": {"width": 8, "height": 8, "fov_y_deg": 40)" + kLookAt +
           R"(}, "particles": [{"path": "p.ply", "domain": {"cell_size": 0.3, "particle_number": 3}}]})",
@@ -156,7 +155,8 @@ TEST(SceneFile, DomainSettingsWithACellSizeDeriveTheRadius) {
   EXPECT_NE(scene.particles[0].radiusOrigin.find("particle_number 3"), std::string::npos);
   EXPECT_GT(scene.parameters.liquid.surface_offset, 0.0f);
   // Old scene files: a hand radius and no domain leave the surface offset at 0, so they render as before.
-  EXPECT_FLOAT_EQ(parseScene(sceneWith(kLookAt), directory.path() / "s.json").parameters.liquid.surface_offset, 0.0f);
+  EXPECT_FLOAT_EQ(
+      parseScene(sceneWith(kLookAt), directory.path() / "s.json").parameters.liquid.surface_offset, 0.0f);
 }
 
 TEST(SceneFile, AGivenSurfaceOffsetWinsOverTheDerivedOne) {
@@ -177,7 +177,9 @@ struct BadScene {
 };
 
 // Test listings show the case's name, not the bytes of the struct.
-void PrintTo(const BadScene& scene, std::ostream* out) { *out << scene.name; }
+void PrintTo(const BadScene& scene, std::ostream* out) {
+  *out << scene.name;
+}
 
 class SceneFileErrors : public testing::TestWithParam<BadScene> {};
 
@@ -197,54 +199,157 @@ INSTANTIATE_TEST_SUITE_P(
         BadScene{"WrongVersion", R"({"version": 2})", "version"},
         BadScene{"UnknownTopLevelKey", sceneWith(kLookAt, R"(, "liquidd": {})"), "liquidd"},
         BadScene{"MissingCamera", R"({"version": 1, "particles": []})", "camera"},
-        BadScene{"ZeroWidth", R"({"version": 1, "camera": {"width": 0, "height": 32, "fov_y_deg": 40)" + kLookAt + "}, \"particles\": []}", "camera.width"},
-        BadScene{"FractionalHeight", R"({"version": 1, "camera": {"width": 8, "height": 3.5, "fov_y_deg": 40)" + kLookAt + "}, \"particles\": []}", "camera.height"},
-        BadScene{"FovOutOfRange", R"({"version": 1, "camera": {"width": 8, "height": 8, "fov_y_deg": 180)" + kLookAt + "}, \"particles\": []}", "camera.fov_y_deg"},
+        BadScene{"ZeroWidth",
+                 R"({"version": 1, "camera": {"width": 0, "height": 32, "fov_y_deg": 40)" + kLookAt +
+                     "}, \"particles\": []}",
+                 "camera.width"},
+        BadScene{"FractionalHeight",
+                 R"({"version": 1, "camera": {"width": 8, "height": 3.5, "fov_y_deg": 40)" + kLookAt +
+                     "}, \"particles\": []}",
+                 "camera.height"},
+        BadScene{"FovOutOfRange",
+                 R"({"version": 1, "camera": {"width": 8, "height": 8, "fov_y_deg": 180)" + kLookAt +
+                     "}, \"particles\": []}",
+                 "camera.fov_y_deg"},
         BadScene{"FarBeforeNear", sceneWith(kLookAt + R"(, "near": 1, "far": 0.5)"), "camera.far"},
         BadScene{"NoCameraPose", sceneWith(""), "camera.world_from_camera"},
-        BadScene{"BothPoses", sceneWith(kLookAt + R"(, "world_from_camera": [1,0,0,0,0,1,0,0,0,0,1,0,0,0,0,1])"), "camera.world_from_camera"},
+        BadScene{"BothPoses",
+                 sceneWith(kLookAt + R"(, "world_from_camera": [1,0,0,0,0,1,0,0,0,0,1,0,0,0,0,1])"),
+                 "camera.world_from_camera"},
         BadScene{"ShortMatrix", sceneWith(R"(, "world_from_camera": [1,0,0])"), "camera.world_from_camera"},
-        BadScene{"SingularMatrix", sceneWith(R"(, "world_from_camera": [0,0,0,0,0,0,0,0,0,0,0,0,0,0,0,1])"), "singular"},
-        BadScene{"ProjectiveMatrix", sceneWith(R"(, "world_from_camera": [1,0,0,0,0,1,0,0,0,0,1,0,0,0,1,1])"), "affine"},
-        BadScene{"TargetIsPosition", sceneWith(R"(, "position": [1,1,1], "target": [1,1,1], "up": [0,0,1])"), "camera.target"},
-        BadScene{"UpAlongView", sceneWith(R"(, "position": [0,0,0], "target": [0,0,1], "up": [0,0,1])"), "camera.up"},
-        BadScene{"ParticlesNotAList", R"({"version": 1, "camera": {"width": 8, "height": 8, "fov_y_deg": 40)" + kLookAt + R"(}, "particles": {}})", "particles"},
-        BadScene{"MissingParticleFile", R"({"version": 1, "camera": {"width": 8, "height": 8, "fov_y_deg": 40)" + kLookAt + R"(}, "particles": [{"path": "nope.ply", "radius": 1}]})", "particles[0].path"},
-        BadScene{"WrongExtension", R"({"version": 1, "camera": {"width": 8, "height": 8, "fov_y_deg": 40)" + kLookAt + R"(}, "particles": [{"path": "p.txt", "radius": 1}]})", "particles[0].path"},
-        BadScene{"NegativeRadius", R"({"version": 1, "camera": {"width": 8, "height": 8, "fov_y_deg": 40)" + kLookAt + R"(}, "particles": [{"path": "p.ply", "radius": -1}]})", "particles[0].radius"},
-        BadScene{"UnknownRole", R"({"version": 1, "camera": {"width": 8, "height": 8, "fov_y_deg": 40)" + kLookAt + R"(}, "particles": [{"path": "p.ply", "radius": 1, "role": "solid"}]})", "particles[0].role"},
-        BadScene{"KindOnLiquid", R"({"version": 1, "camera": {"width": 8, "height": 8, "fov_y_deg": 40)" + kLookAt + R"(}, "particles": [{"path": "p.ply", "radius": 1, "kind": "spray"}]})", "particles[0].kind"},
-        BadScene{"GridOnPly", R"({"version": 1, "camera": {"width": 8, "height": 8, "fov_y_deg": 40)" + kLookAt + R"(}, "particles": [{"path": "p.ply", "radius": 1, "grid": "x"}]})", "particles[0].grid"},
-        BadScene{"TypoInSource", R"({"version": 1, "camera": {"width": 8, "height": 8, "fov_y_deg": 40)" + kLookAt + R"(}, "particles": [{"path": "p.ply", "raduis": 1}]})", "particles[0].raduis"},
-        BadScene{"MissingBackgroundImage", sceneWith(kLookAt, R"(, "background": {"image": "bg.exr"})"), "background.image"},
-        BadScene{"MissingLiquidDepth", sceneWith(kLookAt, R"(, "background": {"liquid_depth": "with_liquid.exr"})"), "background.liquid_depth"},
-        BadScene{"LiquidDepthNotAString", sceneWith(kLookAt, R"(, "background": {"liquid_depth": 3})"), "background.liquid_depth"},
-        BadScene{"TypoInBackground", sceneWith(kLookAt, R"(, "background": {"liquid_dpeth": "p.ply"})"), "background.liquid_dpeth"},
-        BadScene{"FoamParameterOutOfRange", sceneWith(kLookAt, R"(, "foam": {"ao_passes": 0})"), "foam.ao_passes"},
-        BadScene{"UnknownFoamChoice", sceneWith(kLookAt, R"(, "foam": {"irradiance": "probe"})"), "foam.irradiance"},
-        BadScene{"NegativeBackgroundColor", sceneWith(kLookAt, R"(, "background": {"color": [0, -1, 0]})"), "background.color"},
-        BadScene{"UnknownParameter", sceneWith(kLookAt, R"(, "liquid": {"absorption_colour": [1, 1, 1]})"), "liquid.absorption_colour"},
+        BadScene{"SingularMatrix", sceneWith(R"(, "world_from_camera": [0,0,0,0,0,0,0,0,0,0,0,0,0,0,0,1])"),
+                 "singular"},
+        BadScene{"ProjectiveMatrix", sceneWith(R"(, "world_from_camera": [1,0,0,0,0,1,0,0,0,0,1,0,0,0,1,1])"),
+                 "affine"},
+        BadScene{"TargetIsPosition", sceneWith(R"(, "position": [1,1,1], "target": [1,1,1], "up": [0,0,1])"),
+                 "camera.target"},
+        BadScene{"UpAlongView", sceneWith(R"(, "position": [0,0,0], "target": [0,0,1], "up": [0,0,1])"),
+                 "camera.up"},
+        BadScene{"ParticlesNotAList",
+                 R"({"version": 1, "camera": {"width": 8, "height": 8, "fov_y_deg": 40)" + kLookAt +
+                     R"(}, "particles": {}})",
+                 "particles"},
+        BadScene{"MissingParticleFile",
+                 R"({"version": 1, "camera": {"width": 8, "height": 8, "fov_y_deg": 40)" + kLookAt +
+                     R"(}, "particles": [{"path": "nope.ply", "radius": 1}]})",
+                 "particles[0].path"},
+        BadScene{"WrongExtension",
+                 R"({"version": 1, "camera": {"width": 8, "height": 8, "fov_y_deg": 40)" + kLookAt +
+                     R"(}, "particles": [{"path": "p.txt", "radius": 1}]})",
+                 "particles[0].path"},
+        BadScene{"NegativeRadius",
+                 R"({"version": 1, "camera": {"width": 8, "height": 8, "fov_y_deg": 40)" + kLookAt +
+                     R"(}, "particles": [{"path": "p.ply", "radius": -1}]})",
+                 "particles[0].radius"},
+        BadScene{"UnknownRole",
+                 R"({"version": 1, "camera": {"width": 8, "height": 8, "fov_y_deg": 40)" + kLookAt +
+                     R"(}, "particles": [{"path": "p.ply", "radius": 1, "role": "solid"}]})",
+                 "particles[0].role"},
+        BadScene{"KindOnLiquid",
+                 R"({"version": 1, "camera": {"width": 8, "height": 8, "fov_y_deg": 40)" + kLookAt +
+                     R"(}, "particles": [{"path": "p.ply", "radius": 1, "kind": "spray"}]})",
+                 "particles[0].kind"},
+        BadScene{"GridOnPly",
+                 R"({"version": 1, "camera": {"width": 8, "height": 8, "fov_y_deg": 40)" + kLookAt +
+                     R"(}, "particles": [{"path": "p.ply", "radius": 1, "grid": "x"}]})",
+                 "particles[0].grid"},
+        BadScene{"TypoInSource",
+                 R"({"version": 1, "camera": {"width": 8, "height": 8, "fov_y_deg": 40)" + kLookAt +
+                     R"(}, "particles": [{"path": "p.ply", "raduis": 1}]})",
+                 "particles[0].raduis"},
+        BadScene{"MissingBackgroundImage", sceneWith(kLookAt, R"(, "background": {"image": "bg.exr"})"),
+                 "background.image"},
+        BadScene{"MissingLiquidDepth",
+                 sceneWith(kLookAt, R"(, "background": {"liquid_depth": "with_liquid.exr"})"),
+                 "background.liquid_depth"},
+        BadScene{"LiquidDepthNotAString", sceneWith(kLookAt, R"(, "background": {"liquid_depth": 3})"),
+                 "background.liquid_depth"},
+        BadScene{"TypoInBackground", sceneWith(kLookAt, R"(, "background": {"liquid_dpeth": "p.ply"})"),
+                 "background.liquid_dpeth"},
+        BadScene{"FoamParameterOutOfRange", sceneWith(kLookAt, R"(, "foam": {"ao_passes": 0})"),
+                 "foam.ao_passes"},
+        BadScene{"UnknownFoamChoice", sceneWith(kLookAt, R"(, "foam": {"irradiance": "probe"})"),
+                 "foam.irradiance"},
+        BadScene{"NegativeBackgroundColor", sceneWith(kLookAt, R"(, "background": {"color": [0, -1, 0]})"),
+                 "background.color"},
+        BadScene{"UnknownParameter", sceneWith(kLookAt, R"(, "liquid": {"absorption_colour": [1, 1, 1]})"),
+                 "liquid.absorption_colour"},
         BadScene{"ParameterOutOfRange", sceneWith(kLookAt, R"(, "liquid": {"ior": 7})"), "liquid.ior"},
         BadScene{"LightsNotAList", sceneWith(kLookAt, R"(, "lights": {"type": "sun"})"), "lights"},
-        BadScene{"UnknownLightType", sceneWith(kLookAt, R"(, "lights": [{"type": "area", "strength": 1}])"), "lights[0].type"},
-        BadScene{"SunWithoutDirection", sceneWith(kLookAt, R"(, "lights": [{"type": "sun", "strength": 1}])"), "lights[0].direction"},
-        BadScene{"ZeroSunDirection", sceneWith(kLookAt, R"(, "lights": [{"type": "sun", "direction": [0, 0, 0], "strength": 1}])"), "lights[0].direction"},
-        BadScene{"PointWithDirection", sceneWith(kLookAt, R"(, "lights": [{"type": "point", "position": [0, 0, 1], "direction": [0, 0, -1], "strength": 1}])"), "lights[0].direction"},
-        BadScene{"SunWithPosition", sceneWith(kLookAt, R"(, "lights": [{"type": "sun", "direction": [0, 0, -1], "position": [0, 0, 1], "strength": 1}])"), "lights[0].position"},
-        BadScene{"NegativeLightStrength", sceneWith(kLookAt, R"(, "lights": [{"type": "point", "position": [0, 0, 1], "strength": -2}])"), "lights[0].strength"},
-        BadScene{"ConeOnPoint", sceneWith(kLookAt, R"(, "lights": [{"type": "point", "position": [0, 0, 1], "strength": 1, "spot_angle_deg": 30}])"), "lights[0].spot_angle_deg"},
-        BadScene{"TypoInLight", sceneWith(kLookAt, R"(, "lights": [{"type": "sun", "direction": [0, 0, -1], "strenght": 1}])"), "lights[0].strenght"},
-        BadScene{"LightParameterOutOfRange", sceneWith(kLookAt, R"(, "light": {"direct_fraction": 2})"), "light.direct_fraction"},
-        BadScene{"ZeroFov", R"({"version": 1, "camera": {"width": 8, "height": 8, "fov_y_deg": 0)" + kLookAt + "}, \"particles\": []}", "camera.fov_y_deg"},
+        BadScene{"UnknownLightType", sceneWith(kLookAt, R"(, "lights": [{"type": "area", "strength": 1}])"),
+                 "lights[0].type"},
+        BadScene{"SunWithoutDirection", sceneWith(kLookAt, R"(, "lights": [{"type": "sun", "strength": 1}])"),
+                 "lights[0].direction"},
+        BadScene{
+            "ZeroSunDirection",
+            sceneWith(kLookAt, R"(, "lights": [{"type": "sun", "direction": [0, 0, 0], "strength": 1}])"),
+            "lights[0].direction"},
+        BadScene{
+            "PointWithDirection",
+            sceneWith(
+                kLookAt,
+                R"(, "lights": [{"type": "point", "position": [0, 0, 1], "direction": [0, 0, -1], "strength": 1}])"),
+            "lights[0].direction"},
+        BadScene{
+            "SunWithPosition",
+            sceneWith(
+                kLookAt,
+                R"(, "lights": [{"type": "sun", "direction": [0, 0, -1], "position": [0, 0, 1], "strength": 1}])"),
+            "lights[0].position"},
+        BadScene{
+            "NegativeLightStrength",
+            sceneWith(kLookAt, R"(, "lights": [{"type": "point", "position": [0, 0, 1], "strength": -2}])"),
+            "lights[0].strength"},
+        BadScene{
+            "ConeOnPoint",
+            sceneWith(
+                kLookAt,
+                R"(, "lights": [{"type": "point", "position": [0, 0, 1], "strength": 1, "spot_angle_deg": 30}])"),
+            "lights[0].spot_angle_deg"},
+        BadScene{
+            "TypoInLight",
+            sceneWith(kLookAt, R"(, "lights": [{"type": "sun", "direction": [0, 0, -1], "strenght": 1}])"),
+            "lights[0].strenght"},
+        BadScene{"LightParameterOutOfRange", sceneWith(kLookAt, R"(, "light": {"direct_fraction": 2})"),
+                 "light.direct_fraction"},
+        BadScene{"ZeroFov",
+                 R"({"version": 1, "camera": {"width": 8, "height": 8, "fov_y_deg": 0)" + kLookAt +
+                     "}, \"particles\": []}",
+                 "camera.fov_y_deg"},
         BadScene{"NearEqualsFar", sceneWith(kLookAt + R"(, "near": 2, "far": 2)"), "camera.far"},
         BadScene{"ZeroNear", sceneWith(kLookAt + R"(, "near": 0)"), "camera.near"},
-        BadScene{"WiderThanTheLimit", R"({"version": 1, "camera": {"width": 16385, "height": 8, "fov_y_deg": 40)" + kLookAt + "}, \"particles\": []}", "16384"},
-        BadScene{"ZeroRadius", R"({"version": 1, "camera": {"width": 8, "height": 8, "fov_y_deg": 40)" + kLookAt + R"(}, "particles": [{"path": "p.ply", "radius": 0}]})", "particles[0].radius"},
-        BadScene{"InfiniteMatrixElement", sceneWith(R"(, "world_from_camera": [1,0,0,0,0,1,0,0,0,0,1,1e999,0,0,0,1])"), "number overflow parsing '1e999'"},
-        BadScene{"NeitherRadiusNorDomain", R"({"version": 1, "camera": {"width": 8, "height": 8, "fov_y_deg": 40)" + kLookAt + R"(}, "particles": [{"path": "p.ply"}]})", "particles[0].radius: missing: give the particle radius, or the Mantaflow \"domain\""},
-        BadScene{"DomainWithoutCacheOrCellSize", R"({"version": 1, "camera": {"width": 8, "height": 8, "fov_y_deg": 40)" + kLookAt + R"(}, "particles": [{"path": "p.ply", "domain": {}}]})", "particles[0].domain: no Mantaflow config file"},
-        BadScene{"TypoInDomain", R"({"version": 1, "camera": {"width": 8, "height": 8, "fov_y_deg": 40)" + kLookAt + R"(}, "particles": [{"path": "p.ply", "domain": {"mesh_particle_raduis": 2}}]})", "particles[0].domain.mesh_particle_raduis"},
-        BadScene{"UnknownMeshGenerator", R"({"version": 1, "camera": {"width": 8, "height": 8, "fov_y_deg": 40)" + kLookAt + R"(}, "particles": [{"path": "p.ply", "domain": {"cell_size": 0.1, "mesh_generator": "FINAL"}}]})", "particles[0].domain.mesh_generator"},
-        BadScene{"DomainOnFoam", R"({"version": 1, "camera": {"width": 8, "height": 8, "fov_y_deg": 40)" + kLookAt + R"(}, "particles": [{"path": "p.ply", "role": "foam", "radius": 1, "domain": {}}]})", "particles[0].domain"},
-        BadScene{"NaNInMatrix", sceneWith(R"(, "world_from_camera": [1,0,0,0,0,1,0,0,0,0,1,0,0,0,0,"x"])"), "camera.world_from_camera"}),
+        BadScene{"WiderThanTheLimit",
+                 R"({"version": 1, "camera": {"width": 16385, "height": 8, "fov_y_deg": 40)" + kLookAt +
+                     "}, \"particles\": []}",
+                 "16384"},
+        BadScene{"ZeroRadius",
+                 R"({"version": 1, "camera": {"width": 8, "height": 8, "fov_y_deg": 40)" + kLookAt +
+                     R"(}, "particles": [{"path": "p.ply", "radius": 0}]})",
+                 "particles[0].radius"},
+        BadScene{"InfiniteMatrixElement",
+                 sceneWith(R"(, "world_from_camera": [1,0,0,0,0,1,0,0,0,0,1,1e999,0,0,0,1])"),
+                 "number overflow parsing '1e999'"},
+        BadScene{"NeitherRadiusNorDomain",
+                 R"({"version": 1, "camera": {"width": 8, "height": 8, "fov_y_deg": 40)" + kLookAt +
+                     R"(}, "particles": [{"path": "p.ply"}]})",
+                 "particles[0].radius: missing: give the particle radius, or the Mantaflow \"domain\""},
+        BadScene{"DomainWithoutCacheOrCellSize",
+                 R"({"version": 1, "camera": {"width": 8, "height": 8, "fov_y_deg": 40)" + kLookAt +
+                     R"(}, "particles": [{"path": "p.ply", "domain": {}}]})",
+                 "particles[0].domain: no Mantaflow config file"},
+        BadScene{"TypoInDomain",
+                 R"({"version": 1, "camera": {"width": 8, "height": 8, "fov_y_deg": 40)" + kLookAt +
+                     R"(}, "particles": [{"path": "p.ply", "domain": {"mesh_particle_raduis": 2}}]})",
+                 "particles[0].domain.mesh_particle_raduis"},
+        BadScene{
+            "UnknownMeshGenerator",
+            R"({"version": 1, "camera": {"width": 8, "height": 8, "fov_y_deg": 40)" + kLookAt +
+                R"(}, "particles": [{"path": "p.ply", "domain": {"cell_size": 0.1, "mesh_generator": "FINAL"}}]})",
+            "particles[0].domain.mesh_generator"},
+        BadScene{"DomainOnFoam",
+                 R"({"version": 1, "camera": {"width": 8, "height": 8, "fov_y_deg": 40)" + kLookAt +
+                     R"(}, "particles": [{"path": "p.ply", "role": "foam", "radius": 1, "domain": {}}]})",
+                 "particles[0].domain"},
+        BadScene{"NaNInMatrix", sceneWith(R"(, "world_from_camera": [1,0,0,0,0,1,0,0,0,0,1,0,0,0,0,"x"])"),
+                 "camera.world_from_camera"}),
     [](const testing::TestParamInfo<BadScene>& info) { return info.param.name; });

@@ -41,7 +41,8 @@ long residentKibibytes() {
 int openFileDescriptors() {
   int count = 0;
   if (DIR* directory = opendir("/proc/self/fd")) {
-    while (const dirent* entry = readdir(directory)) count += entry->d_name[0] != '.';
+    while (const dirent* entry = readdir(directory))
+      count += entry->d_name[0] != '.';
     closedir(directory);
   }
   return count - 1;  // The directory stream itself.
@@ -49,7 +50,8 @@ int openFileDescriptors() {
 
 long liveGlObjects() {
   long total = 0;
-  for (int type = 0; type < int(GlObjectType::Count); ++type) total += liveGlObjectCount(GlObjectType(type));
+  for (int type = 0; type < int(GlObjectType::Count); ++type)
+    total += liveGlObjectCount(GlObjectType(type));
   return total;
 }
 
@@ -60,7 +62,8 @@ Particles particlesFor(int count, int frame) {
   Particles particles;
   particles.reserve(std::size_t(count));
   for (int i = 0; i < count; ++i) {
-    const glm::vec3 p(unit(random) * 0.8f, unit(random) * 0.8f, (unit(random) + 1.0f) * 0.4f + 0.01f * (frame % 10));
+    const glm::vec3 p(unit(random) * 0.8f, unit(random) * 0.8f,
+                      (unit(random) + 1.0f) * 0.4f + 0.01f * (frame % 10));
     const bool spray = i % 10 == 0;
     particles.append(p, spray ? 0.01f : 0.035f, spray ? ParticleKind::Spray : ParticleKind::Liquid, 3.0f,
                      glm::vec3(0.0f, 0.0f, -1.0f));
@@ -82,8 +85,10 @@ int main(int argc, char** argv) {
   int frames = 2000;
   std::string csvPath;
   for (int i = 1; i < argc; ++i) {
-    if (!std::strcmp(argv[i], "--frames") && i + 1 < argc) frames = std::atoi(argv[++i]);
-    else if (!std::strcmp(argv[i], "--csv") && i + 1 < argc) csvPath = argv[++i];
+    if (!std::strcmp(argv[i], "--frames") && i + 1 < argc)
+      frames = std::atoi(argv[++i]);
+    else if (!std::strcmp(argv[i], "--csv") && i + 1 < argc)
+      csvPath = argv[++i];
     else {
       std::fprintf(stderr, "usage: spindrift_soak [--frames N] [--csv FILE]\n");
       return 2;
@@ -111,16 +116,18 @@ int main(int argc, char** argv) {
   for (int frame = 1; frame <= frames; ++frame) {
     const auto [width, height] = kSizes[std::size_t(frame) % kSizes.size()];
     const Camera& pose = scene.camera;
-    scene.camera = Camera::lookAt(width, height, pose.fovYDegrees, pose.position(), {0.0f, 0.0f, 0.3f}, {0, 0, 1});
-    const Particles particles = particlesFor(kParticleCounts[std::size_t(frame) % kParticleCounts.size()], frame);
+    scene.camera =
+        Camera::lookAt(width, height, pose.fovYDegrees, pose.position(), {0.0f, 0.0f, 0.3f}, {0, 0, 1});
+    const Particles particles =
+        particlesFor(kParticleCounts[std::size_t(frame) % kParticleCounts.size()], frame);
     writeExr(renderer.renderParticles(scene, particles, frame), exrPath);
     if (frame % 10 == 0 || frame == frames) {
       const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
       samples.push_back({frame, seconds, residentKibibytes(), liveGlObjects(), openFileDescriptors()});
       const Sample& s = samples.back();
       if (csv.is_open())
-        csv << s.frame << "," << s.seconds << "," << s.rssKibibytes << "," << s.glObjects << "," << s.fileDescriptors
-            << std::endl;
+        csv << s.frame << "," << s.seconds << "," << s.rssKibibytes << "," << s.glObjects << ","
+            << s.fileDescriptors << std::endl;
     }
   }
   std::remove(exrPath.c_str());
@@ -134,7 +141,8 @@ int main(int argc, char** argv) {
   const std::size_t quarter = std::max<std::size_t>(1, after.size() / 4);
   auto peak = [&](std::size_t begin, std::size_t end, auto field) {
     long value = 0;
-    for (std::size_t i = begin; i < end; ++i) value = std::max(value, long(field(after[i])));
+    for (std::size_t i = begin; i < end; ++i)
+      value = std::max(value, long(field(after[i])));
     return value;
   };
   const auto rss = [](const Sample& s) { return s.rssKibibytes; };
@@ -145,8 +153,10 @@ int main(int argc, char** argv) {
   const long fdEarly = peak(0, quarter, fds), fdLate = peak(after.size() - quarter, after.size(), fds);
   std::printf("spindrift_soak: %d frames in %.1f s on %s\n", frames, samples.back().seconds,
               renderer.glRenderer().c_str());
-  std::printf("  RSS peak %ld MiB early, %ld MiB late (%+ld KiB)\n", rssEarly / 1024, rssLate / 1024, rssLate - rssEarly);
-  std::printf("  GL objects %ld early, %ld late; open descriptors %ld early, %ld late\n", glEarly, glLate, fdEarly, fdLate);
+  std::printf("  RSS peak %ld MiB early, %ld MiB late (%+ld KiB)\n", rssEarly / 1024, rssLate / 1024,
+              rssLate - rssEarly);
+  std::printf("  GL objects %ld early, %ld late; open descriptors %ld early, %ld late\n", glEarly, glLate,
+              fdEarly, fdLate);
   const bool flat = rssLate - rssEarly <= 8 * 1024 && glLate <= glEarly && fdLate <= fdEarly;
   std::printf("  %s\n", flat ? "flat" : "GREW");
   return flat ? 0 : 1;

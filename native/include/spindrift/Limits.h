@@ -10,10 +10,10 @@ namespace spindrift {
 
 /// What the OpenGL implementation allows, queried once per Renderer on its GL thread.
 struct GlLimits {
-  int maxTextureSize = 0;        ///< GL_MAX_TEXTURE_SIZE: the largest side of a 2D texture.
-  int maxViewportWidth = 0;      ///< GL_MAX_VIEWPORT_DIMS.
+  int maxTextureSize = 0;    ///< GL_MAX_TEXTURE_SIZE: the largest side of a 2D texture.
+  int maxViewportWidth = 0;  ///< GL_MAX_VIEWPORT_DIMS.
   int maxViewportHeight = 0;
-  int maxFramebufferWidth = 0;   ///< GL_MAX_FRAMEBUFFER_WIDTH / HEIGHT.
+  int maxFramebufferWidth = 0;  ///< GL_MAX_FRAMEBUFFER_WIDTH / HEIGHT.
   int maxFramebufferHeight = 0;
 
   /// The largest image the renderer can draw: the smallest of the three limits, per axis.

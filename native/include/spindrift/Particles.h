@@ -8,17 +8,17 @@
 
 namespace spindrift {
 
-/// What a particle is. The values are Mantaflow's secondary-particle flags (the `U` attribute), so a flag read
-/// from a cache converts directly.
+/// What a particle is. The values are Mantaflow's secondary-particle flags (the `U` attribute), so a flag
+/// read from a cache converts directly.
 enum class ParticleKind : std::uint8_t { Liquid = 0, Spray = 2, Bubble = 4, Foam = 8 };
 
 /// The particles of one frame, in world space. Every array has one entry per particle.
 struct Particles {
   std::vector<glm::vec3> positions;
-  std::vector<float> radii;          ///< World units.
+  std::vector<float> radii;  ///< World units.
   std::vector<ParticleKind> kinds;
-  std::vector<float> life;           ///< Remaining life in frames; 0 where the source has none.
-  std::vector<glm::vec3> velocities; ///< World units per second; zero where the source has none.
+  std::vector<float> life;            ///< Remaining life in frames; 0 where the source has none.
+  std::vector<glm::vec3> velocities;  ///< World units per second; zero where the source has none.
 
   std::size_t size() const { return positions.size(); }
   void reserve(std::size_t count);

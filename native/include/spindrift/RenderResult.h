@@ -38,11 +38,13 @@ struct LiquidFrameStats {
   std::size_t isotropicInterior = 0;   ///< Aggregates deep inside the body, drawn without anisotropy.
   std::size_t culled = 0;              ///< Outside the view frustum.
   std::size_t liquidPixels = 0;
-  std::size_t raysWithSecondBody = 0;  ///< Rays that went on into a second body (third and fourth refraction).
+  std::size_t raysWithSecondBody =
+      0;  ///< Rays that went on into a second body (third and fourth refraction).
   std::size_t totalInternalReflections = 0;
   /// Paths whose march inside a body left the screen; their unseen rest is estimated from the thickness.
   std::size_t exitsOffScreen = 0;
-  /// Rays with a second body, by order: splash>splash, splash>aggregate, aggregate>splash, aggregate>aggregate.
+  /// Rays with a second body, by order: splash>splash, splash>aggregate, aggregate>splash,
+  /// aggregate>aggregate.
   std::size_t orders[4] = {0, 0, 0, 0};
   double neighbourMilliseconds = 0.0;
   double anisotropyMilliseconds = 0.0;
@@ -51,12 +53,12 @@ struct LiquidFrameStats {
 /// What the ray-marched surface did in a frame (liquid.surface = raymarch; all zero otherwise).
 struct RaymarchFrameStats {
   bool enabled = false;
-  bool adaptiveStepping = true;        ///< liquid.raymarch_stepping was adaptive (else uniform).
-  std::size_t densityParticles = 0;    ///< Liquid particles in the GPU neighbour grid.
-  std::size_t gridCells = 0;           ///< Cells of the binary density grid.
+  bool adaptiveStepping = true;      ///< liquid.raymarch_stepping was adaptive (else uniform).
+  std::size_t densityParticles = 0;  ///< Liquid particles in the GPU neighbour grid.
+  std::size_t gridCells = 0;         ///< Cells of the binary density grid.
   std::size_t raysCast = 0;
-  std::size_t hits = 0;                ///< Rays that found the iso-surface.
-  std::size_t totalSteps = 0;          ///< Marching steps of all rays: skips and density samples.
+  std::size_t hits = 0;        ///< Rays that found the iso-surface.
+  std::size_t totalSteps = 0;  ///< Marching steps of all rays: skips and density samples.
   double averageStepsPerRay = 0.0;
   double densityEvaluationsPerRay = 0.0;  ///< Bisection included.
   /// Screen tiles cast at full, half and quarter resolution, and tiles without liquid.
@@ -65,21 +67,21 @@ struct RaymarchFrameStats {
 
 /// What the foam pipeline found in a frame.
 struct FoamFrameStats {
-  std::size_t sprayParticles = 0;    ///< In view, by type.
+  std::size_t sprayParticles = 0;  ///< In view, by type.
   std::size_t surfaceParticles = 0;
   std::size_t bubbleParticles = 0;
-  std::size_t culled = 0;            ///< Outside the view frustum.
-  std::size_t foamPixels = 0;        ///< Pixels the SSAO shaded.
-  double aoSamplesPerPixel = 0.0;    ///< Mean SSAO samples per foam pixel, all passes together.
+  std::size_t culled = 0;          ///< Outside the view frustum.
+  std::size_t foamPixels = 0;      ///< Pixels the SSAO shaded.
+  double aoSamplesPerPixel = 0.0;  ///< Mean SSAO samples per foam pixel, all passes together.
 };
 
 /// What the light through the liquid found in a frame.
 struct LightFrameStats {
-  std::size_t lights = 0;               ///< In the scene.
-  std::size_t lightsSeeingLiquid = 0;   ///< Whose view of the liquid was drawn.
-  bool caustics = false;                ///< Whether any light's caustics were splatted.
-  bool lightPasses = false;             ///< Whether the background had Cycles' light passes.
-  double prepareMilliseconds = 0.0;     ///< CPU preparation of the lights' views (included in prepare_ms).
+  std::size_t lights = 0;              ///< In the scene.
+  std::size_t lightsSeeingLiquid = 0;  ///< Whose view of the liquid was drawn.
+  bool caustics = false;               ///< Whether any light's caustics were splatted.
+  bool lightPasses = false;            ///< Whether the background had Cycles' light passes.
+  double prepareMilliseconds = 0.0;    ///< CPU preparation of the lights' views (included in prepare_ms).
 };
 
 /// The cost a Renderer pays once, before its first frame: the GL context and the shader programs.
@@ -97,13 +99,13 @@ struct FrameStats {
   int height = 0;
   std::string glRenderer;
   std::string glVersion;
-  ParticleCounts counts;                 ///< Everything the sources held, by kind.
+  ParticleCounts counts;  ///< Everything the sources held, by kind.
   LiquidFrameStats liquid;
   FoamFrameStats foam;
   LightFrameStats light;
   RaymarchFrameStats raymarch;
-  double loadMilliseconds = 0.0;         ///< Reading particle files.
-  double prepareMilliseconds = 0.0;      ///< CPU preparation: culling and packing.
+  double loadMilliseconds = 0.0;     ///< Reading particle files.
+  double prepareMilliseconds = 0.0;  ///< CPU preparation: culling and packing.
   double readbackMilliseconds = 0.0;
   double totalMilliseconds = 0.0;  ///< Wall time of the whole frame, loading included.
   /// The first frame of a Renderer also carries its one-time setup (not part of totalMilliseconds); later

@@ -57,7 +57,8 @@ class Renderer {
  private:
   struct Impl;
   struct FrameExtras;
-  RenderResult renderPrepared(const Scene& scene, const Particles& particles, int frame, const FrameExtras& extras);
+  RenderResult renderPrepared(const Scene& scene, const Particles& particles, int frame,
+                              const FrameExtras& extras);
   std::unique_ptr<Impl> impl_;
 };
 

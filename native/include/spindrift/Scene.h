@@ -17,8 +17,9 @@ namespace spindrift {
 
 enum class ParticleRole { Liquid, Foam };
 
-/// The box a Mantaflow liquid is clipped to: Mantaflow closes its mesh with flat faces just inside the domain's
-/// walls (docs/mantaflow-caches.md). `worldFromBox` has unit scale; the box is [low, high] in its frame.
+/// The box a Mantaflow liquid is clipped to: Mantaflow closes its mesh with flat faces just inside the
+/// domain's walls (docs/mantaflow-caches.md). `worldFromBox` has unit scale; the box is [low, high] in its
+/// frame.
 struct DomainBox {
   glm::mat4 worldFromBox{1.0f};
   glm::vec3 low{0.0f};
@@ -53,9 +54,9 @@ struct MeshSource {
 
 /// What lies behind the liquid. Paths are absolute or empty, and may hold `####` like particle paths.
 struct Background {
-  std::filesystem::path image;        ///< Colour, or empty.
-  std::filesystem::path depth;        ///< Planar eye depth; empty means the image's own depth channel, if any.
-  bool depthExplicit = false;         ///< True when the scene named `depth`, which must then be found.
+  std::filesystem::path image;  ///< Colour, or empty.
+  std::filesystem::path depth;  ///< Planar eye depth; empty means the image's own depth channel, if any.
+  bool depthExplicit = false;   ///< True when the scene named `depth`, which must then be found.
   /// Planar eye depth of a render that includes the liquid (foam over a full render); empty when none.
   std::filesystem::path liquidDepth;
   std::filesystem::path environment;  ///< Equirectangular, +Z up as Blender's world; or empty.
@@ -69,7 +70,7 @@ struct Light {
   glm::vec3 direction{0.0f, 0.0f, -1.0f};  ///< Sun and spot: the way the light travels (a lamp's -Z), unit.
   glm::vec3 position{0.0f};                ///< Spot and point: world position.
   glm::vec3 color{1.0f};                   ///< Linear RGB.
-  float strength = 1.0f;       ///< Sun: irradiance in W/m^2; spot and point: power in W (Blender's units).
+  float strength = 1.0f;  ///< Sun: irradiance in W/m^2; spot and point: power in W (Blender's units).
   float spotAngleDegrees = 45.0f;  ///< Spot: full cone angle (Blender's spot_size).
 };
 

@@ -18,7 +18,7 @@ struct LiquidData {
   /// the centre of the texel it reads), and 1 in B where it does (0 where the light came from elsewhere).
   const Texture2D& refractionUv;
   const Texture2D& transmittance;  ///< RGBA32F: the fraction of that background colour that reaches the eye.
-  const Texture2D& reflection;     ///< RGBA32F: all other light: liquid = background(uv) * transmittance + this.
+  const Texture2D& reflection;  ///< RGBA32F: all other light: liquid = background(uv) * transmittance + this.
 };
 
 /// What the rays met, counted on the GPU.

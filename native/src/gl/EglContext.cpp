@@ -1,8 +1,8 @@
 #include "gl/EglContext.h"
 
-#include <GL/glew.h>
 #include <EGL/egl.h>
 #include <EGL/eglext.h>
+#include <GL/glew.h>
 
 #include <cstring>
 #include <vector>
@@ -28,16 +28,26 @@ bool hasExtension(const char* extensions, const char* name) {
 
 std::string eglErrorName(EGLint error) {
   switch (error) {
-    case EGL_NOT_INITIALIZED: return "EGL_NOT_INITIALIZED";
-    case EGL_BAD_ACCESS: return "EGL_BAD_ACCESS";
-    case EGL_BAD_ALLOC: return "EGL_BAD_ALLOC";
-    case EGL_BAD_ATTRIBUTE: return "EGL_BAD_ATTRIBUTE";
-    case EGL_BAD_CONFIG: return "EGL_BAD_CONFIG";
-    case EGL_BAD_CONTEXT: return "EGL_BAD_CONTEXT";
-    case EGL_BAD_DISPLAY: return "EGL_BAD_DISPLAY";
-    case EGL_BAD_MATCH: return "EGL_BAD_MATCH";
-    case EGL_BAD_PARAMETER: return "EGL_BAD_PARAMETER";
-    default: return "EGL error " + std::to_string(error);
+    case EGL_NOT_INITIALIZED:
+      return "EGL_NOT_INITIALIZED";
+    case EGL_BAD_ACCESS:
+      return "EGL_BAD_ACCESS";
+    case EGL_BAD_ALLOC:
+      return "EGL_BAD_ALLOC";
+    case EGL_BAD_ATTRIBUTE:
+      return "EGL_BAD_ATTRIBUTE";
+    case EGL_BAD_CONFIG:
+      return "EGL_BAD_CONFIG";
+    case EGL_BAD_CONTEXT:
+      return "EGL_BAD_CONTEXT";
+    case EGL_BAD_DISPLAY:
+      return "EGL_BAD_DISPLAY";
+    case EGL_BAD_MATCH:
+      return "EGL_BAD_MATCH";
+    case EGL_BAD_PARAMETER:
+      return "EGL_BAD_PARAMETER";
+    default:
+      return "EGL error " + std::to_string(error);
   }
 }
 
@@ -58,17 +68,21 @@ std::vector<Attempt> candidateDisplays() {
     if (queryDevices(16, devices, &deviceCount)) {
       std::vector<Attempt> software;
       for (EGLint i = 0; i < deviceCount; ++i) {
-        const char* deviceExtensions = queryDeviceString ? queryDeviceString(devices[i], EGL_EXTENSIONS) : nullptr;
+        const char* deviceExtensions =
+            queryDeviceString ? queryDeviceString(devices[i], EGL_EXTENSIONS) : nullptr;
         Attempt attempt{"EGL device " + std::to_string(i),
                         getPlatformDisplay(EGL_PLATFORM_DEVICE_EXT, devices[i], nullptr)};
-        if (hasExtension(deviceExtensions, "EGL_MESA_device_software")) software.push_back(attempt);
-        else attempts.push_back(attempt);
+        if (hasExtension(deviceExtensions, "EGL_MESA_device_software"))
+          software.push_back(attempt);
+        else
+          attempts.push_back(attempt);
       }
       attempts.insert(attempts.end(), software.begin(), software.end());
     }
   }
   if (getPlatformDisplay && hasExtension(clientExtensions, "EGL_MESA_platform_surfaceless"))
-    attempts.push_back({"Mesa surfaceless", getPlatformDisplay(EGL_PLATFORM_SURFACELESS_MESA, EGL_DEFAULT_DISPLAY, nullptr)});
+    attempts.push_back({"Mesa surfaceless",
+                        getPlatformDisplay(EGL_PLATFORM_SURFACELESS_MESA, EGL_DEFAULT_DISPLAY, nullptr)});
   attempts.push_back({"default display", egl().getDisplay(EGL_DEFAULT_DISPLAY)});
   return attempts;
 }
@@ -97,16 +111,21 @@ EglContext::EglContext() {
     const char* displayExtensions = egl().queryString(attempt.display, EGL_EXTENSIONS);
     EGLConfig config = EGL_NO_CONFIG_KHR;
     if (!hasExtension(displayExtensions, "EGL_KHR_no_config_context")) {
-      const EGLint configAttributes[] = {EGL_SURFACE_TYPE, EGL_PBUFFER_BIT, EGL_RENDERABLE_TYPE, EGL_OPENGL_BIT,
-                                         EGL_NONE};
+      const EGLint configAttributes[] = {EGL_SURFACE_TYPE, EGL_PBUFFER_BIT, EGL_RENDERABLE_TYPE,
+                                         EGL_OPENGL_BIT, EGL_NONE};
       EGLint configCount = 0;
-      if (!egl().chooseConfig(attempt.display, configAttributes, &config, 1, &configCount) || configCount == 0) {
+      if (!egl().chooseConfig(attempt.display, configAttributes, &config, 1, &configCount) ||
+          configCount == 0) {
         fail("no pbuffer config");
-          continue;
+        continue;
       }
     }
-    const EGLint contextAttributes[] = {EGL_CONTEXT_MAJOR_VERSION, 4, EGL_CONTEXT_MINOR_VERSION, 5,
-                                        EGL_CONTEXT_OPENGL_PROFILE_MASK, EGL_CONTEXT_OPENGL_CORE_PROFILE_BIT,
+    const EGLint contextAttributes[] = {EGL_CONTEXT_MAJOR_VERSION,
+                                        4,
+                                        EGL_CONTEXT_MINOR_VERSION,
+                                        5,
+                                        EGL_CONTEXT_OPENGL_PROFILE_MASK,
+                                        EGL_CONTEXT_OPENGL_CORE_PROFILE_BIT,
                                         EGL_NONE};
     EGLContext context = egl().createContext(attempt.display, config, EGL_NO_CONTEXT, contextAttributes);
     if (context == EGL_NO_CONTEXT) {
@@ -149,7 +168,9 @@ EglContext::EglContext() {
   renderer_ = reinterpret_cast<const char*>(glGetString(GL_RENDERER));
 }
 
-EglContext::~EglContext() { release(); }
+EglContext::~EglContext() {
+  release();
+}
 
 void EglContext::release() {
   if (!display_) return;

@@ -17,19 +17,34 @@ std::atomic<long>& liveCounter(GlObjectType type) {
 
 void deleteObject(GlObjectType type, GLuint id) {
   switch (type) {
-    case GlObjectType::Texture: glDeleteTextures(1, &id); break;
-    case GlObjectType::Buffer: glDeleteBuffers(1, &id); break;
-    case GlObjectType::Framebuffer: glDeleteFramebuffers(1, &id); break;
-    case GlObjectType::VertexArray: glDeleteVertexArrays(1, &id); break;
-    case GlObjectType::Program: glDeleteProgram(id); break;
-    case GlObjectType::Query: glDeleteQueries(1, &id); break;
-    case GlObjectType::Count: break;
+    case GlObjectType::Texture:
+      glDeleteTextures(1, &id);
+      break;
+    case GlObjectType::Buffer:
+      glDeleteBuffers(1, &id);
+      break;
+    case GlObjectType::Framebuffer:
+      glDeleteFramebuffers(1, &id);
+      break;
+    case GlObjectType::VertexArray:
+      glDeleteVertexArrays(1, &id);
+      break;
+    case GlObjectType::Program:
+      glDeleteProgram(id);
+      break;
+    case GlObjectType::Query:
+      glDeleteQueries(1, &id);
+      break;
+    case GlObjectType::Count:
+      break;
   }
 }
 
 }  // namespace gl_detail
 
-long liveGlObjectCount(GlObjectType type) { return gl_detail::liveCounter(type).load(); }
+long liveGlObjectCount(GlObjectType type) {
+  return gl_detail::liveCounter(type).load();
+}
 
 void ensureTexture(Texture2D& texture, GLenum internalFormat, int width, int height) {
   if (texture.matches(width, height, internalFormat)) return;
@@ -54,7 +69,8 @@ void uploadTexture(Texture2D& texture, GLenum internalFormat, int width, int hei
   const std::size_t rowFloats = std::size_t(width) * std::size_t(channels);
   std::vector<float> flipped(rowFloats * std::size_t(height));
   for (int row = 0; row < height; ++row)
-    std::copy_n(pixels + std::size_t(height - 1 - row) * rowFloats, rowFloats, flipped.data() + std::size_t(row) * rowFloats);
+    std::copy_n(pixels + std::size_t(height - 1 - row) * rowFloats, rowFloats,
+                flipped.data() + std::size_t(row) * rowFloats);
   glPixelStorei(GL_UNPACK_ALIGNMENT, 4);
   glTextureSubImage2D(texture.id(), 0, 0, 0, width, height, format, GL_FLOAT, flipped.data());
   const GLint filter = linear ? GL_LINEAR : GL_NEAREST;

@@ -68,7 +68,9 @@ struct Texture2D {
 
   GLuint id() const { return object.id(); }
   explicit operator bool() const { return bool(object); }
-  bool matches(int w, int h, GLenum format) const { return object && width == w && height == h && internalFormat == format; }
+  bool matches(int w, int h, GLenum format) const {
+    return object && width == w && height == h && internalFormat == format;
+  }
 };
 
 /// Makes `texture` a w×h texture of `internalFormat` unless it already is one (render targets are reused

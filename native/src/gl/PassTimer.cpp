@@ -5,7 +5,8 @@ namespace spindrift {
 // Each pass is bracketed by two GL_TIMESTAMP queries rather than one GL_TIME_ELAPSED query: Mesa's llvmpipe
 // reports a nonsensical elapsed time for the first query of a context, while its timestamps are sound.
 void PassTimer::begin(const std::string& passName) {
-  while (queries_.size() < 2 * (frame_.size() + 1)) queries_.push_back(createTimestampQuery());
+  while (queries_.size() < 2 * (frame_.size() + 1))
+    queries_.push_back(createTimestampQuery());
   frame_.push_back({passName, 0.0, 0.0});
   glQueryCounter(queries_[2 * (frame_.size() - 1)].id(), GL_TIMESTAMP);
   started_ = std::chrono::steady_clock::now();
@@ -22,7 +23,8 @@ std::vector<PassTiming> PassTimer::collect() {
     GLuint64 startNanoseconds = 0, endNanoseconds = 0;
     glGetQueryObjectui64v(queries_[2 * i].id(), GL_QUERY_RESULT, &startNanoseconds);
     glGetQueryObjectui64v(queries_[2 * i + 1].id(), GL_QUERY_RESULT, &endNanoseconds);
-    frame_[i].gpuMilliseconds = endNanoseconds > startNanoseconds ? double(endNanoseconds - startNanoseconds) * 1e-6 : 0.0;
+    frame_[i].gpuMilliseconds =
+        endNanoseconds > startNanoseconds ? double(endNanoseconds - startNanoseconds) * 1e-6 : 0.0;
   }
   std::vector<PassTiming> timings;
   timings.swap(frame_);

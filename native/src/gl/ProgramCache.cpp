@@ -26,7 +26,8 @@ struct FileHeader {
 // the user's own directory does not need).
 std::uint64_t fnv1a(const void* data, std::size_t size, std::uint64_t hash = 0xcbf29ce484222325ull) {
   const auto* bytes = static_cast<const unsigned char*>(data);
-  for (std::size_t i = 0; i < size; ++i) hash = (hash ^ bytes[i]) * 0x100000001b3ull;
+  for (std::size_t i = 0; i < size; ++i)
+    hash = (hash ^ bytes[i]) * 0x100000001b3ull;
   return hash;
 }
 
@@ -55,7 +56,8 @@ ProgramCache::ProgramCache(std::filesystem::path directory, std::string driverId
 ProgramCache ProgramCache::forCurrentContext() {
   GLint formats = 0;
   glGetIntegerv(GL_NUM_PROGRAM_BINARY_FORMATS, &formats);
-  const std::string identity = glString(GL_VENDOR) + "\n" + glString(GL_RENDERER) + "\n" + glString(GL_VERSION);
+  const std::string identity =
+      glString(GL_VENDOR) + "\n" + glString(GL_RENDERER) + "\n" + glString(GL_VERSION);
   return ProgramCache(formats > 0 ? defaultDirectory() : std::filesystem::path(), identity);
 }
 

@@ -18,8 +18,8 @@ struct ProgramCacheCounts {
 
 /// Linked program binaries on disk, shared by every process on the machine, so only the first process after a
 /// shader or driver change pays for compiling (glGetProgramBinary / glProgramBinary). A file is named by a
-/// hash of the driver's identity and every stage's expanded source, so a changed shader or driver finds no file
-/// and recompiles; a file carries its length and checksum, so a truncated or corrupt one is ignored and
+/// hash of the driver's identity and every stage's expanded source, so a changed shader or driver finds no
+/// file and recompiles; a file carries its length and checksum, so a truncated or corrupt one is ignored and
 /// replaced. Files are written to a temporary name and renamed, so concurrent processes never read half a
 /// file. Must be used on the GL thread.
 class ProgramCache {

@@ -20,8 +20,8 @@ std::string readText(const std::filesystem::path& path) {
   return text.str();
 }
 
-void expandInto(const std::filesystem::path& directory, const std::string& file, std::vector<std::string>& files,
-                std::ostringstream& out, int depth) {
+void expandInto(const std::filesystem::path& directory, const std::string& file,
+                std::vector<std::string>& files, std::ostringstream& out, int depth) {
   if (depth > 16) throw Error("shader " + file + ": includes nest deeper than 16 (a cycle?)");
   const int sourceNumber = int(files.size());
   files.push_back(file);
@@ -35,7 +35,8 @@ void expandInto(const std::filesystem::path& directory, const std::string& file,
     if (std::regex_match(line, match, includeLine)) {
       const std::string included = match[1].str();
       bool already = false;
-      for (const auto& name : files) already = already || name == included;
+      for (const auto& name : files)
+        already = already || name == included;
       if (!already) expandInto(directory, included, files, out, depth + 1);
       out << "#line " << lineNumber + 1 << " " << sourceNumber << "\n";
       continue;
@@ -122,7 +123,8 @@ ProgramObject ShaderLibrary::compile(const std::vector<std::string>& stageFiles,
   ProgramObject program(glCreateProgram());
   std::vector<GLuint> shaders;
   auto deleteShaders = [&] {
-    for (GLuint shader : shaders) glDeleteShader(shader);
+    for (GLuint shader : shaders)
+      glDeleteShader(shader);
   };
   for (std::size_t stage = 0; stage < stageFiles.size(); ++stage) {
     const std::string& file = stageFiles[stage];
@@ -156,7 +158,8 @@ ProgramObject ShaderLibrary::compile(const std::vector<std::string>& stageFiles,
     std::string log(std::size_t(std::max(length, 1)), '\0');
     glGetProgramInfoLog(program.id(), length, nullptr, log.data());
     std::string names;
-    for (const auto& file : stageFiles) names += (names.empty() ? "" : " + ") + file;
+    for (const auto& file : stageFiles)
+      names += (names.empty() ? "" : " + ") + file;
     throw Error("shaders " + names + " do not link:\n" + std::string(log.c_str()));
   }
   return program;

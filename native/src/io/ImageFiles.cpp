@@ -109,10 +109,11 @@ FloatImage readChannels(OIIO::ImageInput& input, const std::filesystem::path& pa
     lastChannel = std::max(lastChannel, channel);
   }
   const int blockChannels = std::max(0, lastChannel + 1 - firstChannel);
-  requireMemory((std::uint64_t(spec.width) * std::uint64_t(spec.height) * std::uint64_t(blockChannels) +
-                 std::uint64_t(image.width) * std::uint64_t(image.height) * std::uint64_t(image.channels)) *
-                    sizeof(float),
-                path.string() + ": a " + std::to_string(image.width) + "x" + std::to_string(image.height) + " image");
+  requireMemory(
+      (std::uint64_t(spec.width) * std::uint64_t(spec.height) * std::uint64_t(blockChannels) +
+       std::uint64_t(image.width) * std::uint64_t(image.height) * std::uint64_t(image.channels)) *
+          sizeof(float),
+      path.string() + ": a " + std::to_string(image.width) + "x" + std::to_string(image.height) + " image");
   std::vector<float> block(std::size_t(spec.width) * spec.height * blockChannels);
   if (blockChannels > 0 &&
       !input.read_image(subimage, 0, firstChannel, lastChannel + 1, OIIO::TypeFloat, block.data())) {
@@ -196,13 +197,15 @@ std::optional<std::array<FloatImage, 3>> readLightPasses(const std::filesystem::
       for (const std::string& name : spec.channelnames) {
         const std::string layer = layerOf(name);
         const std::string suffix = passNames[pass];
-        if (layer.size() >= suffix.size() && layer.compare(layer.size() - suffix.size(), suffix.size(), suffix) == 0 &&
+        if (layer.size() >= suffix.size() &&
+            layer.compare(layer.size() - suffix.size(), suffix.size(), suffix) == 0 &&
             findRgba(spec, layer + ".", &rgba)) {
           complete = true;
           break;
         }
       }
-      if (complete) passes[pass] = readChannels(*input, path, subimage, {rgba[0], rgba[1], rgba[2], -1}, 0.0f);
+      if (complete)
+        passes[pass] = readChannels(*input, path, subimage, {rgba[0], rgba[1], rgba[2], -1}, 0.0f);
     }
     if (!complete) continue;
     std::array<FloatImage, 3> light{passes[0], passes[3], passes[1]};
@@ -210,7 +213,8 @@ std::optional<std::array<FloatImage, 3>> readLightPasses(const std::filesystem::
       if (i % 4 == 3) continue;
       light[0].pixels[i] = passes[2].pixels[i] * passes[0].pixels[i];
       light[1].pixels[i] = passes[5].pixels[i] * passes[3].pixels[i];
-      light[2].pixels[i] = passes[2].pixels[i] * passes[1].pixels[i] + passes[5].pixels[i] * passes[4].pixels[i];
+      light[2].pixels[i] =
+          passes[2].pixels[i] * passes[1].pixels[i] + passes[5].pixels[i] * passes[4].pixels[i];
     }
     return light;
   }
@@ -227,9 +231,10 @@ FloatImage resizeImage(const FloatImage& image, int width, int height, bool near
   }
   if (width == image.width && height == image.height) return image;
   // The copy into OIIO, its result and ours: three images of the larger size at most.
-  requireMemory(3 * std::uint64_t(std::max(width * (long long)height, image.width * (long long)image.height)) *
-                    std::uint64_t(image.channels) * sizeof(float),
-                "resizing an image to " + std::to_string(width) + "x" + std::to_string(height));
+  requireMemory(
+      3 * std::uint64_t(std::max(width * (long long)height, image.width * (long long)image.height)) *
+          std::uint64_t(image.channels) * sizeof(float),
+      "resizing an image to " + std::to_string(width) + "x" + std::to_string(height));
 
   OIIO::ImageBuf source(OIIO::ImageSpec(image.width, image.height, image.channels, OIIO::TypeFloat));
   source.set_pixels(OIIO::ROI::All(), OIIO::TypeFloat, image.pixels.data());

@@ -16,7 +16,8 @@ namespace spindrift::oiio_errors {
 /// OpenImageIO's messages may span lines; an Error is one line.
 inline std::string oneLine(std::string message) {
   std::replace(message.begin(), message.end(), '\n', ' ');
-  while (!message.empty() && message.back() == ' ') message.pop_back();
+  while (!message.empty() && message.back() == ' ')
+    message.pop_back();
   return message.empty() ? "unknown OpenImageIO error" : message;
 }
 

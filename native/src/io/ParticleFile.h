@@ -14,10 +14,10 @@ namespace spindrift {
 /// dropped, and counted, when the scene brings particles to world space.
 struct ParticleFileData {
   std::vector<glm::vec3> positions;
-  std::vector<float> radii;           ///< PLY `radius` or `pscale`; VDB `pscale` if present.
+  std::vector<float> radii;             ///< PLY `radius` or `pscale`; VDB `pscale` if present.
   std::vector<std::int32_t> typeFlags;  ///< Mantaflow `U` (2 spray, 4 bubble, 8 foam) or PLY `type`.
-  std::vector<float> life;            ///< Mantaflow `particles_life_secondary` or PLY `life`, in frames.
-  std::vector<glm::vec3> velocities;  ///< Mantaflow `particles_velocity*` or PLY `vx vy vz`.
+  std::vector<float> life;              ///< Mantaflow `particles_life_secondary` or PLY `life`, in frames.
+  std::vector<glm::vec3> velocities;    ///< Mantaflow `particles_velocity*` or PLY `vx vy vz`.
 };
 
 /// Reads every point of an OpenVDB PointDataGrid: `gridName`, or the first point grid when empty. Positions

@@ -324,7 +324,8 @@ ParticleFileData readPly(const std::filesystem::path& path) {
   }
 
   // Up to nine floats per vertex (position, radius, type, life, velocity) come out of the file.
-  requireMemory(std::uint64_t(vertexElement->count) * 9 * sizeof(float), path.string() + ": the vertex arrays");
+  requireMemory(std::uint64_t(vertexElement->count) * 9 * sizeof(float),
+                path.string() + ": the vertex arrays");
   ParticleFileData data;
   reserveVertices(layout, static_cast<std::size_t>(vertexElement->count), &data);
   if (header.format == PlyFormat::Ascii) {

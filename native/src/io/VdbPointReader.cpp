@@ -129,7 +129,8 @@ ParticleFileData readGridPoints(const PointDataGrid& grid) {
   }
   // Nine floats per point at most come out (position, velocity, life, flag); checked before any is copied.
   const openvdb::Index64 count = openvdb::points::pointCount(grid.tree());
-  requireMemory(count * 9 * sizeof(float), "point grid '" + grid.getName() + "': " + std::to_string(count) + " points");
+  requireMemory(count * 9 * sizeof(float),
+                "point grid '" + grid.getName() + "': " + std::to_string(count) + " points");
   data.positions.reserve(count);
   const openvdb::math::Transform& transform = grid.transform();
   for (auto leaf = grid.tree().cbeginLeaf(); leaf; ++leaf) {

@@ -12,15 +12,19 @@ BackgroundPass::BackgroundPass(const ShaderLibrary& shaders)
 void BackgroundPass::upload(const BackgroundImages& images) {
   if (images.generation == uploadedGeneration_) return;
   auto uploadOrRelease = [](Texture2D& texture, const FloatImage* image, GLenum format, bool linear) {
-    if (image) uploadTexture(texture, format, image->width, image->height, image->channels, image->pixels.data(), linear);
-    else texture = Texture2D{};
+    if (image)
+      uploadTexture(texture, format, image->width, image->height, image->channels, image->pixels.data(),
+                    linear);
+    else
+      texture = Texture2D{};
   };
   uploadOrRelease(imageTexture_, images.color, GL_RGBA32F, false);
   uploadOrRelease(depthTexture_, images.eyeDepth, GL_R32F, false);
   uploadOrRelease(environmentTexture_, images.environment, GL_RGBA32F, true);
   uploadOrRelease(liquidDepthTexture_, images.liquidEyeDepth, GL_R32F, false);
   for (int i = 0; i < 3; ++i)
-    uploadOrRelease(lightPassTextures_[i], images.lightPasses ? &(*images.lightPasses)[i] : nullptr, GL_RGBA32F, false);
+    uploadOrRelease(lightPassTextures_[i], images.lightPasses ? &(*images.lightPasses)[i] : nullptr,
+                    GL_RGBA32F, false);
   if (environmentTexture_) glTextureParameteri(environmentTexture_.id(), GL_TEXTURE_WRAP_S, GL_REPEAT);
   uploadedGeneration_ = images.generation;
 }
@@ -48,8 +52,12 @@ BackgroundData BackgroundPass::run(const BackgroundImages& images, int width, in
   glBindTextureUnit(2, environmentTexture_.id());
   drawFullscreenTriangle(emptyVertexArray_.id());
   checkGlError("resolving the background");
-  return {color_, eyeDepth_, environmentTexture_ ? &environmentTexture_ : nullptr, images.fallbackColor,
-          liquidDepthTexture_ ? &liquidDepthTexture_ : nullptr, lightPassTextures_[0] ? lightPassTextures_ : nullptr};
+  return {color_,
+          eyeDepth_,
+          environmentTexture_ ? &environmentTexture_ : nullptr,
+          images.fallbackColor,
+          liquidDepthTexture_ ? &liquidDepthTexture_ : nullptr,
+          lightPassTextures_[0] ? lightPassTextures_ : nullptr};
 }
 
 }  // namespace spindrift

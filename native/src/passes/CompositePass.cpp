@@ -9,8 +9,8 @@ CompositePass::CompositePass(const ShaderLibrary& shaders)
       emptyVertexArray_(createVertexArray()),
       framebuffer_(createFramebuffer()) {}
 
-CompositeData CompositePass::run(const BackgroundData& background, const LiquidData* liquid, const FoamLayerData* foam,
-                                 int width, int height) {
+CompositeData CompositePass::run(const BackgroundData& background, const LiquidData* liquid,
+                                 const FoamLayerData* foam, int width, int height) {
   ensureTexture(color_, GL_RGBA32F, width, height);
   glNamedFramebufferTexture(framebuffer_.id(), GL_COLOR_ATTACHMENT0, color_.id(), 0);
   glBindFramebuffer(GL_FRAMEBUFFER, framebuffer_.id());

@@ -14,8 +14,8 @@ class CompositePass {
  public:
   explicit CompositePass(const ShaderLibrary& shaders);
   /// `liquid` is null when the frame has no liquid in view, `foam` when it has no foam in view.
-  CompositeData run(const BackgroundData& background, const LiquidData* liquid, const FoamLayerData* foam, int width,
-                    int height);
+  CompositeData run(const BackgroundData& background, const LiquidData* liquid, const FoamLayerData* foam,
+                    int width, int height);
 
  private:
   ProgramObject program_;

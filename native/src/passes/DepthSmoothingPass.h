@@ -10,9 +10,9 @@
 namespace spindrift {
 
 /// Smooths an aggregate depth layer with the method liquid.smoothing names (plane_fit, bilateral,
-/// curvature_flow, narrow_range or none) and recomputes its normals from the smoothed depth. Empty pixels stay
-/// empty: smoothing never creates a surface. The frame's uniform block (binding 0) must be current. The result
-/// lives in the pass's own textures until its next run, so a frame uses one instance per layer.
+/// curvature_flow, narrow_range or none) and recomputes its normals from the smoothed depth. Empty pixels
+/// stay empty: smoothing never creates a surface. The frame's uniform block (binding 0) must be current. The
+/// result lives in the pass's own textures until its next run, so a frame uses one instance per layer.
 class DepthSmoothingPass {
  public:
   explicit DepthSmoothingPass(const ShaderLibrary& shaders);
@@ -20,8 +20,8 @@ class DepthSmoothingPass {
 
   /// `particleRadius` is the liquid's world radius r, which the methods' parameters are scaled by.
   /// `backLayer` says the layer's outward normals face away from the camera.
-  DepthLayer run(const DepthLayer& layer, float particleRadius, bool backLayer, const LiquidParameters& parameters,
-                 int width, int height);
+  DepthLayer run(const DepthLayer& layer, float particleRadius, bool backLayer,
+                 const LiquidParameters& parameters, int width, int height);
 
  private:
   struct Methods;

@@ -63,7 +63,8 @@ void EllipsoidImpostorPass::drawLayer(Target& target, bool backFaces, GLsizei co
   glUniform1i(uniformLocation(program_.id(), "clipToDomain"), domain ? 1 : 0);
   if (domain) {
     const glm::mat4 domainFromWorld = glm::inverse(domain->worldFromBox);
-    glUniformMatrix4fv(uniformLocation(program_.id(), "domainFromWorld"), 1, GL_FALSE, &domainFromWorld[0][0]);
+    glUniformMatrix4fv(uniformLocation(program_.id(), "domainFromWorld"), 1, GL_FALSE,
+                       &domainFromWorld[0][0]);
     glUniform3fv(uniformLocation(program_.id(), "domainLow"), 1, &domain->low[0]);
     glUniform3fv(uniformLocation(program_.id(), "domainHigh"), 1, &domain->high[0]);
   }
@@ -73,7 +74,8 @@ void EllipsoidImpostorPass::drawLayer(Target& target, bool backFaces, GLsizei co
   glDrawArraysInstanced(GL_TRIANGLE_STRIP, 0, 4, count);
   glDisable(GL_DEPTH_TEST);
   glDepthFunc(GL_LESS);
-  checkGlError(backFaces ? "drawing back faces of liquid particles" : "drawing front faces of liquid particles");
+  checkGlError(backFaces ? "drawing back faces of liquid particles"
+                         : "drawing front faces of liquid particles");
 }
 
 }  // namespace spindrift

@@ -17,8 +17,8 @@ class EllipsoidImpostorPass {
  public:
   explicit EllipsoidImpostorPass(const ShaderLibrary& shaders);
   /// `domain`, when not null, clips the surfaces to a Mantaflow domain's box.
-  SurfaceLayers run(const std::vector<EllipsoidInstance>& ellipsoids, const BackgroundData& background, int width,
-                    int height, const DomainBox* domain = nullptr);
+  SurfaceLayers run(const std::vector<EllipsoidInstance>& ellipsoids, const BackgroundData& background,
+                    int width, int height, const DomainBox* domain = nullptr);
 
  private:
   struct Target {

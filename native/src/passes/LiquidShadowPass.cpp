@@ -32,7 +32,8 @@ void LiquidShadowPass::addLight(const Light& light, const SurfaceLayers& layers,
 
 void LiquidShadowPass::setSky(const SurfaceLayers& layers, const BackgroundData& background,
                               const LiquidParameters& parameters, float particleRadius) {
-  glProgramUniform1f(program_.id(), uniformLocation(program_.id(), "submergedTolerance"), 2.0f * particleRadius);
+  glProgramUniform1f(program_.id(), uniformLocation(program_.id(), "submergedTolerance"),
+                     2.0f * particleRadius);
   draw(skyKept_, layers, background, parameters, true, true);
 }
 

@@ -21,8 +21,8 @@ class LiquidShadowPass {
   void addLight(const Light& light, const SurfaceLayers& layers, const BackgroundData& background,
                 const LiquidParameters& parameters, bool transmitStraight);
   /// `particleRadius`: points up to two radii below the liquid's drawn bottom still lie in it.
-  void setSky(const SurfaceLayers& layers, const BackgroundData& background, const LiquidParameters& parameters,
-              float particleRadius);
+  void setSky(const SurfaceLayers& layers, const BackgroundData& background,
+              const LiquidParameters& parameters, float particleRadius);
   LiquidShadowData result() const { return {shadowSum_, skyKept_}; }
 
  private:

@@ -16,8 +16,9 @@ RefractionPass::RefractionPass(const ShaderLibrary& shaders)
 }
 
 LiquidData RefractionPass::run(const std::optional<SurfaceLayers>& splashes,
-                               const std::optional<SurfaceLayers>& aggregates, const BackgroundData& background,
-                               const LiquidParameters& parameters, int width, int height) {
+                               const std::optional<SurfaceLayers>& aggregates,
+                               const BackgroundData& background, const LiquidParameters& parameters,
+                               int width, int height) {
   ensureTexture(color_, GL_RGBA32F, width, height);
   ensureTexture(splashColor_, GL_RGBA32F, width, height);
   ensureTexture(surfaceClass_, GL_R32F, width, height);
@@ -31,7 +32,8 @@ LiquidData RefractionPass::run(const std::optional<SurfaceLayers>& splashes,
   glBindImageTexture(1, transmittance_.id(), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA32F);
   glBindImageTexture(2, reflection_.id(), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA32F);
   const GLuint framebuffer = framebuffer_.id();
-  const Texture2D* outputs[] = {&color_, &splashColor_, &surfaceClass_, &thickness_, &frontDepth_, &frontNormal_};
+  const Texture2D* outputs[] = {&color_,     &splashColor_, &surfaceClass_,
+                                &thickness_, &frontDepth_,  &frontNormal_};
   GLenum attachments[6];
   for (int i = 0; i < 6; ++i) {
     attachments[i] = GL_COLOR_ATTACHMENT0 + i;
@@ -78,10 +80,11 @@ LiquidData RefractionPass::run(const std::optional<SurfaceLayers>& splashes,
   glUniform1i(uniformLocation(program, "maxSteps"), parameters.trace_max_steps);
   drawFullscreenTriangle(emptyVertexArray_.id());
   // The image stores must land before the split layers are sampled or read back.
-  glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_TEXTURE_UPDATE_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
+  glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_TEXTURE_UPDATE_BARRIER_BIT |
+                  GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
   checkGlError("refracting through the liquid");
-  return {color_, splashColor_, surfaceClass_, thickness_, frontDepth_, frontNormal_,
-          refractionUv_, transmittance_, reflection_};
+  return {color_,       splashColor_,  surfaceClass_,  thickness_, frontDepth_,
+          frontNormal_, refractionUv_, transmittance_, reflection_};
 }
 
 RefractionStatistics RefractionPass::statistics() const {
@@ -89,7 +92,8 @@ RefractionStatistics RefractionPass::statistics() const {
   glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);  // The shader's atomic writes must land before the read.
   glGetNamedBufferSubData(counters_.id(), 0, sizeof counters, counters);
   RefractionStatistics statistics;
-  for (int i = 0; i < 4; ++i) statistics.orders[i] = counters[i];
+  for (int i = 0; i < 4; ++i)
+    statistics.orders[i] = counters[i];
   statistics.raysWithSecondBody = counters[4];
   statistics.totalInternalReflections = counters[5];
   statistics.liquidPixels = counters[6];

@@ -19,8 +19,7 @@ class RefractionPass {
   explicit RefractionPass(const ShaderLibrary& shaders);
   /// Either layer set may be absent (no splash, or no aggregate, in view).
   LiquidData run(const std::optional<SurfaceLayers>& splashes, const std::optional<SurfaceLayers>& aggregates,
-                 const BackgroundData& background, const LiquidParameters& parameters,
-                 int width, int height);
+                 const BackgroundData& background, const LiquidParameters& parameters, int width, int height);
   /// The counters of the last run (waits for the GPU).
   RefractionStatistics statistics() const;
 

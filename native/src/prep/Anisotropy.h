@@ -20,7 +20,7 @@ struct AnisotropySettings {
   float smoothing = 0.0f;        ///< lambda.
   float maxEllipsoidScale = 1.2f;
   float surfaceOffset = 0.0f;  ///< Every drawn semi-axis is grown by this, in particle radii.
-  bool needDensity = true;  ///< False when every particle is an aggregate (liquid.layers = merged).
+  bool needDensity = true;     ///< False when every particle is an aggregate (liquid.layers = merged).
 
   static AnisotropySettings fromParameters(const LiquidParameters& parameters);
 };

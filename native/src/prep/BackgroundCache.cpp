@@ -12,9 +12,9 @@ FloatImage atSize(FloatImage image, const std::filesystem::path& path, int width
   // Resampling to another aspect ratio would stretch the background under the liquid.
   const double imageAspect = double(image.width) / image.height, cameraAspect = double(width) / height;
   if (std::abs(imageAspect - cameraAspect) > 0.01 * cameraAspect)
-    throw Error(path.string() + ": the image is " + std::to_string(image.width) + "x" + std::to_string(image.height) +
-                ", which does not have the camera's aspect ratio (" + std::to_string(width) + "x" +
-                std::to_string(height) + ")");
+    throw Error(path.string() + ": the image is " + std::to_string(image.width) + "x" +
+                std::to_string(image.height) + ", which does not have the camera's aspect ratio (" +
+                std::to_string(width) + "x" + std::to_string(height) + ")");
   return resizeImage(image, width, height, nearest);
 }
 
@@ -22,14 +22,14 @@ FloatImage atSize(FloatImage image, const std::filesystem::path& path, int width
 
 BackgroundImages BackgroundCache::load(const Background& background, int frame, int width, int height) {
   const std::filesystem::path image = background.image.empty() ? "" : pathForFrame(background.image, frame);
-  const std::filesystem::path depth = background.depth.empty() ? image : pathForFrame(background.depth, frame);
+  const std::filesystem::path depth =
+      background.depth.empty() ? image : pathForFrame(background.depth, frame);
   const std::filesystem::path environment =
       background.environment.empty() ? "" : pathForFrame(background.environment, frame);
   const std::filesystem::path liquidDepth =
       background.liquidDepth.empty() ? "" : pathForFrame(background.liquidDepth, frame);
   const std::string key = image.string() + "|" + depth.string() + "|" + environment.string() + "|" +
-                          liquidDepth.string() + "|" +
-                          std::to_string(width) + "x" + std::to_string(height);
+                          liquidDepth.string() + "|" + std::to_string(width) + "x" + std::to_string(height);
   if (key != key_) {
     key_.clear();  // Stays cleared if a read below throws, so the next frame tries again.
     color_.reset();
@@ -41,7 +41,8 @@ BackgroundImages BackgroundCache::load(const Background& background, int frame, 
       color_ = atSize(readColorImage(image), image, width, height, false);
       lightPasses_ = readLightPasses(image);
       if (lightPasses_)
-        for (FloatImage& pass : *lightPasses_) pass = atSize(std::move(pass), image, width, height, false);
+        for (FloatImage& pass : *lightPasses_)
+          pass = atSize(std::move(pass), image, width, height, false);
     }
     if (!depth.empty()) {
       std::optional<FloatImage> depthImage = readDepthImage(depth);
@@ -54,7 +55,8 @@ BackgroundImages BackgroundCache::load(const Background& background, int frame, 
     if (!liquidDepth.empty()) {
       std::optional<FloatImage> depthImage = readDepthImage(liquidDepth);
       if (!depthImage)
-        throw Error(liquidDepth.string() + ": no depth channel for liquid_depth (expected e.g. ViewLayer.Depth.Z or Z)");
+        throw Error(liquidDepth.string() +
+                    ": no depth channel for liquid_depth (expected e.g. ViewLayer.Depth.Z or Z)");
       liquidEyeDepth_ = atSize(std::move(*depthImage), liquidDepth, width, height, true);
     }
     key_ = key;

@@ -31,7 +31,8 @@ FoamPreparation prepareFoam(const Particles& particles, const Camera& camera,
     const float radius = foamDrawnRadius(particles.radii[i], kind, foamIndex++, parameters);
     const glm::vec3 cameraCentre = frustum.cameraFromWorld(particles.positions[i]);
     // A sprite cannot cover a sphere that contains the camera, so those are culled with the invisible ones.
-    if (!frustum.reachedBySphere(cameraCentre, radius) || glm::dot(cameraCentre, cameraCentre) <= radius * radius) {
+    if (!frustum.reachedBySphere(cameraCentre, radius) ||
+        glm::dot(cameraCentre, cameraCentre) <= radius * radius) {
       ++result.culled;
       continue;
     }

@@ -32,28 +32,28 @@ LiquidCandidates selectLiquidCandidates(const Particles& particles, const Camera
   const ViewFrustum frustum(camera);
   const std::size_t count = particles.size();
   std::vector<std::uint8_t> roles(count, kNotCandidate);
-  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, count),
-                    [&](const tbb::blocked_range<std::size_t>& block) {
-                      for (std::size_t i = block.begin(); i != block.end(); ++i) {
-                        const float radius = particles.radii[i];
-                        const glm::vec3& position = particles.positions[i];
-                        if (particles.kinds[i] != ParticleKind::Liquid || !(radius > 0.0f) ||
-                            !std::isfinite(radius) || !std::isfinite(position.x + position.y + position.z))
-                          continue;
-                        // A drawn instance reaches at most max_ellipsoid_scale r from its centre, which
-                        // smoothing moves by at most lambda R from the particle; its neighbours lie within R
-                        // more.
-                        const float neighbourhood = parameters.neighbour_radius * radius;
-                        const float drawnReach =
-                            (std::max(1.0f, parameters.max_ellipsoid_scale) + parameters.surface_offset) * radius +
-                            parameters.anisotropy_smoothing * neighbourhood;
-                        const glm::vec3 centre = frustum.cameraFromWorld(position);
-                        if (frustum.reachedBySphere(centre, drawnReach))
-                          roles[i] = kVisible;
-                        else if (frustum.reachedBySphere(centre, drawnReach + neighbourhood))
-                          roles[i] = kNeighbourOnly;
-                      }
-                    });
+  tbb::parallel_for(
+      tbb::blocked_range<std::size_t>(0, count), [&](const tbb::blocked_range<std::size_t>& block) {
+        for (std::size_t i = block.begin(); i != block.end(); ++i) {
+          const float radius = particles.radii[i];
+          const glm::vec3& position = particles.positions[i];
+          if (particles.kinds[i] != ParticleKind::Liquid || !(radius > 0.0f) || !std::isfinite(radius) ||
+              !std::isfinite(position.x + position.y + position.z))
+            continue;
+          // A drawn instance reaches at most max_ellipsoid_scale r from its centre, which
+          // smoothing moves by at most lambda R from the particle; its neighbours lie within R
+          // more.
+          const float neighbourhood = parameters.neighbour_radius * radius;
+          const float drawnReach =
+              (std::max(1.0f, parameters.max_ellipsoid_scale) + parameters.surface_offset) * radius +
+              parameters.anisotropy_smoothing * neighbourhood;
+          const glm::vec3 centre = frustum.cameraFromWorld(position);
+          if (frustum.reachedBySphere(centre, drawnReach))
+            roles[i] = kVisible;
+          else if (frustum.reachedBySphere(centre, drawnReach + neighbourhood))
+            roles[i] = kNeighbourOnly;
+        }
+      });
 
   LiquidCandidates candidates;
   std::size_t liquid = 0, selected = 0;

@@ -34,6 +34,7 @@ struct LiquidPreparation {
 /// Frustum-culls, finds neighbours, classifies each liquid particle as splash or aggregate by its anisotropic
 /// density, and builds the ellipsoids (TBB-parallel). Only particles of kind Liquid are considered.
 /// With liquid.layers = merged every visible particle is an aggregate (the earlier two-layer method).
-LiquidPreparation prepareLiquid(const Particles& particles, const Camera& camera, const LiquidParameters& parameters);
+LiquidPreparation prepareLiquid(const Particles& particles, const Camera& camera,
+                                const LiquidParameters& parameters);
 
 }  // namespace spindrift

@@ -12,8 +12,9 @@ using nlohmann::json;
 
 JsonFields::JsonFields(const json& object, std::string fileLabel, std::string path)
     : object_(object), fileLabel_(std::move(fileLabel)), path_(std::move(path)) {
-  if (!object_.is_object()) throw Error(fileLabel_ + ": " + (path_.empty() ? "the file" : path_) +
-                                        ": expected an object, got " + object_.dump().substr(0, 60));
+  if (!object_.is_object())
+    throw Error(fileLabel_ + ": " + (path_.empty() ? "the file" : path_) + ": expected an object, got " +
+                object_.dump().substr(0, 60));
 }
 
 void JsonFields::fail(const std::string& key, const std::string& problem) const {
@@ -23,16 +24,20 @@ void JsonFields::fail(const std::string& key, const std::string& problem) const 
 void JsonFields::allowOnly(std::initializer_list<const char*> allowed) const {
   for (const auto& item : object_.items()) {
     bool known = false;
-    for (const char* key : allowed) known = known || item.key() == key;
+    for (const char* key : allowed)
+      known = known || item.key() == key;
     if (!known) {
       std::string list;
-      for (const char* key : allowed) list += (list.empty() ? "" : ", ") + std::string(key);
+      for (const char* key : allowed)
+        list += (list.empty() ? "" : ", ") + std::string(key);
       fail(item.key(), "unknown key (expected one of: " + list + ")");
     }
   }
 }
 
-JsonFields JsonFields::child(const char* key) const { return JsonFields(raw(key), fileLabel_, keyPath(key)); }
+JsonFields JsonFields::child(const char* key) const {
+  return JsonFields(raw(key), fileLabel_, keyPath(key));
+}
 
 const json& JsonFields::raw(const char* key) const {
   if (!object_.contains(key)) fail(key, "missing");
@@ -41,11 +46,13 @@ const json& JsonFields::raw(const char* key) const {
 
 int JsonFields::integer(const char* key, int minimum, int maximum) const {
   const json& value = raw(key);
-  if (!value.is_number_integer() && !(value.is_number_float() && value.get<double>() == std::floor(value.get<double>())))
+  if (!value.is_number_integer() &&
+      !(value.is_number_float() && value.get<double>() == std::floor(value.get<double>())))
     fail(key, "expected an integer, got " + value.dump());
   const double number = value.get<double>();
   if (number < minimum || number > maximum)
-    fail(key, value.dump() + " is outside [" + std::to_string(minimum) + ", " + std::to_string(maximum) + "]");
+    fail(key,
+         value.dump() + " is outside [" + std::to_string(minimum) + ", " + std::to_string(maximum) + "]");
   return int(number);
 }
 
@@ -54,7 +61,8 @@ float JsonFields::number(const char* key, float minimumExclusive, float maximum)
   if (!value.is_number()) fail(key, "expected a number, got " + value.dump());
   const double number = value.get<double>();
   if (!std::isfinite(number) || number <= minimumExclusive || number > maximum) {
-    fail(key, value.dump() + " is outside (" + std::to_string(minimumExclusive) + ", " + std::to_string(maximum) + "]");
+    fail(key, value.dump() + " is outside (" + std::to_string(minimumExclusive) + ", " +
+                  std::to_string(maximum) + "]");
   }
   return float(number);
 }

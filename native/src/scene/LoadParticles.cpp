@@ -13,13 +13,18 @@ namespace {
 
 ParticleKind foamKindFromFlag(std::int32_t flag) {
   switch (flag) {
-    case 2: return ParticleKind::Spray;
-    case 4: return ParticleKind::Bubble;
-    default: return ParticleKind::Foam;  // Mantaflow's 8, and anything a PLY writer calls foam otherwise.
+    case 2:
+      return ParticleKind::Spray;
+    case 4:
+      return ParticleKind::Bubble;
+    default:
+      return ParticleKind::Foam;  // Mantaflow's 8, and anything a PLY writer calls foam otherwise.
   }
 }
 
-bool isFinite(const glm::vec3& v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); }
+bool isFinite(const glm::vec3& v) {
+  return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z);
+}
 
 void appendSource(const ParticleSource& source, const ParticleFileData& data, Particles& particles,
                   std::size_t& dropped) {
@@ -33,7 +38,9 @@ void appendSource(const ParticleSource& source, const ParticleFileData& data, Pa
     }
     ParticleKind kind = ParticleKind::Liquid;
     if (source.role == ParticleRole::Foam)
-      kind = source.kind ? *source.kind : data.typeFlags.empty() ? ParticleKind::Foam : foamKindFromFlag(data.typeFlags[i]);
+      kind = source.kind              ? *source.kind
+             : data.typeFlags.empty() ? ParticleKind::Foam
+                                      : foamKindFromFlag(data.typeFlags[i]);
     const glm::vec3 world = glm::vec3(source.worldFromFile * glm::vec4(data.positions[i], 1.0f));
     if (!isFinite(world)) {  // A huge but finite position can still overflow in the transform.
       ++dropped;
@@ -52,7 +59,8 @@ std::filesystem::path pathForFrame(const std::filesystem::path& pattern, int fra
   const std::size_t last = name.rfind('#');
   if (last == std::string::npos) return pattern;
   std::size_t first = last;
-  while (first > 0 && name[first - 1] == '#') --first;
+  while (first > 0 && name[first - 1] == '#')
+    --first;
   const int width = int(last - first + 1);
   char digits[32];
   std::snprintf(digits, sizeof digits, frame < 0 ? "-%0*d" : "%0*d", width, std::abs(frame));

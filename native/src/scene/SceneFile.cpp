@@ -23,11 +23,13 @@ bool isFramePattern(const std::filesystem::path& path) {
 
 // Paths without `####` are checked now, so a farm job fails before it renders anything.
 void requireExisting(const JsonFields& fields, const char* key, const std::filesystem::path& path) {
-  if (!isFramePattern(path) && !std::filesystem::exists(path)) fields.fail(key, "no such file: " + path.string());
+  if (!isFramePattern(path) && !std::filesystem::exists(path))
+    fields.fail(key, "no such file: " + path.string());
 }
 
 Camera readCamera(const JsonFields& fields) {
-  fields.allowOnly({"width", "height", "fov_y_deg", "near", "far", "world_from_camera", "position", "target", "up"});
+  fields.allowOnly(
+      {"width", "height", "fov_y_deg", "near", "far", "world_from_camera", "position", "target", "up"});
   Camera camera;
   camera.width = fields.integer("width", 1, kMaximumImageSide);
   camera.height = fields.integer("height", 1, kMaximumImageSide);
@@ -38,19 +40,22 @@ Camera readCamera(const JsonFields& fields) {
 
   const bool hasMatrix = fields.has("world_from_camera");
   const bool hasLookAt = fields.has("position") || fields.has("target") || fields.has("up");
-  if (hasMatrix && hasLookAt) fields.fail("world_from_camera", "give either it or position/target/up, not both");
+  if (hasMatrix && hasLookAt)
+    fields.fail("world_from_camera", "give either it or position/target/up, not both");
   if (hasMatrix) {
     // Blender ignores a camera object's scale when it renders: normalise the axes the same way.
     camera.worldFromCamera = fields.affineMatrix("world_from_camera");
     for (int axis = 0; axis < 3; ++axis)
       camera.worldFromCamera[axis] = glm::vec4(glm::normalize(glm::vec3(camera.worldFromCamera[axis])), 0.0f);
   } else if (hasLookAt) {
-    const glm::vec3 position = fields.vec3("position"), target = fields.vec3("target"), up = fields.vec3("up");
+    const glm::vec3 position = fields.vec3("position"), target = fields.vec3("target"),
+                    up = fields.vec3("up");
     const glm::vec3 forward = target - position;
     if (!(glm::length(forward) > 0.0f)) fields.fail("target", "must differ from position");
     if (!(glm::length(glm::cross(forward, up)) > 1e-6f * glm::length(forward) * glm::length(up)))
       fields.fail("up", "must not be parallel to the view direction");
-    const Camera lookAt = Camera::lookAt(camera.width, camera.height, camera.fovYDegrees, position, target, up);
+    const Camera lookAt =
+        Camera::lookAt(camera.width, camera.height, camera.fovYDegrees, position, target, up);
     camera.worldFromCamera = lookAt.worldFromCamera;
   } else {
     fields.fail("world_from_camera", "missing (or give position, target and up)");
@@ -71,14 +76,19 @@ MantaflowDomainSettings readDomainSettings(const JsonFields& fields) {
   if (fields.has("mesh_scale")) settings.meshScale = fields.integer("mesh_scale", 1, 100);
   if (fields.has("mesh_smoothen_pos")) settings.meshSmoothenPos = fields.integer("mesh_smoothen_pos", 0, 100);
   if (fields.has("mesh_smoothen_neg")) settings.meshSmoothenNeg = fields.integer("mesh_smoothen_neg", 0, 100);
-  if (fields.has("mesh_concave_upper")) settings.meshConcaveUpper = fields.number("mesh_concave_upper", -1.0f, 10.0f);
-  if (fields.has("mesh_concave_lower")) settings.meshConcaveLower = fields.number("mesh_concave_lower", -1.0f, 10.0f);
+  if (fields.has("mesh_concave_upper"))
+    settings.meshConcaveUpper = fields.number("mesh_concave_upper", -1.0f, 10.0f);
+  if (fields.has("mesh_concave_lower"))
+    settings.meshConcaveLower = fields.number("mesh_concave_lower", -1.0f, 10.0f);
   if (fields.has("particle_number")) settings.particleNumber = fields.integer("particle_number", 1, 5);
   if (fields.has("mesh_generator")) {
     const std::string generator = fields.string("mesh_generator");
-    if (generator == "IMPROVED") settings.improvedMesh = true;
-    else if (generator == "UNION") settings.improvedMesh = false;
-    else fields.fail("mesh_generator", "\"" + generator + "\" is not one of IMPROVED, UNION");
+    if (generator == "IMPROVED")
+      settings.improvedMesh = true;
+    else if (generator == "UNION")
+      settings.improvedMesh = false;
+    else
+      fields.fail("mesh_generator", "\"" + generator + "\" is not one of IMPROVED, UNION");
   }
   if (fields.has("cell_size")) settings.cellSize = fields.number("cell_size", 0.0f, 1e30f);
   return settings;
@@ -99,8 +109,8 @@ void applyDomain(const JsonFields& fields, ParticleSource& source) {
     source.domainBox = DomainBox{config.worldFromFile(), glm::vec3(inset),
                                  glm::vec3(config.resolution) * config.cellSize() - inset};
   } else if (cellSize == 0.0f) {
-    fields.fail("domain", "no Mantaflow config file (cache/config/config_NNNN.uni) beside " + source.path.string() +
-                              ": give domain.cell_size");
+    fields.fail("domain", "no Mantaflow config file (cache/config/config_NNNN.uni) beside " +
+                              source.path.string() + ": give domain.cell_size");
   }
   const LiquidSurfaceFromDomain surface = liquidSurfaceFromDomain(settings, cellSize);
   source.meshFlatOffset = surface.flatOffset;
@@ -123,17 +133,24 @@ ParticleSource readParticleSource(const JsonFields& fields, const std::filesyste
   }
   if (fields.has("role")) {
     const std::string role = fields.string("role");
-    if (role == "liquid") source.role = ParticleRole::Liquid;
-    else if (role == "foam") source.role = ParticleRole::Foam;
-    else fields.fail("role", "\"" + role + "\" is not one of liquid, foam");
+    if (role == "liquid")
+      source.role = ParticleRole::Liquid;
+    else if (role == "foam")
+      source.role = ParticleRole::Foam;
+    else
+      fields.fail("role", "\"" + role + "\" is not one of liquid, foam");
   }
   if (fields.has("kind")) {
     if (source.role != ParticleRole::Foam) fields.fail("kind", "only foam sources have a kind");
     const std::string kind = fields.string("kind");
-    if (kind == "spray") source.kind = ParticleKind::Spray;
-    else if (kind == "bubble") source.kind = ParticleKind::Bubble;
-    else if (kind == "foam") source.kind = ParticleKind::Foam;
-    else fields.fail("kind", "\"" + kind + "\" is not one of spray, bubble, foam");
+    if (kind == "spray")
+      source.kind = ParticleKind::Spray;
+    else if (kind == "bubble")
+      source.kind = ParticleKind::Bubble;
+    else if (kind == "foam")
+      source.kind = ParticleKind::Foam;
+    else
+      fields.fail("kind", "\"" + kind + "\" is not one of spray, bubble, foam");
   }
   if (fields.has("radius")) source.radius = fields.number("radius", 0.0f, 1e30f);
   if (fields.has("world_from_file")) source.worldFromFile = fields.affineMatrix("world_from_file");
@@ -141,9 +158,10 @@ ParticleSource readParticleSource(const JsonFields& fields, const std::filesyste
     if (source.role != ParticleRole::Liquid) fields.fail("domain", "only liquid sources have a domain");
     applyDomain(fields, source);
   } else if (!fields.has("radius")) {
-    fields.fail("radius", source.role == ParticleRole::Liquid
-                              ? "missing: give the particle radius, or the Mantaflow \"domain\" to derive it from"
-                              : "missing");
+    fields.fail("radius",
+                source.role == ParticleRole::Liquid
+                    ? "missing: give the particle radius, or the Mantaflow \"domain\" to derive it from"
+                    : "missing");
   }
   return source;
 }
@@ -186,10 +204,14 @@ Light readLight(const JsonFields& fields) {
   fields.allowOnly({"type", "direction", "position", "color", "strength", "spot_angle_deg"});
   Light light;
   const std::string type = fields.string("type");
-  if (type == "sun") light.type = Light::Type::Sun;
-  else if (type == "spot") light.type = Light::Type::Spot;
-  else if (type == "point") light.type = Light::Type::Point;
-  else fields.fail("type", "\"" + type + "\" is not one of sun, spot, point");
+  if (type == "sun")
+    light.type = Light::Type::Sun;
+  else if (type == "spot")
+    light.type = Light::Type::Spot;
+  else if (type == "point")
+    light.type = Light::Type::Point;
+  else
+    fields.fail("type", "\"" + type + "\" is not one of sun, spot, point");
   const bool directional = light.type != Light::Type::Point;
   if (directional) {
     light.direction = fields.vec3("direction");
@@ -198,8 +220,10 @@ Light readLight(const JsonFields& fields) {
   } else if (fields.has("direction")) {
     fields.fail("direction", "a point light has no direction");
   }
-  if (light.type != Light::Type::Sun) light.position = fields.vec3("position");
-  else if (fields.has("position")) fields.fail("position", "a sun has no position (only a direction)");
+  if (light.type != Light::Type::Sun)
+    light.position = fields.vec3("position");
+  else if (fields.has("position"))
+    fields.fail("position", "a sun has no position (only a direction)");
   if (light.type == Light::Type::Spot) {
     if (fields.has("spot_angle_deg")) light.spotAngleDegrees = fields.number("spot_angle_deg", 0.0f, 180.0f);
   } else if (fields.has("spot_angle_deg")) {
@@ -211,19 +235,19 @@ Light readLight(const JsonFields& fields) {
   return light;
 }
 
-// Sources derived from Mantaflow domains set liquid.surface_offset, in radii, so the drawn surface stands where
-// Mantaflow's flat surface stands: its offset minus what Spindrift's own flat surface already reaches.
+// Sources derived from Mantaflow domains set liquid.surface_offset, in radii, so the drawn surface stands
+// where Mantaflow's flat surface stands: its offset minus what Spindrift's own flat surface already reaches.
 void applyDerivedSurfaceOffset(const JsonFields& root, Scene& scene) {
   float derived = -1.0f;
   for (std::size_t i = 0; i < scene.particles.size(); ++i) {
     const ParticleSource& source = scene.particles[i];
     if (source.meshFlatOffset <= 0.0f) continue;
-    const float offset =
-        std::max(0.0f, source.meshFlatOffset / source.radius - kSpindriftFlatOffsetRadii);
+    const float offset = std::max(0.0f, source.meshFlatOffset / source.radius - kSpindriftFlatOffsetRadii);
     if (derived >= 0.0f && std::abs(offset - derived) > 1e-3f * std::max(1.0f, derived))
       root.fail("particles[" + std::to_string(i) + "].domain",
-                "its surface offset (" + std::to_string(offset) + " radii) differs from another liquid source's (" +
-                    std::to_string(derived) + "); set liquid.surface_offset");
+                "its surface offset (" + std::to_string(offset) +
+                    " radii) differs from another liquid source's (" + std::to_string(derived) +
+                    "); set liquid.surface_offset");
     derived = offset;
   }
   if (derived >= 0.0f) scene.parameters.liquid.surface_offset = std::min(derived, 100.0f);
@@ -241,8 +265,8 @@ Scene parseScene(const std::string& jsonText, const std::filesystem::path& scene
     throw Error(fileLabel + ": not valid JSON: " + error.what());
   }
   const JsonFields root(document, fileLabel, "");
-  root.allowOnly({"version", "frame", "camera", "particles", "background", "occluders", "liquid_mesh", "lights",
-                  "liquid", "foam", "light"});
+  root.allowOnly({"version", "frame", "camera", "particles", "background", "occluders", "liquid_mesh",
+                  "lights", "liquid", "foam", "light"});
   if (root.integer("version", 0, 1000) != 1)
     root.fail("version", "this Spindrift reads version 1 scene files");
 
@@ -255,15 +279,15 @@ Scene parseScene(const std::string& jsonText, const std::filesystem::path& scene
   const json& particles = root.raw("particles");
   if (!particles.is_array()) root.fail("particles", "expected a list of particle sources");
   for (std::size_t i = 0; i < particles.size(); ++i)
-    scene.particles.push_back(
-        readParticleSource(JsonFields(particles[i], fileLabel, "particles[" + std::to_string(i) + "]"), baseDirectory));
+    scene.particles.push_back(readParticleSource(
+        JsonFields(particles[i], fileLabel, "particles[" + std::to_string(i) + "]"), baseDirectory));
 
   if (root.has("occluders")) {
     const json& occluders = root.raw("occluders");
     if (!occluders.is_array()) root.fail("occluders", "expected a list of meshes");
     for (std::size_t i = 0; i < occluders.size(); ++i)
-      scene.occluders.push_back(
-          readMeshSource(JsonFields(occluders[i], fileLabel, "occluders[" + std::to_string(i) + "]"), baseDirectory));
+      scene.occluders.push_back(readMeshSource(
+          JsonFields(occluders[i], fileLabel, "occluders[" + std::to_string(i) + "]"), baseDirectory));
   }
   if (root.has("liquid_mesh")) scene.liquidMesh = readMeshSource(root.child("liquid_mesh"), baseDirectory);
   if (root.has("background")) scene.background = readBackground(root.child("background"), baseDirectory);
@@ -271,12 +295,13 @@ Scene parseScene(const std::string& jsonText, const std::filesystem::path& scene
     const json& lights = root.raw("lights");
     if (!lights.is_array()) root.fail("lights", "expected a list of lights");
     for (std::size_t i = 0; i < lights.size(); ++i)
-      scene.lights.push_back(readLight(JsonFields(lights[i], fileLabel, "lights[" + std::to_string(i) + "]")));
+      scene.lights.push_back(
+          readLight(JsonFields(lights[i], fileLabel, "lights[" + std::to_string(i) + "]")));
   }
   for (const char* group : {"liquid", "foam", "light"})
     if (root.has(group)) setParameterGroup(scene.parameters, group, root.raw(group), fileLabel);
-  const bool offsetGiven = root.has("liquid") && root.raw("liquid").is_object() &&
-                           root.raw("liquid").contains("surface_offset");
+  const bool offsetGiven =
+      root.has("liquid") && root.raw("liquid").is_object() && root.raw("liquid").contains("surface_offset");
   if (!offsetGiven) applyDerivedSurfaceOffset(root, scene);
   return scene;
 }
