@@ -35,8 +35,6 @@ def parse_arguments():
                                            "--quick)")
     parser.add_argument("--work", default=os.path.join(runs.REPOSITORY, "build", "bench"))
     parser.add_argument("--blender", default="blender")
-    parser.add_argument("--examples", help="comma-separated subset of the plan's examples")
-    parser.add_argument("--configurations", help="comma-separated labels: run only these points of the sweep")
     parser.add_argument("--sweep-only", action="store_true",
                         help="the Spindrift sweep and Cycles' sample points only: no VTK, scaling or stability suite")
     parser.add_argument("--report-only", action="store_true",
@@ -178,7 +176,7 @@ def main():
     if arguments.examples:
         plan["examples"] = arguments.examples.split(",")
     if arguments.configurations:
-        plan["only_configurations"] = arguments.configurations.split(",")
+        plan["only_configurations"] = arguments.configurations.split(";")
     plan["sweep_only"] = arguments.sweep_only
     subset = bool(arguments.examples or arguments.configurations or arguments.sweep_only)
     plan["subset"] = subset
