@@ -103,13 +103,16 @@ int runRender(const RenderOptions& options) {
   std::vector<int> failedFrames;
   // Frame N's files are written on another thread while frame N+1 renders. A write's error is reported with
   // its frame when the next frame (or the end) waits for it; a stop signal waits for the write in flight, so
-  // every file the sequence leaves is complete.
+  // every file the sequence leaves is complete. "frame N done" is printed only once N's files are on disk:
+  // farm wrappers and people read it as "this frame will be skipped if the job is rerun".
   std::future<void> pendingWrite;
   int pendingFrame = 0;
+  double pendingSeconds = 0.0;
   auto finishPendingWrite = [&]() -> bool {  // False: the sequence stops.
     if (!pendingWrite.valid()) return true;
     try {
       pendingWrite.get();
+      progress.frameDone(pendingFrame, pendingSeconds);
       return true;
     } catch (const std::exception& error) {
       if (frames.size() == 1) throw;
@@ -152,8 +155,7 @@ int runRender(const RenderOptions& options) {
       if (!options.statsPath.empty() && hasFramePattern(options.statsPath))
         cli::writeTextFile(pathForFrame(options.statsPath, frame), statsJson(*result, scene).dump(2) + "\n");
     });
-    progress.frameDone(frame,
-                       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
+    pendingSeconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   }
   if (!finishPendingWrite()) return cli::kExitError;
   progress.finish();
