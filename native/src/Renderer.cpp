@@ -31,6 +31,7 @@
 #include "passes/RefractionPass.h"
 #include "prep/BackgroundCache.h"
 #include "prep/FoamPreparation.h"
+#include "prep/HiddenInterior.h"
 #include "prep/LightViews.h"
 #include "prep/LiquidPreparation.h"
 #include "prep/RaymarchPreparation.h"
@@ -246,7 +247,13 @@ RenderResult Renderer::renderPrepared(const Scene& scene, const Particles& parti
   FrameStats& stats = result.stats;
 
   const Clock::time_point prepareStart = Clock::now();
-  const LiquidPreparation liquid = prepareLiquid(particles, camera, liquidParameters);
+  LiquidPreparation liquid = prepareLiquid(particles, camera, liquidParameters);
+  if (liquidParameters.drop_hidden_interior) {
+    const HiddenInteriorResult hidden = dropHiddenInterior(liquid.aggregates, camera, domainBox);
+    stats.liquid.hiddenInteriorDropped = hidden.dropped;
+    stats.liquid.hiddenInteriorNotApplied = hidden.notApplied;
+    stats.liquid.hiddenInteriorMilliseconds = hidden.milliseconds;
+  }
   const float radius = typicalLiquidRadius(particles);
   const FoamPreparation foam = prepareFoam(particles, camera, foamParameters);
   std::optional<RaymarchPreparation> raymarch;
