@@ -15,6 +15,7 @@
 #include "LiquidTestScenes.h"
 #include "prep/HiddenInterior.h"
 #include "prep/LiquidPreparation.h"
+#include "spindrift/FrameInputs.h"
 #include "spindrift/Scene.h"
 
 namespace spindrift {
@@ -27,13 +28,16 @@ constexpr float kRadius = 0.11f;
 Particles jitteredBlock() {
   std::mt19937 random(7);
   std::uniform_real_distribution<float> jitter(-0.3f * kSpacing, 0.3f * kSpacing);
-  std::vector<glm::vec3> positions = liquid_test::block({0.05f, 0.05f, 0.05f}, {1.55f, 1.55f, 0.95f}, kSpacing);
+  std::vector<glm::vec3> positions =
+      liquid_test::block({0.05f, 0.05f, 0.05f}, {1.55f, 1.55f, 0.95f}, kSpacing);
   for (glm::vec3& position : positions)
     position += glm::vec3(jitter(random), jitter(random), jitter(random));
   return liquid_test::particlesOf(positions, kRadius);
 }
 
-Camera obliqueCamera() { return Camera::lookAt(128, 96, 40.0f, {4.0f, -2.5f, 3.0f}, {0.8f, 0.8f, 0.4f}, {0, 0, 1}); }
+Camera obliqueCamera() {
+  return Camera::lookAt(128, 96, 40.0f, {4.0f, -2.5f, 3.0f}, {0.8f, 0.8f, 0.4f}, {0, 0, 1});
+}
 
 LiquidParameters grownParticles() {
   LiquidParameters parameters;
@@ -119,7 +123,8 @@ TEST(HiddenInterior, EveryEllipsoidLeftOutLiesInsideTheOthers) {
       ++checked;
       bool inside = false;
       for (const EllipsoidInstance& other : all)
-        if (std::memcmp(&other, &dropped[d], sizeof(EllipsoidInstance)) != 0 && ellipsoidValue(other, point) < 1.0f) {
+        if (std::memcmp(&other, &dropped[d], sizeof(EllipsoidInstance)) != 0 &&
+            ellipsoidValue(other, point) < 1.0f) {
           inside = true;
           break;
         }
@@ -133,7 +138,8 @@ TEST(HiddenInterior, RaysFromAnySideMeetTheSameFrontAndBack) {
   // The layers are nearest entry and farthest exit; from outside the body they must not change, whichever
   // side the rays come from (the same ellipsoids serve the lights' views).
   const Camera camera = obliqueCamera();
-  const std::vector<EllipsoidInstance> all = prepareLiquid(jitteredBlock(), camera, grownParticles()).aggregates;
+  const std::vector<EllipsoidInstance> all =
+      prepareLiquid(jitteredBlock(), camera, grownParticles()).aggregates;
   std::vector<EllipsoidInstance> kept = all;
   ASSERT_GT(dropHiddenInterior(kept, camera, nullptr).dropped, 0u);
   std::mt19937 random(11);
@@ -158,7 +164,8 @@ TEST(HiddenInterior, RaysFromAnySideMeetTheSameFrontAndBack) {
 TEST(HiddenInterior, NothingIsLeftOutWhenTheNearPlaneCutsTheBody) {
   // The camera inside the block: rays start inside the body, where a cavity would show.
   const Camera camera = Camera::lookAt(128, 96, 40.0f, {0.8f, 0.8f, 0.5f}, {1.5f, 0.8f, 0.5f}, {0, 0, 1});
-  std::vector<EllipsoidInstance> ellipsoids = prepareLiquid(jitteredBlock(), camera, grownParticles()).aggregates;
+  std::vector<EllipsoidInstance> ellipsoids =
+      prepareLiquid(jitteredBlock(), camera, grownParticles()).aggregates;
   const std::size_t before = ellipsoids.size();
   ASSERT_GT(before, 256u);
   const HiddenInteriorResult result = dropHiddenInterior(ellipsoids, camera, nullptr);
@@ -169,7 +176,8 @@ TEST(HiddenInterior, NothingIsLeftOutWhenTheNearPlaneCutsTheBody) {
 
 TEST(HiddenInterior, EllipsoidsThatReachTheDomainWallsAreKept) {
   const Camera camera = obliqueCamera();
-  const std::vector<EllipsoidInstance> all = prepareLiquid(jitteredBlock(), camera, grownParticles()).aggregates;
+  const std::vector<EllipsoidInstance> all =
+      prepareLiquid(jitteredBlock(), camera, grownParticles()).aggregates;
   // A floor under the block, the other walls far off: ellipsoids that reach below z = 0.05 are kept.
   const DomainBox box{glm::mat4(1.0f), glm::vec3(-1.0f, -1.0f, 0.05f), glm::vec3(3.0f)};
   std::vector<EllipsoidInstance> clipped = all, unclipped = all;
@@ -182,7 +190,8 @@ TEST(HiddenInterior, EllipsoidsThatReachTheDomainWallsAreKept) {
   for (const EllipsoidInstance& ellipsoid : all) {
     const glm::vec3 centre(ellipsoid.centreAndBoundingRadius);
     const float reach = ellipsoid.centreAndBoundingRadius.w;
-    if (glm::all(glm::greaterThan(centre - reach, box.low)) && glm::all(glm::lessThan(centre + reach, box.high)))
+    if (glm::all(glm::greaterThan(centre - reach, box.low)) &&
+        glm::all(glm::lessThan(centre + reach, box.high)))
       continue;
     ++atWalls;
     bool found = false;
@@ -195,7 +204,8 @@ TEST(HiddenInterior, EllipsoidsThatReachTheDomainWallsAreKept) {
 
 TEST(HiddenInterior, ScatteredDropsAndSmallSetsAreLeftAlone) {
   const Camera camera = obliqueCamera();
-  // Droplets 0.6 apart (six radii, more than their grown reach of 2.4 radii each) cover nothing of each other.
+  // Droplets 0.6 apart (six radii, more than their grown reach of 2.4 radii each) cover nothing of each
+  // other.
   const Camera above = Camera::lookAt(128, 96, 40.0f, {5.7f, 5.7f, 40.0f}, {5.7f, 5.7f, 0.5f}, {0, 1, 0});
   std::vector<glm::vec3> positions;
   for (int i = 0; i < 400; ++i)
@@ -215,11 +225,21 @@ TEST(HiddenInterior, ScatteredDropsAndSmallSetsAreLeftAlone) {
 }
 
 // The whole frame with and without: every channel of every layer bit-identical.
-void expectIdenticalFrames(Scene scene, const Particles& particles) {
+void expectIdenticalFrames(Scene scene, const Particles& particles,
+                           const std::vector<TriangleMesh>& solids = {}) {
+  // In-memory particles with the scene's sources (a domain box) go through renderParticles; solids need
+  // FrameInputs.
+  FrameInputs inputs;
+  inputs.particles = particles;
+  inputs.occluders = solids;
+  const auto render = [&] {
+    return solids.empty() ? liquid_test::renderer().renderParticles(scene, particles, 1)
+                          : liquid_test::renderer().renderFrame(scene, 1, inputs);
+  };
   scene.parameters.liquid.drop_hidden_interior = false;
-  const RenderResult all = liquid_test::renderer().renderParticles(scene, particles, 1);
+  const RenderResult all = render();
   scene.parameters.liquid.drop_hidden_interior = true;
-  const RenderResult dropped = liquid_test::renderer().renderParticles(scene, particles, 1);
+  const RenderResult dropped = render();
   liquid_test::expectAllChannelsFinite(dropped);
   EXPECT_GT(dropped.stats.liquid.hiddenInteriorDropped, 0u);
   EXPECT_EQ(all.stats.liquid.hiddenInteriorDropped, 0u);
@@ -238,20 +258,30 @@ Scene blockScene() {
   scene.camera = obliqueCamera();
   scene.background.color = {0.4f, 0.5f, 0.6f};
   scene.parameters.liquid = grownParticles();
-  ParticleSource source;
-  source.radius = kRadius;
-  scene.particles.push_back(source);
   return scene;
 }
 
-TEST(GLHiddenInterior, EveryLayerIsBitIdenticalWithAndWithout) { expectIdenticalFrames(blockScene(), jitteredBlock()); }
+TEST(GLHiddenInterior, EveryLayerIsBitIdenticalWithAndWithout) {
+  expectIdenticalFrames(blockScene(), jitteredBlock());
+}
 
 TEST(GLHiddenInterior, EveryLayerIsBitIdenticalInsideADomainBox) {
   Scene scene = blockScene();
   // The floor and one side wall cut the grown particles; the rest of the box is far.
-  scene.particles.front().domainBox =
-      DomainBox{glm::mat4(1.0f), glm::vec3(-1.0f, 0.1f, 0.05f), glm::vec3(3.0f, 3.0f, 3.0f)};
+  ParticleSource source;
+  source.radius = kRadius;
+  source.domainBox = DomainBox{glm::mat4(1.0f), glm::vec3(-1.0f, 0.1f, 0.05f), glm::vec3(3.0f, 3.0f, 3.0f)};
+  scene.particles.push_back(source);
   expectIdenticalFrames(scene, jitteredBlock());
+}
+
+TEST(GLHiddenInterior, EveryLayerIsBitIdenticalWithASolidInsideTheBody) {
+  // A plate submerged in the middle of the block: the passes hide particles whose front lies behind it, so
+  // the back layer over the plate comes from particles deep inside the body, which must stay.
+  TriangleMesh plate;
+  plate.vertices = {{0.5f, 0.5f, 0.45f}, {1.1f, 0.5f, 0.45f}, {1.1f, 1.1f, 0.45f}, {0.5f, 1.1f, 0.45f}};
+  plate.triangles = {{0, 1, 2}, {0, 2, 3}};
+  expectIdenticalFrames(blockScene(), jitteredBlock(), {plate});
 }
 
 }  // namespace

@@ -7,9 +7,9 @@
 #include <cstdint>
 #include <memory>
 
-#include <glm/glm.hpp>
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
+#include <glm/glm.hpp>
 
 namespace spindrift {
 namespace {
@@ -23,6 +23,9 @@ constexpr double kMaxVoxels = double(1 << 24);
 // Fewer ellipsoids than this are drawn as they are: the grid would cost more than it saves.
 constexpr std::size_t kMinEllipsoids = 256;
 
+// Below this fraction of isotropic (deep) aggregates, dropHiddenAggregates does not try.
+constexpr double kMinDeepFraction = 0.1;
+
 constexpr std::int32_t kNoOwner = -1;
 constexpr std::int32_t kSeveralOwners = -2;
 
@@ -34,7 +37,8 @@ float largestSingularValue(const EllipsoidInstance& ellipsoid) {
   for (int i = 0; i < 3; ++i) {
     float rowSum = 0.0f;
     for (int j = 0; j < 3; ++j)
-      rowSum += std::abs(glm::dot(glm::vec3(ellipsoid.inverseAxesRows[i]), glm::vec3(ellipsoid.inverseAxesRows[j])));
+      rowSum += std::abs(
+          glm::dot(glm::vec3(ellipsoid.inverseAxesRows[i]), glm::vec3(ellipsoid.inverseAxesRows[j])));
     largest = std::max(largest, rowSum);
   }
   return std::sqrt(largest);
@@ -55,20 +59,26 @@ struct VoxelGrid {
   }
 };
 
-bool bodyReachesClipPlanes(const std::vector<EllipsoidInstance>& ellipsoids, const Camera& camera) {
+// The farthest planar eye depth each ellipsoid's bounding sphere reaches; false when one of them reaches the
+// near or far clip plane.
+bool farthestDepths(const std::vector<EllipsoidInstance>& ellipsoids, const Camera& camera,
+                    std::vector<float>& depths) {
   const glm::mat4 cameraFromWorld = camera.cameraFromWorld();
-  for (const EllipsoidInstance& ellipsoid : ellipsoids) {
-    const float depth = -(cameraFromWorld * glm::vec4(glm::vec3(ellipsoid.centreAndBoundingRadius), 1.0f)).z;
-    const float reach = ellipsoid.centreAndBoundingRadius.w;
-    if (!(depth - reach > camera.nearClip) || !(depth + reach < camera.farClip)) return true;
+  depths.resize(ellipsoids.size());
+  for (std::size_t i = 0; i < ellipsoids.size(); ++i) {
+    const glm::vec4& sphere = ellipsoids[i].centreAndBoundingRadius;
+    const float depth = -(cameraFromWorld * glm::vec4(glm::vec3(sphere), 1.0f)).z;
+    if (!(depth - sphere.w > camera.nearClip) || !(depth + sphere.w < camera.farClip)) return false;
+    depths[i] = depth + sphere.w;
   }
-  return false;
+  return true;
 }
 
 // Whether the ellipsoid's bounding sphere lies strictly inside the domain box, which then does not cut it.
 bool insideDomain(const EllipsoidInstance& ellipsoid, const DomainBox& domain, const glm::mat4& boxFromWorld,
                   float boxScale) {
-  const glm::vec3 centre = glm::vec3(boxFromWorld * glm::vec4(glm::vec3(ellipsoid.centreAndBoundingRadius), 1.0f));
+  const glm::vec3 centre =
+      glm::vec3(boxFromWorld * glm::vec4(glm::vec3(ellipsoid.centreAndBoundingRadius), 1.0f));
   const float reach = ellipsoid.centreAndBoundingRadius.w * boxScale;
   return glm::all(glm::greaterThan(centre - reach, domain.low)) &&
          glm::all(glm::lessThan(centre + reach, domain.high));
@@ -77,7 +87,7 @@ bool insideDomain(const EllipsoidInstance& ellipsoid, const DomainBox& domain, c
 }  // namespace
 
 HiddenInteriorResult dropHiddenInterior(std::vector<EllipsoidInstance>& ellipsoids, const Camera& camera,
-                                        const DomainBox* domain) {
+                                        const DomainBox* domain, const SolidDepthTiles* solids) {
   const auto start = std::chrono::steady_clock::now();
   HiddenInteriorResult result;
   const std::size_t count = ellipsoids.size();
@@ -85,7 +95,8 @@ HiddenInteriorResult dropHiddenInterior(std::vector<EllipsoidInstance>& ellipsoi
     result.notApplied = "fewer than " + std::to_string(kMinEllipsoids) + " aggregates";
     return result;
   }
-  if (bodyReachesClipPlanes(ellipsoids, camera)) {
+  std::vector<float> depths;
+  if (!farthestDepths(ellipsoids, camera, depths)) {
     result.notApplied = "the body reaches the near or far clip plane";
     return result;
   }
@@ -103,7 +114,8 @@ HiddenInteriorResult dropHiddenInterior(std::vector<EllipsoidInstance>& ellipsoi
   VoxelGrid grid;
   grid.size = sorted[count / 2] / kVoxelsPerInscribedRadius;
   const glm::vec3 extent = high - low;
-  const double voxels = double(extent.x / grid.size + 3) * (extent.y / grid.size + 3) * (extent.z / grid.size + 3);
+  const double voxels =
+      double(extent.x / grid.size + 3) * (extent.y / grid.size + 3) * (extent.z / grid.size + 3);
   if (!(grid.size > 0.0f) || !std::isfinite(voxels)) {
     result.notApplied = "degenerate ellipsoids";
     return result;
@@ -113,18 +125,21 @@ HiddenInteriorResult dropHiddenInterior(std::vector<EllipsoidInstance>& ellipsoi
   grid.dims = glm::ivec3(glm::ceil(extent / grid.size)) + 2;
   const std::size_t voxelCount = std::size_t(grid.dims.x) * grid.dims.y * grid.dims.z;
   grid.owners.reset(new std::atomic<std::int32_t>[voxelCount]);
-  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, voxelCount), [&](const tbb::blocked_range<std::size_t>& r) {
-    for (std::size_t v = r.begin(); v != r.end(); ++v)
-      grid.owners[v].store(kNoOwner, std::memory_order_relaxed);
-  });
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, voxelCount),
+                    [&](const tbb::blocked_range<std::size_t>& r) {
+                      for (std::size_t v = r.begin(); v != r.end(); ++v)
+                        grid.owners[v].store(kNoOwner, std::memory_order_relaxed);
+                    });
   const float halfDiagonal = 0.5f * std::sqrt(3.0f) * grid.size;
 
-  // Mark each voxel that fits inside an ellipsoid's inscribed ball with that ellipsoid, or as held by several.
-  // The final state of a voxel does not depend on the order of the claims, so neither does the result.
+  // Mark each voxel that fits inside an ellipsoid's inscribed ball with that ellipsoid, or as held by
+  // several. The final state of a voxel does not depend on the order of the claims, so neither does the
+  // result.
   tbb::parallel_for(tbb::blocked_range<std::size_t>(0, count), [&](const tbb::blocked_range<std::size_t>& r) {
     for (std::size_t i = r.begin(); i != r.end(); ++i) {
       const glm::vec3 centre(ellipsoids[i].centreAndBoundingRadius);
-      const float reach = inscribed[i] * (1.0f - 1e-5f) - halfDiagonal;  // The voxel's corners inside, strictly.
+      const float reach =
+          inscribed[i] * (1.0f - 1e-5f) - halfDiagonal;  // The voxel's corners inside, strictly.
       if (!(reach > 0.0f)) continue;
       glm::ivec3 first, last;
       grid.range(centre, reach, first, last);
@@ -159,10 +174,24 @@ HiddenInteriorResult dropHiddenInterior(std::vector<EllipsoidInstance>& ellipsoi
       const EllipsoidInstance& ellipsoid = ellipsoids[i];
       if (domain && !insideDomain(ellipsoid, *domain, boxFromWorld, boxScale)) continue;
       const glm::vec3 centre(ellipsoid.centreAndBoundingRadius);
+      if (solids && solids->solidNearerThan(centre, ellipsoid.centreAndBoundingRadius.w, depths[i])) continue;
       const glm::mat3 rows = glm::transpose(glm::mat3(glm::vec3(ellipsoid.inverseAxesRows[0]),
                                                       glm::vec3(ellipsoid.inverseAxesRows[1]),
                                                       glm::vec3(ellipsoid.inverseAxesRows[2])));
       const float touchLimit = 1.0f + halfDiagonal / inscribed[i] + 1e-4f;
+      // The six ends of the axes lie on the ellipsoid: a particle at the surface usually fails on one of
+      // them, before the whole neighbourhood is scanned.
+      bool endUncovered = false;
+      for (int k = 0; k < 6 && !endUncovered; ++k) {
+        const glm::vec3 row(ellipsoid.inverseAxesRows[k / 2]);
+        const glm::vec3 end = centre + (k % 2 ? -1.0f : 1.0f) * row / glm::dot(row, row);
+        const glm::ivec3 voxel =
+            glm::clamp(glm::ivec3(glm::floor((end - grid.low) / grid.size)), glm::ivec3(0), grid.dims - 1);
+        const std::int32_t owner =
+            grid.owners[grid.index(voxel.x, voxel.y, voxel.z)].load(std::memory_order_relaxed);
+        endUncovered = owner == kNoOwner || owner == std::int32_t(i);
+      }
+      if (endUncovered) continue;
       glm::ivec3 first, last;
       grid.range(centre, ellipsoid.centreAndBoundingRadius.w + halfDiagonal, first, last);
       bool covered = true;
@@ -189,6 +218,20 @@ HiddenInteriorResult dropHiddenInterior(std::vector<EllipsoidInstance>& ellipsoi
   result.milliseconds =
       std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
   return result;
+}
+
+HiddenInteriorResult dropHiddenAggregates(LiquidPreparation& liquid, const Camera& camera,
+                                          const DomainBox* domain, const SolidDepthTiles* solids) {
+  // Deep particles are the ones the anisotropy found isotropic; where they are few the body is a sheet or a
+  // spray, which hides almost nothing (the dam-break example: 5 % deep, 0.8 % hidden), and the grid's cost
+  // would be lost.
+  if (double(liquid.isotropicInterior) < kMinDeepFraction * double(liquid.aggregates.size())) {
+    HiddenInteriorResult result;
+    result.notApplied = "few deep aggregates (" + std::to_string(liquid.isotropicInterior) + " of " +
+                        std::to_string(liquid.aggregates.size()) + ")";
+    return result;
+  }
+  return dropHiddenInterior(liquid.aggregates, camera, domain, solids);
 }
 
 }  // namespace spindrift

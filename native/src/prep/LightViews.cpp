@@ -119,7 +119,7 @@ LightingPreparation prepareLighting(const Particles& particles, const std::vecto
     body.insert(body.end(), light.liquid.splashes.begin(), light.liquid.splashes.end());
     light.liquid.splashes.clear();
     // The light's layers are the body's nearest entry and farthest exit too, unclipped by the domain.
-    if (parameters.liquid.drop_hidden_interior) dropHiddenInterior(body, view.camera, nullptr);
+    if (parameters.liquid.drop_hidden_interior) dropHiddenAggregates(light.liquid, view.camera, nullptr);
     return light;
   };
   const int size = parameters.light.shadow_map_size;
