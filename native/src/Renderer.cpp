@@ -31,6 +31,7 @@
 #include "passes/RefractionPass.h"
 #include "prep/BackgroundCache.h"
 #include "prep/FoamPreparation.h"
+#include "prep/HiddenInterior.h"
 #include "prep/LightViews.h"
 #include "prep/LiquidPreparation.h"
 #include "prep/RaymarchPreparation.h"
@@ -246,7 +247,7 @@ RenderResult Renderer::renderPrepared(const Scene& scene, const Particles& parti
   FrameStats& stats = result.stats;
 
   const Clock::time_point prepareStart = Clock::now();
-  const LiquidPreparation liquid = prepareLiquid(particles, camera, liquidParameters);
+  LiquidPreparation liquid = prepareLiquid(particles, camera, liquidParameters);
   const float radius = typicalLiquidRadius(particles);
   const FoamPreparation foam = prepareFoam(particles, camera, foamParameters);
   std::optional<RaymarchPreparation> raymarch;
@@ -264,6 +265,17 @@ RenderResult Renderer::renderPrepared(const Scene& scene, const Particles& parti
   }
   if (extras.backgroundColor || extras.backgroundDepth)
     backgroundImages.generation = ++impl_->hostBackgroundGeneration;
+  if (liquidParameters.drop_hidden_interior) {
+    // The solids the impostor passes test against: the background's depth and the occluder triangles.
+    SolidDepthTiles solids(camera);
+    if (backgroundImages.eyeDepth) solids.addDepthImage(*backgroundImages.eyeDepth);
+    for (const TriangleMesh* mesh : extras.occluders)
+      solids.addTriangles(*mesh);
+    const HiddenInteriorResult hidden = dropHiddenAggregates(liquid, camera, domainBox, &solids);
+    stats.liquid.hiddenInteriorDropped = hidden.dropped;
+    stats.liquid.hiddenInteriorNotApplied = hidden.notApplied;
+    stats.liquid.hiddenInteriorMilliseconds = hidden.milliseconds;
+  }
   if (backgroundImages.environment)
     checkImageFitsGl(impl_->glLimits, backgroundImages.environment->width,
                      backgroundImages.environment->height,

@@ -37,6 +37,10 @@ struct LiquidFrameStats {
   std::size_t aggregateParticles = 0;  ///< Drawn as ellipsoids.
   std::size_t isotropicInterior = 0;   ///< Aggregates deep inside the body, drawn without anisotropy.
   std::size_t culled = 0;              ///< Outside the view frustum.
+  /// Aggregates left out because they lie inside the union of the others (liquid.drop_hidden_interior).
+  std::size_t hiddenInteriorDropped = 0;
+  std::string hiddenInteriorNotApplied;  ///< Why none were left out this frame, if something ruled it out.
+  double hiddenInteriorMilliseconds = 0.0;
   std::size_t liquidPixels = 0;
   std::size_t raysWithSecondBody =
       0;  ///< Rays that went on into a second body (third and fourth refraction).

@@ -7,6 +7,8 @@
 #include <glm/geometric.hpp>
 #include <glm/trigonometric.hpp>
 
+#include "prep/HiddenInterior.h"
+
 namespace spindrift {
 namespace {
 
@@ -116,6 +118,8 @@ LightingPreparation prepareLighting(const Particles& particles, const std::vecto
     std::vector<EllipsoidInstance>& body = light.liquid.aggregates;
     body.insert(body.end(), light.liquid.splashes.begin(), light.liquid.splashes.end());
     light.liquid.splashes.clear();
+    // The light's layers are the body's nearest entry and farthest exit too, unclipped by the domain.
+    if (parameters.liquid.drop_hidden_interior) dropHiddenAggregates(light.liquid, view.camera, nullptr);
     return light;
   };
   const int size = parameters.light.shadow_map_size;

@@ -1,0 +1,40 @@
+#pragma once
+
+#include <vector>
+
+#include <glm/vec3.hpp>
+
+#include "spindrift/Camera.h"
+#include "spindrift/FloatImage.h"
+#include "spindrift/FrameInputs.h"
+
+namespace spindrift {
+
+/// A conservative low-resolution picture of where the frame's solids are: for each tile of pixels, a planar
+/// eye depth that no solid in the tile is nearer than (the background's depth image and the occluder
+/// triangles). dropHiddenInterior keeps every ellipsoid that may reach behind a solid, because the impostor
+/// passes hide particles by the solid depth pixel by pixel.
+class SolidDepthTiles {
+ public:
+  static constexpr int kTileSize = 8;
+
+  /// No solids: every tile is infinitely deep.
+  explicit SolidDepthTiles(const Camera& camera);
+  void addDepthImage(const FloatImage& eyeDepth);
+  void addTriangles(const TriangleMesh& mesh);
+
+  /// Whether a solid may lie nearer than `farthestDepth` within the screen rectangle of a world-space sphere
+  /// (which must lie beyond the near plane).
+  bool solidNearerThan(const glm::vec3& centre, float radius, float farthestDepth) const;
+
+ private:
+  // Lowers the tiles under a pixel rectangle (inclusive pixel coordinates, clamped to the frame) to `depth`.
+  void lower(float firstX, float firstY, float lastX, float lastY, float depth);
+
+  Camera camera_;
+  int columns_ = 0;
+  int rows_ = 0;
+  std::vector<float> nearest_;
+};
+
+}  // namespace spindrift

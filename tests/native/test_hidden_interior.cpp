@@ -1,0 +1,288 @@
+// Leaving out the aggregates hidden inside the body (prep/HiddenInterior.cpp, liquid.drop_hidden_interior):
+// every ellipsoid left out must lie inside the union of those kept, checked by a brute-force CPU test of
+// points on its surface against every kept ellipsoid; the frame's layers must be bit-identical with and
+// without it; and nothing may be left out where a clip plane or the domain's walls cut the body.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstring>
+#include <random>
+#include <utility>
+#include <vector>
+
+#include <glm/glm.hpp>
+
+#include "LiquidTestScenes.h"
+#include "prep/HiddenInterior.h"
+#include "prep/LiquidPreparation.h"
+#include "spindrift/FrameInputs.h"
+#include "spindrift/Scene.h"
+
+namespace spindrift {
+namespace {
+
+constexpr float kSpacing = 0.1f;
+constexpr float kRadius = 0.11f;
+
+// A block of 16 x 16 x 10 particles, each moved by up to 0.3 spacings (as FLIP particles sit), seeded.
+Particles jitteredBlock() {
+  std::mt19937 random(7);
+  std::uniform_real_distribution<float> jitter(-0.3f * kSpacing, 0.3f * kSpacing);
+  std::vector<glm::vec3> positions =
+      liquid_test::block({0.05f, 0.05f, 0.05f}, {1.55f, 1.55f, 0.95f}, kSpacing);
+  for (glm::vec3& position : positions)
+    position += glm::vec3(jitter(random), jitter(random), jitter(random));
+  return liquid_test::particlesOf(positions, kRadius);
+}
+
+Camera obliqueCamera() {
+  return Camera::lookAt(128, 96, 40.0f, {4.0f, -2.5f, 3.0f}, {0.8f, 0.8f, 0.4f}, {0, 0, 1});
+}
+
+LiquidParameters grownParticles() {
+  LiquidParameters parameters;
+  parameters.surface_offset = 1.9f;  // what a default Mantaflow domain derives (docs/mantaflow-caches.md)
+  return parameters;
+}
+
+float ellipsoidValue(const EllipsoidInstance& ellipsoid, const glm::dvec3& point) {
+  const glm::dvec3 offset = point - glm::dvec3(ellipsoid.centreAndBoundingRadius);
+  const glm::dvec3 scaled(glm::dot(glm::dvec3(ellipsoid.inverseAxesRows[0]), offset),
+                          glm::dot(glm::dvec3(ellipsoid.inverseAxesRows[1]), offset),
+                          glm::dot(glm::dvec3(ellipsoid.inverseAxesRows[2]), offset));
+  return float(glm::length(scaled));
+}
+
+// Points on an ellipsoid's surface: a Fibonacci lattice of unit directions mapped through its axes.
+std::vector<glm::dvec3> surfacePoints(const EllipsoidInstance& ellipsoid, int count) {
+  const glm::dmat3 inverseAxes = glm::transpose(glm::dmat3(glm::dvec3(ellipsoid.inverseAxesRows[0]),
+                                                           glm::dvec3(ellipsoid.inverseAxesRows[1]),
+                                                           glm::dvec3(ellipsoid.inverseAxesRows[2])));
+  const glm::dmat3 axes = glm::inverse(inverseAxes);
+  std::vector<glm::dvec3> points;
+  const double golden = 3.14159265358979 * (3.0 - std::sqrt(5.0));
+  for (int k = 0; k < count; ++k) {
+    const double z = 1.0 - 2.0 * (k + 0.5) / count, ring = std::sqrt(1.0 - z * z);
+    const glm::dvec3 direction(ring * std::cos(golden * k), ring * std::sin(golden * k), z);
+    points.push_back(glm::dvec3(ellipsoid.centreAndBoundingRadius) + axes * direction);
+  }
+  return points;
+}
+
+// Nearest entry and farthest exit of a ray over a set of ellipsoids, in units of the direction's length.
+std::pair<double, double> rayCast(const std::vector<EllipsoidInstance>& ellipsoids, const glm::dvec3& origin,
+                                  const glm::dvec3& direction) {
+  double nearest = 1e10, farthest = -1e10;
+  for (const EllipsoidInstance& ellipsoid : ellipsoids) {
+    const glm::dmat3 inverseAxes = glm::transpose(glm::dmat3(glm::dvec3(ellipsoid.inverseAxesRows[0]),
+                                                             glm::dvec3(ellipsoid.inverseAxesRows[1]),
+                                                             glm::dvec3(ellipsoid.inverseAxesRows[2])));
+    const glm::dvec3 o = inverseAxes * (origin - glm::dvec3(ellipsoid.centreAndBoundingRadius));
+    const glm::dvec3 d = inverseAxes * direction;
+    const double a = glm::dot(d, d), closest = -glm::dot(o, d) / a;
+    const glm::dvec3 closestPoint = o + closest * d;
+    const double miss = 1.0 - glm::dot(closestPoint, closestPoint);
+    if (miss < 0.0) continue;
+    const double halfChord = std::sqrt(miss / a);
+    nearest = std::min(nearest, closest - halfChord);
+    farthest = std::max(farthest, closest + halfChord);
+  }
+  return {nearest, farthest};
+}
+
+// The ellipsoids of `all` that are not in `kept` (which keeps the order of `all`).
+std::vector<EllipsoidInstance> leftOut(const std::vector<EllipsoidInstance>& all,
+                                       const std::vector<EllipsoidInstance>& kept) {
+  std::vector<EllipsoidInstance> dropped;
+  for (std::size_t i = 0, k = 0; i < all.size(); ++i) {
+    if (k < kept.size() && std::memcmp(&all[i], &kept[k], sizeof(EllipsoidInstance)) == 0)
+      ++k;
+    else
+      dropped.push_back(all[i]);
+  }
+  return dropped;
+}
+
+TEST(HiddenInterior, EveryEllipsoidLeftOutLiesInsideTheOthers) {
+  const Camera camera = obliqueCamera();
+  const LiquidPreparation preparation = prepareLiquid(jitteredBlock(), camera, grownParticles());
+  const std::vector<EllipsoidInstance>& all = preparation.aggregates;
+  std::vector<EllipsoidInstance> kept = all;
+  const HiddenInteriorResult result = dropHiddenInterior(kept, camera, nullptr);
+  EXPECT_EQ(result.notApplied, "");
+  EXPECT_EQ(result.dropped + kept.size(), all.size());
+  // The block is 10 particles (9 radii) thick; the kept shell is about two radii deep on each side.
+  EXPECT_GT(result.dropped, all.size() / 5) << "of " << all.size();
+  const std::vector<EllipsoidInstance> dropped = leftOut(all, kept);
+  ASSERT_EQ(dropped.size(), result.dropped);
+
+  // No point of a dropped ellipsoid is on the union's boundary: each lies strictly inside another ellipsoid.
+  std::size_t onBoundary = 0, checked = 0;
+  for (std::size_t d = 0; d < dropped.size(); d += 3)
+    for (const glm::dvec3& point : surfacePoints(dropped[d], 96)) {
+      ++checked;
+      bool inside = false;
+      for (const EllipsoidInstance& other : all)
+        if (std::memcmp(&other, &dropped[d], sizeof(EllipsoidInstance)) != 0 &&
+            ellipsoidValue(other, point) < 1.0f) {
+          inside = true;
+          break;
+        }
+      onBoundary += !inside;
+    }
+  EXPECT_GT(checked, 10000u);
+  EXPECT_EQ(onBoundary, 0u) << "of " << checked << " surface points of dropped ellipsoids";
+}
+
+TEST(HiddenInterior, RaysFromAnySideMeetTheSameFrontAndBack) {
+  // The layers are nearest entry and farthest exit; from outside the body they must not change, whichever
+  // side the rays come from (the same ellipsoids serve the lights' views).
+  const Camera camera = obliqueCamera();
+  const std::vector<EllipsoidInstance> all =
+      prepareLiquid(jitteredBlock(), camera, grownParticles()).aggregates;
+  std::vector<EllipsoidInstance> kept = all;
+  ASSERT_GT(dropHiddenInterior(kept, camera, nullptr).dropped, 0u);
+  std::mt19937 random(11);
+  std::uniform_real_distribution<double> unit(-1.0, 1.0);
+  std::size_t hits = 0, differing = 0;
+  for (int ray = 0; ray < 3000; ++ray) {
+    glm::dvec3 direction(unit(random), unit(random), unit(random));
+    if (glm::length(direction) < 0.1) continue;
+    direction = glm::normalize(direction);
+    const glm::dvec3 target(0.8 + 0.7 * unit(random), 0.8 + 0.7 * unit(random), 0.5 + 0.4 * unit(random));
+    const glm::dvec3 origin = target - 5.0 * direction;
+    const auto [allFront, allBack] = rayCast(all, origin, direction);
+    const auto [keptFront, keptBack] = rayCast(kept, origin, direction);
+    if (allFront > 1e9) continue;
+    ++hits;
+    differing += allFront != keptFront || allBack != keptBack;
+  }
+  EXPECT_GT(hits, 2000u);
+  EXPECT_EQ(differing, 0u) << "of " << hits << " rays";
+}
+
+TEST(HiddenInterior, NothingIsLeftOutWhenTheNearPlaneCutsTheBody) {
+  // The camera inside the block: rays start inside the body, where a cavity would show.
+  const Camera camera = Camera::lookAt(128, 96, 40.0f, {0.8f, 0.8f, 0.5f}, {1.5f, 0.8f, 0.5f}, {0, 0, 1});
+  std::vector<EllipsoidInstance> ellipsoids =
+      prepareLiquid(jitteredBlock(), camera, grownParticles()).aggregates;
+  const std::size_t before = ellipsoids.size();
+  ASSERT_GT(before, 256u);
+  const HiddenInteriorResult result = dropHiddenInterior(ellipsoids, camera, nullptr);
+  EXPECT_EQ(result.dropped, 0u);
+  EXPECT_EQ(ellipsoids.size(), before);
+  EXPECT_NE(result.notApplied, "");
+}
+
+TEST(HiddenInterior, EllipsoidsThatReachTheDomainWallsAreKept) {
+  const Camera camera = obliqueCamera();
+  const std::vector<EllipsoidInstance> all =
+      prepareLiquid(jitteredBlock(), camera, grownParticles()).aggregates;
+  // A floor under the block, the other walls far off: ellipsoids that reach below z = 0.05 are kept.
+  const DomainBox box{glm::mat4(1.0f), glm::vec3(-1.0f, -1.0f, 0.05f), glm::vec3(3.0f)};
+  std::vector<EllipsoidInstance> clipped = all, unclipped = all;
+  const HiddenInteriorResult withBox = dropHiddenInterior(clipped, camera, &box);
+  const HiddenInteriorResult withoutBox = dropHiddenInterior(unclipped, camera, nullptr);
+  EXPECT_GT(withBox.dropped, 0u);
+  EXPECT_LT(withBox.dropped, withoutBox.dropped);
+  // Every ellipsoid whose bounding sphere reaches a wall is still there.
+  std::size_t atWalls = 0;
+  for (const EllipsoidInstance& ellipsoid : all) {
+    const glm::vec3 centre(ellipsoid.centreAndBoundingRadius);
+    const float reach = ellipsoid.centreAndBoundingRadius.w;
+    if (glm::all(glm::greaterThan(centre - reach, box.low)) &&
+        glm::all(glm::lessThan(centre + reach, box.high)))
+      continue;
+    ++atWalls;
+    bool found = false;
+    for (const EllipsoidInstance& kept : clipped)
+      found = found || std::memcmp(&kept, &ellipsoid, sizeof(EllipsoidInstance)) == 0;
+    EXPECT_TRUE(found);
+  }
+  EXPECT_GT(atWalls, 0u);
+}
+
+TEST(HiddenInterior, ScatteredDropsAndSmallSetsAreLeftAlone) {
+  const Camera camera = obliqueCamera();
+  // Droplets 0.6 apart (six radii, more than their grown reach of 2.4 radii each) cover nothing of each
+  // other.
+  const Camera above = Camera::lookAt(128, 96, 40.0f, {5.7f, 5.7f, 40.0f}, {5.7f, 5.7f, 0.5f}, {0, 1, 0});
+  std::vector<glm::vec3> positions;
+  for (int i = 0; i < 400; ++i)
+    positions.emplace_back(float(i % 20) * 0.6f, float(i / 20) * 0.6f, 0.5f);
+  LiquidParameters parameters = grownParticles();
+  parameters.layers = "merged";
+  std::vector<EllipsoidInstance> scattered =
+      prepareLiquid(liquid_test::particlesOf(positions, kRadius), above, parameters).aggregates;
+  ASSERT_EQ(scattered.size(), 400u);
+  EXPECT_EQ(dropHiddenInterior(scattered, above, nullptr).dropped, 0u);
+
+  std::vector<EllipsoidInstance> none;
+  EXPECT_EQ(dropHiddenInterior(none, camera, nullptr).dropped, 0u);
+  std::vector<EllipsoidInstance> few(10, scattered.front());  // identical ones: each covers the others
+  EXPECT_EQ(dropHiddenInterior(few, camera, nullptr).dropped, 0u);
+  EXPECT_EQ(few.size(), 10u);
+}
+
+// The whole frame with and without: every channel of every layer bit-identical.
+void expectIdenticalFrames(Scene scene, const Particles& particles,
+                           const std::vector<TriangleMesh>& solids = {}) {
+  // In-memory particles with the scene's sources (a domain box) go through renderParticles; solids need
+  // FrameInputs.
+  FrameInputs inputs;
+  inputs.particles = particles;
+  inputs.occluders = solids;
+  const auto render = [&] {
+    return solids.empty() ? liquid_test::renderer().renderParticles(scene, particles, 1)
+                          : liquid_test::renderer().renderFrame(scene, 1, inputs);
+  };
+  scene.parameters.liquid.drop_hidden_interior = false;
+  const RenderResult all = render();
+  scene.parameters.liquid.drop_hidden_interior = true;
+  const RenderResult dropped = render();
+  liquid_test::expectAllChannelsFinite(dropped);
+  EXPECT_GT(dropped.stats.liquid.hiddenInteriorDropped, 0u);
+  EXPECT_EQ(all.stats.liquid.hiddenInteriorDropped, 0u);
+  ASSERT_EQ(all.layers.size(), dropped.layers.size());
+  for (std::size_t l = 0; l < all.layers.size(); ++l) {
+    ASSERT_EQ(all.layers[l].pixels.size(), dropped.layers[l].pixels.size());
+    std::size_t differing = 0;
+    for (std::size_t p = 0; p < all.layers[l].pixels.size(); ++p)
+      differing += std::memcmp(&all.layers[l].pixels[p], &dropped.layers[l].pixels[p], sizeof(float)) != 0;
+    EXPECT_EQ(differing, 0u) << all.layers[l].name;
+  }
+}
+
+Scene blockScene() {
+  Scene scene;
+  scene.camera = obliqueCamera();
+  scene.background.color = {0.4f, 0.5f, 0.6f};
+  scene.parameters.liquid = grownParticles();
+  return scene;
+}
+
+TEST(GLHiddenInterior, EveryLayerIsBitIdenticalWithAndWithout) {
+  expectIdenticalFrames(blockScene(), jitteredBlock());
+}
+
+TEST(GLHiddenInterior, EveryLayerIsBitIdenticalInsideADomainBox) {
+  Scene scene = blockScene();
+  // The floor and one side wall cut the grown particles; the rest of the box is far.
+  ParticleSource source;
+  source.radius = kRadius;
+  source.domainBox = DomainBox{glm::mat4(1.0f), glm::vec3(-1.0f, 0.1f, 0.05f), glm::vec3(3.0f, 3.0f, 3.0f)};
+  scene.particles.push_back(source);
+  expectIdenticalFrames(scene, jitteredBlock());
+}
+
+TEST(GLHiddenInterior, EveryLayerIsBitIdenticalWithASolidInsideTheBody) {
+  // A plate submerged in the middle of the block: the passes hide particles whose front lies behind it, so
+  // the back layer over the plate comes from particles deep inside the body, which must stay.
+  TriangleMesh plate;
+  plate.vertices = {{0.5f, 0.5f, 0.45f}, {1.1f, 0.5f, 0.45f}, {1.1f, 1.1f, 0.45f}, {0.5f, 1.1f, 0.45f}};
+  plate.triangles = {{0, 1, 2}, {0, 2, 3}};
+  expectIdenticalFrames(blockScene(), jitteredBlock(), {plate});
+}
+
+}  // namespace
+}  // namespace spindrift
