@@ -75,6 +75,10 @@ class SpindriftSceneSettings(PropertyGroup):
         items=[("OVER", "Liquid and Foam Over", "Liquid and foam over a render without the liquid"),
                ("FOAM_ONLY", "Foam Only", "Foam over a render that contains the domain's liquid mesh")],
         description="What the layers hold; set by Set Up Compositing")
+    all_layers: BoolProperty(name="Every Layer", default=False,
+                             description="Render and write every Spindrift layer (normal, thickness, foam parts, "
+                                         "...) for nodes of your own, not only those the Spindrift group reads; "
+                                         "costs render and write time per frame")
     on_error: EnumProperty(name="On Error", items=ON_ERROR_ITEMS, default="SKIP",
                            description="What a frame does when Spindrift cannot render its layer")
 

@@ -16,6 +16,11 @@ from bpy.app.handlers import persistent
 from . import compositing, export, frame as frame_inputs, native, reports
 from .scene_json import BadInput
 
+# The frame's EXR is temporary (the compositor reads it once), so it is written for speed: only the layers the
+# compositing group reads are rendered at all, colour layers as half float (depth and refraction_uv stay
+# float32: half moves a UV by up to ~1 px at 1920 px), compressed as measured fastest (docs/blender.md).
+EXR_OPTIONS = {"exr_half_color": True, "exr_compression": "zips"}
+
 _state = {"pending": None, "frames_done": 0, "frames_total": 0, "progress": False, "started": 0.0}
 
 
@@ -37,7 +42,9 @@ def render_frame(scene, depsgraph, frame, exr_path):
     inputs = frame_inputs.collect(scene, depsgraph, frame, camera, mode=mode, occluders=settings.occluders)
     collected = time.perf_counter() - started
     os.makedirs(os.path.dirname(exr_path), exist_ok=True)
-    result = renderer.render(inputs.scene_text, frame, exr_path=exr_path, layers=[], **inputs.kwargs)
+    exr_layers = None if settings.all_layers else compositing.GROUP_LAYERS[mode]
+    result = renderer.render(inputs.scene_text, frame, exr_path=exr_path, layers=[], exr_layers=exr_layers,
+                             **EXR_OPTIONS, **inputs.kwargs)
     total = time.perf_counter() - started
     return result, inputs, timing(result.get("stats", {}), collected, total)
 

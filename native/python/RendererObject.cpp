@@ -21,6 +21,7 @@
 #include "FrameArguments.h"
 #include "PythonErrors.h"
 #include "PythonValues.h"
+#include "Readback.h"
 #include "gl/ShaderLibrary.h"
 #include "spindrift/Error.h"
 #include "spindrift/Output.h"
@@ -132,24 +133,60 @@ PyObject* rendererExit(PyObject* object, PyObject*) {
   return rendererClose(object, nullptr);
 }
 
-// The layer names asked for; nothing means every layer (None), an empty list none at all.
-std::optional<std::vector<std::string>> readLayerNames(PyObject* layers) {
+// The layer names asked for; nothing means every layer (None), an empty list none at all. `argument` names
+// the keyword in messages; an unknown layer is a ValueError listing the frame's layers.
+std::optional<std::vector<std::string>> readLayerNames(PyObject* layers, const char* argument) {
   std::vector<std::string> names;
   if (layers == Py_None) return std::nullopt;
   if (!PyList_Check(layers) && !PyTuple_Check(layers))
-    throw ArgumentError(PyExc_TypeError, "layers: expected a list of layer names");
+    throw ArgumentError(PyExc_TypeError, std::string(argument) + ": expected a list of layer names");
   Reference items(check(PySequence_List(layers)));
+  const std::vector<std::string>& known = LayerSelection::allNames();
   for (Py_ssize_t i = 0; i < PyList_Size(items.get()); ++i) {
     PyObject* name = PyList_GetItem(items.get(), i);
     Py_ssize_t size = 0;
     const char* text = PyUnicode_Check(name) ? PyUnicode_AsUTF8AndSize(name, &size) : nullptr;
     if (!text) {
       PyErr_Clear();
-      throw ArgumentError(PyExc_TypeError, "layers[" + std::to_string(i) + "]: expected a str");
+      throw ArgumentError(PyExc_TypeError,
+                          std::string(argument) + "[" + std::to_string(i) + "]: expected a str");
     }
     names.emplace_back(text, std::size_t(size));
+    if (std::find(known.begin(), known.end(), names.back()) == known.end()) {
+      std::string list;
+      for (const std::string& layer : known)
+        list += (list.empty() ? "" : ", ") + layer;
+      throw ArgumentError(PyExc_ValueError, std::string(argument) + ": no layer named '" + names.back() +
+                                                "' (the frame has " + list + ")");
+    }
   }
   return names;
+}
+
+// The layers the frame must render: those returned and those written, or every layer when either set is
+// "all". Passes that feed none of them are not run at all (Renderer::setLayers), which is what makes a frame
+// that only needs the compositor's six layers cheaper than a full one.
+std::vector<std::string> layersToRender(const std::optional<std::vector<std::string>>& returned,
+                                        const std::optional<std::vector<std::string>>& written,
+                                        bool writing) {
+  if (!returned || (writing && !written)) return {};  // Empty: all.
+  std::vector<std::string> names = *returned;
+  if (writing)
+    for (const std::string& name : *written)
+      if (std::find(names.begin(), names.end(), name) == names.end()) names.push_back(name);
+  return names;
+}
+
+// The result's layers named in `written` (all when it is empty), copied only when some must be left out.
+RenderResult layersToWrite(const RenderResult& result,
+                           const std::optional<std::vector<std::string>>& written) {
+  RenderResult subset;
+  subset.width = result.width;
+  subset.height = result.height;
+  for (const ImageLayer& layer : result.layers)
+    if (!written || std::find(written->begin(), written->end(), layer.name) != written->end())
+      subset.layers.push_back(layer);
+  return subset;
 }
 
 char* checkBytes(char* bytes) {
@@ -198,17 +235,20 @@ PyObject* resultToPython(const RenderResult& result, const std::optional<std::ve
 
 PyObject* rendererRender(PyObject* object, PyObject* args, PyObject* kwargs) {
   auto* self = reinterpret_cast<RendererObject*>(object);
-  static const char* keywords[] = {"scene_json",  "frame",      "base_dir", "particles", "occluders",
-                                   "liquid_mesh", "background", "exr_path", "layers",    nullptr};
+  static const char* keywords[] = {"scene_json",     "frame",           "base_dir", "particles", "occluders",
+                                   "liquid_mesh",    "background",      "exr_path", "layers",    "exr_layers",
+                                   "exr_half_color", "exr_compression", nullptr};
   const char* sceneJson = nullptr;
   int frame = 0;
   const char* baseDir = "";
   PyObject *particles = Py_None, *occluders = Py_None, *liquidMesh = Py_None, *background = Py_None;
   const char* exrPath = nullptr;
-  PyObject* layers = Py_None;
-  if (!PyArg_ParseTupleAndKeywords(args, kwargs, "si|$sOOOOzO", const_cast<char**>(keywords), &sceneJson,
+  PyObject *layers = Py_None, *exrLayers = Py_None;
+  int exrHalfColor = 0;
+  const char* exrCompression = "zip";
+  if (!PyArg_ParseTupleAndKeywords(args, kwargs, "si|$sOOOOzOOps", const_cast<char**>(keywords), &sceneJson,
                                    &frame, &baseDir, &particles, &occluders, &liquidMesh, &background,
-                                   &exrPath, &layers))
+                                   &exrPath, &layers, &exrLayers, &exrHalfColor, &exrCompression))
     return nullptr;
   try {
     // Relative paths in the scene are anchored at base_dir; messages name the scene "<base_dir>/scene_json".
@@ -234,14 +274,24 @@ PyObject* rendererRender(PyObject* object, PyObject* args, PyObject* kwargs) {
       scene.background.depthExplicit = false;
       readBackground(background, scene.camera, inputs);
     }
-    const std::optional<std::vector<std::string>> layerNames = readLayerNames(layers);
+    const std::optional<std::vector<std::string>> layerNames = readLayerNames(layers, "layers");
+    const std::optional<std::vector<std::string>> exrLayerNames = readLayerNames(exrLayers, "exr_layers");
     const std::optional<std::filesystem::path> exr =
         exrPath ? std::optional<std::filesystem::path>(exrPath) : std::nullopt;
+    const ExrOptions exrOptions{exrHalfColor != 0, exrCompression};
     std::optional<RenderResult> result;
     withoutGil(self, [&] {
       if (!self->renderer) throw Error("the renderer is closed");
+      // Every call sets its own selection: the Renderer keeps it, and calls may ask for different layers.
+      self->renderer->setLayers(layersToRender(layerNames, exrLayerNames, exr.has_value()));
       result = self->renderer->renderFrame(scene, frame, inputs);
-      if (exr) writeExr(*result, *exr);
+      if (!exr) return;
+      const bool everyLayer =
+          !exrLayerNames ||
+          std::all_of(result->layers.begin(), result->layers.end(), [&](const ImageLayer& l) {
+            return std::find(exrLayerNames->begin(), exrLayerNames->end(), l.name) != exrLayerNames->end();
+          });
+      writeExr(everyLayer ? *result : layersToWrite(*result, exrLayerNames), *exr, exrOptions);
     });
     return resultToPython(*result, layerNames);
   } catch (...) {
@@ -274,7 +324,8 @@ PyMethodDef rendererMethods[] = {
     {"render", reinterpret_cast<PyCFunction>(reinterpret_cast<void (*)()>(rendererRender)),
      METH_VARARGS | METH_KEYWORDS,
      "render(scene_json, frame, *, base_dir='', particles=None, occluders=None, liquid_mesh=None, "
-     "background=None, exr_path=None, layers=None) -> dict\n\nRenders one frame; see docs/python-module.md."},
+     "background=None, exr_path=None, layers=None, exr_layers=None, exr_half_color=False, "
+     "exr_compression='zip') -> dict\n\nRenders one frame; see docs/python-module.md."},
     {"close", rendererClose, METH_NOARGS, "Releases the native renderer (its GL thread and context) now."},
     {"__enter__", rendererEnter, METH_NOARGS, nullptr},
     {"__exit__", rendererExit, METH_VARARGS, nullptr},

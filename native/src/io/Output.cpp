@@ -110,9 +110,25 @@ int channelIndex(const ImageLayer& layer, const std::string& channel) {
   return found == layer.channels.end() ? -1 : int(found - layer.channels.begin());
 }
 
+bool endsWith(const std::string& text, const std::string& suffix) {
+  return text.size() >= suffix.size() &&
+         text.compare(text.size() - suffix.size(), suffix.size(), suffix) == 0;
+}
+
+// OpenEXR's compressions as OpenImageIO's writer names them; a misspelt name would silently fall back to ZIP.
+bool knownCompression(const std::string& name) {
+  static const std::set<std::string> names = {"none",  "rle", "zip",  "zips", "piz",
+                                              "pxr24", "b44", "b44a", "dwaa", "dwab"};
+  return names.count(name) > 0;
+}
+
 }  // namespace
 
-void writeExr(const RenderResult& result, const std::filesystem::path& path) {
+bool exrLayerNeedsFloat(const std::string& layerName) {
+  return layerName == "depth" || layerName == "refraction_uv" || endsWith(layerName, "_depth");
+}
+
+void writeExr(const RenderResult& result, const std::filesystem::path& path, const ExrOptions& options) {
   checkLayerSizes(result, path);
   if (result.layers.empty()) fail(path, "nothing to write: the result has no layers");
 
@@ -139,15 +155,23 @@ void writeExr(const RenderResult& result, const std::filesystem::path& path) {
     firstChannel += layerChannels;
   }
 
+  if (!knownCompression(options.compression))
+    fail(path, "unknown EXR compression \"" + options.compression + "\"");
   OIIO::ImageSpec spec(result.width, result.height, int(channelCount), OIIO::TypeFloat);
   spec.channelnames = channelNames;
+  if (options.halfColor) {
+    // Per-channel formats: OpenImageIO converts the float pixels channel by channel as it writes.
+    for (const ImageLayer& layer : result.layers)
+      for (std::size_t c = 0; c < layer.channelCount(); ++c)
+        spec.channelformats.push_back(exrLayerNeedsFloat(layer.name) ? OIIO::TypeFloat : OIIO::TypeHalf);
+  }
   const auto indexOf = [&](const std::string& name) {
     const auto found = std::find(channelNames.begin(), channelNames.end(), name);
     return found == channelNames.end() ? -1 : int(found - channelNames.begin());
   };
   spec.alpha_channel = indexOf("composite.A");
   spec.z_channel = indexOf("depth.Z");
-  spec.attribute("compression", "zip");
+  spec.attribute("compression", options.compression);
   spec.attribute("oiio:ColorSpace", "Linear");
   // OpenImageIO stamps the current time into the header (capDate) unless DateTime is given: left empty, the
   // same frame gives the same file on every node and every run, so farm output can be checked byte for byte.
