@@ -309,28 +309,3 @@ def world_color(scene):
                 strength = node.inputs["Strength"].default_value
                 return [max(float(c) * strength, 0.0) for c in color[:3]]
     return [float(c) for c in world.color]
-
-
-def frame_bounds(scene, inputs):
-    """World points whose box holds everything a frame draws: the corners of each enabled domain's grid and
-    of the in-memory particles' box (padded by the largest radius)."""
-    corners = []
-    for obj in enabled_objects(scene):
-        if liquid_domain_settings(obj) is None:
-            continue
-        vertices = np.empty(len(obj.data.vertices) * 3, dtype=np.float64)
-        obj.data.vertices.foreach_get("co", vertices)
-        if vertices.size == 0:
-            continue
-        vertices = vertices.reshape(-1, 3)
-        lo, hi = vertices.min(axis=0), vertices.max(axis=0)
-        matrix = np.asarray(obj.matrix_world, dtype=np.float64)
-        box = np.array([[x, y, z] for x in (lo[0], hi[0]) for y in (lo[1], hi[1]) for z in (lo[2], hi[2])])
-        corners.append(box @ matrix[:3, :3].T + matrix[:3, 3])
-    particles = inputs.kwargs.get("particles")
-    if particles is not None and len(particles["radii"]):
-        pad = float(particles["radii"].max())
-        lo = particles["positions"].min(axis=0) - pad
-        hi = particles["positions"].max(axis=0) + pad
-        corners.append(np.array([[x, y, z] for x in (lo[0], hi[0]) for y in (lo[1], hi[1]) for z in (lo[2], hi[2])]))
-    return np.concatenate(corners) if corners else np.zeros((0, 3))
