@@ -6,12 +6,14 @@
 #include <atomic>
 #include <cmath>
 #include <cstdint>
+#include <cstring>
 #include <memory>
 #include <set>
 #include <string>
 #include <system_error>
 #include <vector>
 
+#include <Imath/half.h>
 #include <OpenImageIO/imageio.h>
 
 #include "io/OiioErrors.h"
@@ -122,6 +124,33 @@ bool knownCompression(const std::string& name) {
   return names.count(name) > 0;
 }
 
+// The result's layers as one interleaved pixel buffer in the spec's channel formats (float or half).
+std::vector<std::uint8_t> interleaveNative(const RenderResult& result, const OIIO::ImageSpec& spec) {
+  const std::size_t pixelCount = std::size_t(result.width) * std::size_t(result.height);
+  const std::size_t pixelBytes = spec.pixel_bytes(true);
+  std::vector<std::uint8_t> interleaved(pixelCount * pixelBytes);
+  std::size_t channel = 0, offset = 0;
+  for (const ImageLayer& layer : result.layers) {
+    const std::size_t layerChannels = layer.channelCount();
+    for (std::size_t c = 0; c < layerChannels; ++c, ++channel) {
+      const bool half = spec.channelformat(int(channel)) == OIIO::TypeHalf;
+      std::uint8_t* target = interleaved.data() + offset;
+      const float* source = layer.pixels.data() + c;
+      for (std::size_t pixel = 0; pixel < pixelCount;
+           ++pixel, target += pixelBytes, source += layerChannels) {
+        if (half) {
+          const Imath::half value(*source);
+          std::memcpy(target, &value, sizeof(value));
+        } else {
+          std::memcpy(target, source, sizeof(float));
+        }
+      }
+      offset += half ? 2 : 4;
+    }
+  }
+  return interleaved;
+}
+
 }  // namespace
 
 bool exrLayerNeedsFloat(const std::string& layerName) {
@@ -141,30 +170,18 @@ void writeExr(const RenderResult& result, const std::filesystem::path& path, con
   const std::set<std::string> uniqueNames(channelNames.begin(), channelNames.end());
   if (uniqueNames.size() != channelNames.size()) fail(path, "two layers have a channel of the same name");
 
-  // Interleave every layer's channels into one pixel, layer after layer.
-  const std::size_t pixelCount = std::size_t(result.width) * std::size_t(result.height);
-  const std::size_t channelCount = channelNames.size();
-  std::vector<float> interleaved(pixelCount * channelCount);
-  std::size_t firstChannel = 0;
-  for (const ImageLayer& layer : result.layers) {
-    const std::size_t layerChannels = layer.channelCount();
-    for (std::size_t pixel = 0; pixel < pixelCount; ++pixel) {
-      std::copy_n(&layer.pixels[pixel * layerChannels], layerChannels,
-                  &interleaved[pixel * channelCount + firstChannel]);
-    }
-    firstChannel += layerChannels;
-  }
-
   if (!knownCompression(options.compression))
     fail(path, "unknown EXR compression \"" + options.compression + "\"");
-  OIIO::ImageSpec spec(result.width, result.height, int(channelCount), OIIO::TypeFloat);
+  OIIO::ImageSpec spec(result.width, result.height, int(channelNames.size()), OIIO::TypeFloat);
   spec.channelnames = channelNames;
   if (options.halfColor) {
-    // Per-channel formats: OpenImageIO converts the float pixels channel by channel as it writes.
     for (const ImageLayer& layer : result.layers)
       for (std::size_t c = 0; c < layer.channelCount(); ++c)
         spec.channelformats.push_back(exrLayerNeedsFloat(layer.name) ? OIIO::TypeFloat : OIIO::TypeHalf);
   }
+  // Every layer's channels interleaved into one pixel, layer after layer, already in the file's per-channel
+  // types, so OpenImageIO writes them as they are instead of converting mixed formats itself.
+  const std::vector<std::uint8_t> interleaved = interleaveNative(result, spec);
   const auto indexOf = [&](const std::string& name) {
     const auto found = std::find(channelNames.begin(), channelNames.end(), name);
     return found == channelNames.end() ? -1 : int(found - channelNames.begin());
@@ -176,7 +193,7 @@ void writeExr(const RenderResult& result, const std::filesystem::path& path, con
   // OpenImageIO stamps the current time into the header (capDate) unless DateTime is given: left empty, the
   // same frame gives the same file on every node and every run, so farm output can be checked byte for byte.
   spec.attribute("DateTime", "");
-  writeThroughTemporaryFile(path, "openexr", spec, OIIO::TypeFloat, interleaved.data());
+  writeThroughTemporaryFile(path, "openexr", spec, OIIO::TypeUnknown, interleaved.data());
 }
 
 void writePng(const RenderResult& result, const std::filesystem::path& path) {
