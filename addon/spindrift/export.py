@@ -272,8 +272,13 @@ def render_size(scene):
             max(int(render.resolution_y * render.resolution_percentage / 100), 1))
 
 
-def scene_camera(scene, depsgraph):
-    """The scene file's camera for the scene's render camera at the render resolution."""
+def render_camera(scene, depsgraph):
+    """The scene file's camera for the scene's render camera at the render resolution, and the crop window
+    (x, y from the top, width, height) of its image that is the render, or None.
+
+    A lens shift (shift_x, shift_y) makes the projection off-axis; Spindrift's camera is symmetric, so the
+    frame is rendered by the larger symmetric camera that contains the shifted view and cut to it by the module
+    (`crop`). The window is placed at the nearest whole pixel: within half a pixel of Blender's projection."""
     camera = scene.camera
     if camera is None:
         raise BadInput(f"scene {scene.name} has no camera")
@@ -290,9 +295,20 @@ def scene_camera(scene, depsgraph):
                                                 scale_y=scene.render.pixel_aspect_y)
     description, (left, bottom) = scene_json.camera_description(width, height, camera_eval.matrix_world,
                                                                 projection)
-    if description["width"] != width or description["height"] != height:
-        raise BadInput(f"camera {camera.name}: a lens shift is not supported for final renders "
-                       f"(shift {camera.data.shift_x:g}, {camera.data.shift_y:g})")
+    if description["width"] == width and description["height"] == height:
+        return description, None
+    x = min(max(int(round(left)), 0), description["width"] - width)
+    y_from_bottom = min(max(int(round(bottom)), 0), description["height"] - height)
+    return description, (x, description["height"] - y_from_bottom - height, width, height)
+
+
+def scene_camera(scene, depsgraph):
+    """The scene file's camera for the render camera, for a scene file (the command line has no crop)."""
+    description, crop = render_camera(scene, depsgraph)
+    if crop is not None:
+        raise BadInput(f"camera {scene.camera.name}: a lens shift is not supported in scene files for the "
+                       f"command line (shift {scene.camera.data.shift_x:g}, {scene.camera.data.shift_y:g}); "
+                       f"the render layers support it")
     return description
 
 

@@ -7,6 +7,7 @@
 #include <dlfcn.h>
 
 #include <algorithm>
+#include <chrono>
 #include <cstring>
 #include <utility>
 
@@ -22,6 +23,7 @@
 #include "PythonErrors.h"
 #include "PythonValues.h"
 #include "Readback.h"
+#include "ResultCrop.h"
 #include "gl/ShaderLibrary.h"
 #include "spindrift/Error.h"
 #include "spindrift/Output.h"
@@ -189,13 +191,33 @@ RenderResult layersToWrite(const RenderResult& result,
   return subset;
 }
 
+// `crop`: None, or (x, y, width, height) in pixels, y from the top, inside the camera's image.
+std::optional<CropWindow> readCropWindow(PyObject* crop, const Camera& camera) {
+  if (crop == Py_None) return std::nullopt;
+  CropWindow window;
+  if (!PyTuple_Check(crop) ||
+      !PyArg_ParseTuple(crop, "iiii", &window.x, &window.y, &window.width, &window.height)) {
+    PyErr_Clear();
+    throw ArgumentError(PyExc_TypeError, "crop: expected a tuple (x, y, width, height) of ints");
+  }
+  if (window.x < 0 || window.y < 0 || window.width < 1 || window.height < 1 ||
+      window.x + window.width > camera.width || window.y + window.height > camera.height)
+    throw ArgumentError(PyExc_ValueError, "crop: " + std::to_string(window.width) + "x" +
+                                              std::to_string(window.height) + " at (" +
+                                              std::to_string(window.x) + ", " + std::to_string(window.y) +
+                                              ") does not lie inside the " + std::to_string(camera.width) +
+                                              "x" + std::to_string(camera.height) + " camera image");
+  return window;
+}
+
 char* checkBytes(char* bytes) {
   if (!bytes) throw PythonErrorSet{};
   return bytes;
 }
 
 // {"width", "height", "stats", "layers": {name: (channels, float32 bytes)}}, only the layers asked for.
-PyObject* resultToPython(const RenderResult& result, const std::optional<std::vector<std::string>>& wanted) {
+PyObject* resultToPython(const RenderResult& result, const std::optional<std::vector<std::string>>& wanted,
+                         double exrWriteMilliseconds) {
   std::set<std::string> available;
   for (const ImageLayer& layer : result.layers)
     available.insert(layer.name);
@@ -228,7 +250,9 @@ PyObject* resultToPython(const RenderResult& result, const std::optional<std::ve
   Py_END_ALLOW_THREADS Reference dictionary(check(PyDict_New()));
   setItem(dictionary.get(), "width", Reference(check(PyLong_FromLong(result.width))));
   setItem(dictionary.get(), "height", Reference(check(PyLong_FromLong(result.height))));
-  setItem(dictionary.get(), "stats", Reference(check(toPython(result.stats.toJson()))));
+  nlohmann::json stats = result.stats.toJson();
+  if (exrWriteMilliseconds >= 0.0) stats["exr_write_ms"] = exrWriteMilliseconds;
+  setItem(dictionary.get(), "stats", Reference(check(toPython(stats))));
   setItem(dictionary.get(), "layers", std::move(layers));
   return dictionary.release();
 }
@@ -237,18 +261,18 @@ PyObject* rendererRender(PyObject* object, PyObject* args, PyObject* kwargs) {
   auto* self = reinterpret_cast<RendererObject*>(object);
   static const char* keywords[] = {"scene_json",     "frame",           "base_dir", "particles", "occluders",
                                    "liquid_mesh",    "background",      "exr_path", "layers",    "exr_layers",
-                                   "exr_half_color", "exr_compression", nullptr};
+                                   "exr_half_color", "exr_compression", "crop",     nullptr};
   const char* sceneJson = nullptr;
   int frame = 0;
   const char* baseDir = "";
   PyObject *particles = Py_None, *occluders = Py_None, *liquidMesh = Py_None, *background = Py_None;
   const char* exrPath = nullptr;
-  PyObject *layers = Py_None, *exrLayers = Py_None;
+  PyObject *layers = Py_None, *exrLayers = Py_None, *crop = Py_None;
   int exrHalfColor = 0;
   const char* exrCompression = "zip";
-  if (!PyArg_ParseTupleAndKeywords(args, kwargs, "si|$sOOOOzOOps", const_cast<char**>(keywords), &sceneJson,
+  if (!PyArg_ParseTupleAndKeywords(args, kwargs, "si|$sOOOOzOOpsO", const_cast<char**>(keywords), &sceneJson,
                                    &frame, &baseDir, &particles, &occluders, &liquidMesh, &background,
-                                   &exrPath, &layers, &exrLayers, &exrHalfColor, &exrCompression))
+                                   &exrPath, &layers, &exrLayers, &exrHalfColor, &exrCompression, &crop))
     return nullptr;
   try {
     // Relative paths in the scene are anchored at base_dir; messages name the scene "<base_dir>/scene_json".
@@ -279,21 +303,27 @@ PyObject* rendererRender(PyObject* object, PyObject* args, PyObject* kwargs) {
     const std::optional<std::filesystem::path> exr =
         exrPath ? std::optional<std::filesystem::path>(exrPath) : std::nullopt;
     const ExrOptions exrOptions{exrHalfColor != 0, exrCompression};
+    const std::optional<CropWindow> window = readCropWindow(crop, scene.camera);
     std::optional<RenderResult> result;
+    double exrWriteMilliseconds = -1.0;  // Reported in stats as exr_write_ms when a file was written.
     withoutGil(self, [&] {
       if (!self->renderer) throw Error("the renderer is closed");
       // Every call sets its own selection: the Renderer keeps it, and calls may ask for different layers.
       self->renderer->setLayers(layersToRender(layerNames, exrLayerNames, exr.has_value()));
       result = self->renderer->renderFrame(scene, frame, inputs);
+      if (window) cropResult(*result, *window);
       if (!exr) return;
       const bool everyLayer =
           !exrLayerNames ||
           std::all_of(result->layers.begin(), result->layers.end(), [&](const ImageLayer& l) {
             return std::find(exrLayerNames->begin(), exrLayerNames->end(), l.name) != exrLayerNames->end();
           });
+      const auto writeStart = std::chrono::steady_clock::now();
       writeExr(everyLayer ? *result : layersToWrite(*result, exrLayerNames), *exr, exrOptions);
+      exrWriteMilliseconds =
+          std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - writeStart).count();
     });
-    return resultToPython(*result, layerNames);
+    return resultToPython(*result, layerNames, exrWriteMilliseconds);
   } catch (...) {
     return raiseCurrentException();
   }
@@ -325,7 +355,7 @@ PyMethodDef rendererMethods[] = {
      METH_VARARGS | METH_KEYWORDS,
      "render(scene_json, frame, *, base_dir='', particles=None, occluders=None, liquid_mesh=None, "
      "background=None, exr_path=None, layers=None, exr_layers=None, exr_half_color=False, "
-     "exr_compression='zip') -> dict\n\nRenders one frame; see docs/python-module.md."},
+     "exr_compression='zip', crop=None) -> dict\n\nRenders one frame; see docs/python-module.md."},
     {"close", rendererClose, METH_NOARGS, "Releases the native renderer (its GL thread and context) now."},
     {"__enter__", rendererEnter, METH_NOARGS, nullptr},
     {"__exit__", rendererExit, METH_VARARGS, nullptr},

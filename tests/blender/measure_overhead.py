@@ -19,7 +19,7 @@ import bpy  # noqa: E402
 from blender_test_common import arguments, install_addon, open_fixture_scene  # noqa: E402
 
 RUNS = 3
-COMPRESSIONS = ("none", "zips", "zip", "piz", "rle")
+COMPRESSIONS = ("none", "zips", "zip", "piz")
 
 
 def measure(scene, runs, exr_options, all_layers):

@@ -87,3 +87,30 @@ def test_every_lossless_compression_reads_back_the_same_values(renderer, tmp_pat
             reference = written
         for name in GROUP_LAYERS:
             np.testing.assert_array_equal(written[name], reference[name], err_msg=f"{compression} {name}")
+
+
+def test_crop_cuts_every_layer_and_re_expresses_refraction_uv_over_the_window(renderer):
+    """The add-on renders a camera with lens shift as a larger symmetric one and cuts it (docs/blender.md)."""
+    arrays = sphere_of_particles()
+    full = renderer.render(scene_json(), 1, particles=arrays, layers=GROUP_LAYERS)
+    x, y, width, height = 20, 10, 50, 40
+    cut = renderer.render(scene_json(), 1, particles=arrays, layers=GROUP_LAYERS, crop=(x, y, width, height))
+    assert (cut["width"], cut["height"]) == (width, height)
+    for name in GROUP_LAYERS:
+        if name != "refraction_uv":
+            np.testing.assert_array_equal(layer(cut, name), layer(full, name)[y:y + height, x:x + width], name)
+    uv_full = layer(full, "refraction_uv")[y:y + height, x:x + width]
+    uv_cut = layer(cut, "refraction_uv")
+    np.testing.assert_array_equal(uv_cut[..., 2], uv_full[..., 2])
+    reads = uv_cut[..., 2] > 0
+    assert reads.sum() > 100
+    full_height, full_width = layer(full, "liquid").shape[:2]
+    expected_u = (uv_full[..., 0] * full_width - x) / width
+    expected_v = (uv_full[..., 1] * full_height - (full_height - y - height)) / height
+    inside = reads & (expected_u > 0.5 / width) & (expected_u < 1 - 0.5 / width) & (expected_v > 0.5 / height) & (
+        expected_v < 1 - 0.5 / height)
+    assert inside.sum() > 50
+    np.testing.assert_allclose(uv_cut[..., 0][inside], expected_u[inside], atol=1e-5)
+    np.testing.assert_allclose(uv_cut[..., 1][inside], expected_v[inside], atol=1e-5)
+    # A ray refracted outside the window reads the window's nearest edge pixel.
+    assert (uv_cut[..., 0][reads] >= 0.5 / width - 1e-6).all() and (uv_cut[..., 0][reads] <= 1 - 0.5 / width + 1e-6).all()

@@ -74,6 +74,8 @@ CASES = {
     "layers_not_list": (dict(layers="liquid"), "TypeError", "layers: expected a list"),
     "unknown_exr_layer": (dict(exr_path="/tmp/unused.exr", exr_layers=["foam", "fome"]), "ValueError",
                           "exr_layers: no layer named 'fome'"),
+    "crop_outside_the_image": (dict(crop=(1, 0, WIDTH, HEIGHT)), "ValueError", "does not lie inside the"),
+    "crop_not_a_tuple": (dict(crop=[0, 0, 4, 4]), "TypeError", "crop: expected a tuple"),
     "unknown_exr_compression": (dict(exr_path=__file__ + ".exr", exr_compression="zipp"), "Error",
                                 'unknown EXR compression "zipp"'),
     "bad_scene_json": (dict(scene_json="{"), "Error", "not valid JSON"),

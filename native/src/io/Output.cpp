@@ -124,28 +124,33 @@ bool knownCompression(const std::string& name) {
   return names.count(name) > 0;
 }
 
-// The result's layers as one interleaved pixel buffer in the spec's channel formats (float or half).
+// The result's layers as one interleaved pixel buffer in the spec's channel formats (float or half). Pixel by
+// pixel, so the target is written once, front to back, and each layer is read front to back.
 std::vector<std::uint8_t> interleaveNative(const RenderResult& result, const OIIO::ImageSpec& spec) {
+  struct Channel {
+    const float* source;
+    std::size_t stride;  // The layer's channel count.
+    bool half;
+  };
+  std::vector<Channel> channels;
+  for (const ImageLayer& layer : result.layers)
+    for (std::size_t c = 0; c < layer.channelCount(); ++c)
+      channels.push_back({layer.pixels.data() + c, layer.channelCount(),
+                          spec.channelformat(int(channels.size())) == OIIO::TypeHalf});
   const std::size_t pixelCount = std::size_t(result.width) * std::size_t(result.height);
-  const std::size_t pixelBytes = spec.pixel_bytes(true);
-  std::vector<std::uint8_t> interleaved(pixelCount * pixelBytes);
-  std::size_t channel = 0, offset = 0;
-  for (const ImageLayer& layer : result.layers) {
-    const std::size_t layerChannels = layer.channelCount();
-    for (std::size_t c = 0; c < layerChannels; ++c, ++channel) {
-      const bool half = spec.channelformat(int(channel)) == OIIO::TypeHalf;
-      std::uint8_t* target = interleaved.data() + offset;
-      const float* source = layer.pixels.data() + c;
-      for (std::size_t pixel = 0; pixel < pixelCount;
-           ++pixel, target += pixelBytes, source += layerChannels) {
-        if (half) {
-          const Imath::half value(*source);
-          std::memcpy(target, &value, sizeof(value));
-        } else {
-          std::memcpy(target, source, sizeof(float));
-        }
+  std::vector<std::uint8_t> interleaved(pixelCount * spec.pixel_bytes(true));
+  std::uint8_t* target = interleaved.data();
+  for (std::size_t pixel = 0; pixel < pixelCount; ++pixel) {
+    for (const Channel& channel : channels) {
+      const float value = channel.source[pixel * channel.stride];
+      if (channel.half) {
+        const Imath::half stored(value);
+        std::memcpy(target, &stored, sizeof(stored));
+        target += sizeof(stored);
+      } else {
+        std::memcpy(target, &value, sizeof(value));
+        target += sizeof(value);
       }
-      offset += half ? 2 : 4;
     }
   }
   return interleaved;
