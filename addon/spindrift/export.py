@@ -312,6 +312,39 @@ def scene_camera(scene, depsgraph):
     return description
 
 
+def scene_lights(depsgraph, for_render=True):
+    """The depsgraph's lamps in the scene format's terms (docs/scene-format.md, "Lights"), instances included.
+
+    The format has sun, spot and point lights. Blender's units match it (sun strength in W/m², spot and point
+    power in W). An area lamp becomes a point light at its centre with 4x its power: on its axis Blender's
+    area lamp gives P/(pi d^2), a point light P/(4 pi d^2), and the power only weights the lamps' shares in the
+    liquid_shadow and caustics layers. A lamp's radius, a sun's angle and a spot's blend are not handed."""
+    lights = []
+    for instance in depsgraph.object_instances:
+        obj = instance.object
+        if obj.type != "LIGHT":
+            continue
+        owner = instance.parent.original if instance.is_instance and instance.parent else obj.original
+        if for_render and owner.hide_render:
+            continue
+        lamp = obj.data
+        matrix = np.asarray(instance.matrix_world, dtype=np.float64)
+        position = [float(v) for v in matrix[:3, 3]]
+        direction = [float(-v) for v in matrix[:3, 2]]  # a lamp shines down its local -Z
+        light = {"color": [float(c) for c in lamp.color], "strength": float(lamp.energy)}
+        if lamp.type == "SUN":
+            light.update(type="sun", direction=direction)
+        elif lamp.type == "SPOT":
+            light.update(type="spot", position=position, direction=direction,
+                         spot_angle_deg=float(np.degrees(lamp.spot_size)))
+        elif lamp.type == "AREA":
+            light.update(type="point", position=position, strength=4.0 * float(lamp.energy))
+        else:
+            light.update(type="point", position=position)
+        lights.append(light)
+    return lights
+
+
 def world_color(scene):
     """The world's background colour (times its strength), what Spindrift shows and refracts where the
     background image has nothing."""

@@ -77,8 +77,11 @@ def collect(scene, depsgraph, frame, camera, *, mode="OVER", occluders=True, qua
             particle_sets.extend(sets)
 
     values = parameter_values(export.primary_object(scene), quality)
+    # Lamps light the background under the liquid (liquid_shadow, caustics); with the liquid in the render
+    # (FOAM_ONLY) Cycles has lit it already.
+    lights = export.scene_lights(depsgraph, for_render=for_render) if mode == "OVER" else []
     document = scene_json.scene_document(camera, frame, sources, {"color": export.world_color(scene)},
-                                         values["liquid"], values["foam"])
+                                         values["liquid"], values["foam"], lights)
     kwargs = {}
     particles = export.merge_particles(particle_sets)
     if particles is not None:

@@ -42,7 +42,8 @@ def render_frame(scene, depsgraph, frame, exr_path):
     inputs = frame_inputs.collect(scene, depsgraph, frame, camera, mode=mode, occluders=settings.occluders)
     collected = time.perf_counter() - started
     os.makedirs(os.path.dirname(exr_path), exist_ok=True)
-    exr_layers = None if settings.all_layers else compositing.GROUP_LAYERS[mode]
+    lit = bool(inputs.document.get("lights"))
+    exr_layers = None if settings.all_layers else compositing.frame_layers(mode, lit)
     result = renderer.render(inputs.scene_text, frame, exr_path=exr_path, layers=[], exr_layers=exr_layers,
                              crop=crop, **EXR_OPTIONS, **inputs.kwargs)
     total = time.perf_counter() - started

@@ -134,10 +134,12 @@ def camera_description(width, height, world_from_camera, projection):
 
 # --- The document ----------------------------------------------------------------------------------------------
 
-def scene_document(camera, frame, sources=(), background=None, liquid=None, foam=None):
+def scene_document(camera, frame, sources=(), background=None, liquid=None, foam=None, lights=()):
     document = {"version": 1, "frame": int(frame), "camera": camera, "particles": list(sources)}
     if background:
         document["background"] = background
+    if lights:
+        document["lights"] = list(lights)
     document["liquid"] = dict(liquid or {})
     document["foam"] = dict(foam or {})
     return document
