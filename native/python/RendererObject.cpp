@@ -179,7 +179,8 @@ std::vector<std::string> layersToRender(const std::optional<std::vector<std::str
   return names;
 }
 
-// The result's layers named in `written` (all when it is None), as a copy: called only when some must be left out.
+// The result's layers named in `written` (all when it is None), as a copy: called only when some must be left
+// out.
 RenderResult layersToWrite(const RenderResult& result,
                            const std::optional<std::vector<std::string>>& written) {
   RenderResult subset;

@@ -37,7 +37,8 @@ void cropResult(RenderResult& result, const CropWindow& window) {
     const std::size_t channels = layer.channelCount();
     std::vector<float> cropped(std::size_t(window.width) * std::size_t(window.height) * channels);
     for (int row = 0; row < window.height; ++row) {
-      const std::size_t from = (std::size_t(window.y + row) * std::size_t(result.width) + std::size_t(window.x));
+      const std::size_t from =
+          (std::size_t(window.y + row) * std::size_t(result.width) + std::size_t(window.x));
       std::copy_n(&layer.pixels[from * channels], std::size_t(window.width) * channels,
                   &cropped[std::size_t(row) * std::size_t(window.width) * channels]);
     }
