@@ -69,7 +69,8 @@ class SpindriftSceneSettings(PropertyGroup):
                                            "rendered frame, for the compositor")
     occluders: BoolProperty(name="Scene Hides Liquid", default=True,
                             description="Draw the scene's visible geometry into a depth prepass, so solids in "
-                                        "front of the liquid and foam hide them in the rendered layers")
+                                        "front of the liquid and foam hide them in the rendered layers and the "
+                                        "viewport preview")
     composite_mode: EnumProperty(
         name="Composite", default="OVER",
         items=[("OVER", "Liquid and Foam Over", "Liquid and foam over a render without the liquid"),
