@@ -2,6 +2,7 @@
 Blender's own render.
 
 OVER (liquid and foam over a render without the liquid), per pixel, as the CLI composites:
+    render    = render * (f * (liquid_shadow + caustics) + (1 - f) * liquid_sky)   # with lamps only
     refracted = MapUV(render, refraction_uv)             # the render seen through the liquid
     liquid    = refracted * transmittance + reflection   # with the layer's alpha (premultiplied)
     out       = AlphaOver(render, liquid, fac = depth < render Depth) then AlphaOver(., foam)
@@ -21,6 +22,22 @@ GROUP_LAYERS = {
     "OVER": ["liquid", "depth", "refraction_uv", "transmittance", "reflection", "foam"],
     "FOAM_ONLY": ["foam"],
 }
+# With lamps (OVER only), the light through the liquid onto the render (docs/scene-format.md, "Lights").
+LIGHT_LAYERS = ["liquid_shadow", "caustics", "liquid_sky"]
+
+
+def frame_layers(mode, lit):
+    """The layers a frame's EXR holds for the mode's group: lit adds the light layers under OVER."""
+    return GROUP_LAYERS[mode] + (LIGHT_LAYERS if lit and mode == "OVER" else [])
+
+
+def direct_fraction():
+    """light.direct_fraction of the parameter table: the share of the render's brightness taken to come
+    straight from the lamps, as the command line's composite uses it without Cycles' light passes."""
+    from . import native
+
+    return next(float(row["default"]) for row in native.parameter_table()
+                if row["group"] == "light" and row["name"] == "direct_fraction")
 
 
 def _tree(scene):
@@ -78,7 +95,7 @@ def _socket(node, name):
                    f"(has {[s.name for s in node.outputs if s.enabled]})")
 
 
-def _new_group(mode, width):
+def _new_group(mode, width, lit=False):
     """An empty group of the mode's inputs; returns (group, its input node, its output node)."""
     name = GROUP_NAMES[mode]
     old = bpy.data.node_groups.get(name)
@@ -89,7 +106,7 @@ def _new_group(mode, width):
     inputs.new("NodeSocketColor", "Image")
     if mode == "OVER":
         inputs.new("NodeSocketFloat", "Depth")
-    for layer in GROUP_LAYERS[mode]:
+    for layer in frame_layers(mode, lit):
         inputs.new("NodeSocketFloat" if layer == "depth" else "NodeSocketColor", layer)
     group.outputs.new("NodeSocketColor", "Image")
     source = group.nodes.new("NodeGroupInput")
@@ -99,13 +116,38 @@ def _new_group(mode, width):
     return group, source, sink
 
 
-def build_over_group():
-    group, source, sink = _new_group("OVER", 1600)
+def _lit_render(group, source):
+    """render * (f * (liquid_shadow + caustics) + (1 - f) * liquid_sky): the render without the liquid, with
+    the liquid's shadow and caustics, before anything refracts or shows it (as the command line does)."""
     nodes, links = group.nodes, group.links
+    direct = nodes.new("CompositorNodeMixRGB")
+    direct.blend_type = "ADD"
+    direct.location = (-1000, 450)
+    links.new(source.outputs["liquid_shadow"], direct.inputs[1])
+    links.new(source.outputs["caustics"], direct.inputs[2])
+    share = nodes.new("CompositorNodeMixRGB")  # MIX: (1 - fac) * sky + fac * direct
+    share.blend_type = "MIX"
+    share.inputs["Fac"].default_value = direct_fraction()
+    share.location = (-800, 450)
+    links.new(source.outputs["liquid_sky"], share.inputs[1])
+    links.new(direct.outputs["Image"], share.inputs[2])
+    lit = nodes.new("CompositorNodeMixRGB")
+    lit.blend_type = "MULTIPLY"
+    lit.label = "Lamps through the liquid"
+    lit.location = (-600, 450)
+    links.new(source.outputs["Image"], lit.inputs[1])
+    links.new(share.outputs["Image"], lit.inputs[2])
+    return lit.outputs["Image"]
+
+
+def build_over_group(lit=False):
+    group, source, sink = _new_group("OVER", 1600, lit)
+    nodes, links = group.nodes, group.links
+    render = _lit_render(group, source) if lit else source.outputs["Image"]
 
     map_uv = nodes.new("CompositorNodeMapUV")
     map_uv.location = (-600, 200)
-    links.new(source.outputs["Image"], map_uv.inputs["Image"])
+    links.new(render, map_uv.inputs["Image"])
     links.new(source.outputs["refraction_uv"], map_uv.inputs["UV"])
 
     transmitted = nodes.new("CompositorNodeMixRGB")
@@ -139,7 +181,7 @@ def build_over_group():
     over_liquid = nodes.new("CompositorNodeAlphaOver")
     over_liquid.location = (250, 0)
     links.new(in_front.outputs["Value"], over_liquid.inputs["Fac"])
-    links.new(source.outputs["Image"], over_liquid.inputs[1])
+    links.new(render, over_liquid.inputs[1])
     links.new(liquid.outputs["Image"], over_liquid.inputs[2])
 
     over_foam = nodes.new("CompositorNodeAlphaOver")
@@ -187,7 +229,10 @@ def build_tree(scene, mode, layers_path):
     image_node.use_auto_refresh = True
     image_node.location = (-300, -100)
 
-    group = build_over_group() if mode == "OVER" else build_foam_only_group()
+    # Lamps were handed when the EXR has their layers; the group then applies them.
+    lit = mode == "OVER" and all(any(o.name == name and o.enabled for o in image_node.outputs)
+                                 for name in LIGHT_LAYERS)
+    group = build_over_group(lit) if mode == "OVER" else build_foam_only_group()
     group_node = tree.nodes.new("CompositorNodeGroup")
     group_node.node_tree = group
     group_node.name = group_node.label = GROUP_NODE
@@ -197,7 +242,7 @@ def build_tree(scene, mode, layers_path):
     links.new(render_layers.outputs["Image"], group_node.inputs["Image"])
     if mode == "OVER":
         links.new(render_layers.outputs["Depth"], group_node.inputs["Depth"])
-    for layer in GROUP_LAYERS[mode]:
+    for layer in frame_layers(mode, lit):
         links.new(_socket(image_node, layer), group_node.inputs[layer])
     links.new(group_node.outputs["Image"], composite.inputs["Image"])
     composite.location = (400, 200)

@@ -272,8 +272,13 @@ def render_size(scene):
             max(int(render.resolution_y * render.resolution_percentage / 100), 1))
 
 
-def scene_camera(scene, depsgraph):
-    """The scene file's camera for the scene's render camera at the render resolution."""
+def render_camera(scene, depsgraph):
+    """The scene file's camera for the scene's render camera at the render resolution, and the crop window
+    (x, y from the top, width, height) of its image that is the render, or None.
+
+    A lens shift (shift_x, shift_y) makes the projection off-axis; Spindrift's camera is symmetric, so the
+    frame is rendered by the larger symmetric camera that contains the shifted view and cut to it by the module
+    (`crop`). The window is placed at the nearest whole pixel: within half a pixel of Blender's projection."""
     camera = scene.camera
     if camera is None:
         raise BadInput(f"scene {scene.name} has no camera")
@@ -290,10 +295,54 @@ def scene_camera(scene, depsgraph):
                                                 scale_y=scene.render.pixel_aspect_y)
     description, (left, bottom) = scene_json.camera_description(width, height, camera_eval.matrix_world,
                                                                 projection)
-    if description["width"] != width or description["height"] != height:
-        raise BadInput(f"camera {camera.name}: a lens shift is not supported for final renders "
-                       f"(shift {camera.data.shift_x:g}, {camera.data.shift_y:g})")
+    if description["width"] == width and description["height"] == height:
+        return description, None
+    x = min(max(int(round(left)), 0), description["width"] - width)
+    y_from_bottom = min(max(int(round(bottom)), 0), description["height"] - height)
+    return description, (x, description["height"] - y_from_bottom - height, width, height)
+
+
+def scene_camera(scene, depsgraph):
+    """The scene file's camera for the render camera, for a scene file (the command line has no crop)."""
+    description, crop = render_camera(scene, depsgraph)
+    if crop is not None:
+        raise BadInput(f"camera {scene.camera.name}: a lens shift is not supported in scene files for the "
+                       f"command line (shift {scene.camera.data.shift_x:g}, {scene.camera.data.shift_y:g}); "
+                       f"the render layers support it")
     return description
+
+
+def scene_lights(depsgraph, for_render=True):
+    """The depsgraph's lamps in the scene format's terms (docs/scene-format.md, "Lights"), instances included.
+
+    The format has sun, spot and point lights. Blender's units match it (sun strength in W/m², spot and point
+    power in W). An area lamp becomes a point light at its centre with 4x its power: on its axis Blender's
+    area lamp gives P/(pi d^2), a point light P/(4 pi d^2), and the power only weights the lamps' shares in the
+    liquid_shadow and caustics layers. A lamp's radius, a sun's angle and a spot's blend are not handed."""
+    lights = []
+    for instance in depsgraph.object_instances:
+        obj = instance.object
+        if obj.type != "LIGHT":
+            continue
+        owner = instance.parent.original if instance.is_instance and instance.parent else obj.original
+        if for_render and owner.hide_render:
+            continue
+        lamp = obj.data
+        matrix = np.asarray(instance.matrix_world, dtype=np.float64)
+        position = [float(v) for v in matrix[:3, 3]]
+        direction = [float(-v) for v in matrix[:3, 2]]  # a lamp shines down its local -Z
+        light = {"color": [float(c) for c in lamp.color], "strength": float(lamp.energy)}
+        if lamp.type == "SUN":
+            light.update(type="sun", direction=direction)
+        elif lamp.type == "SPOT":
+            light.update(type="spot", position=position, direction=direction,
+                         spot_angle_deg=float(np.degrees(lamp.spot_size)))
+        elif lamp.type == "AREA":
+            light.update(type="point", position=position, strength=4.0 * float(lamp.energy))
+        else:
+            light.update(type="point", position=position)
+        lights.append(light)
+    return lights
 
 
 def world_color(scene):
@@ -309,28 +358,3 @@ def world_color(scene):
                 strength = node.inputs["Strength"].default_value
                 return [max(float(c) * strength, 0.0) for c in color[:3]]
     return [float(c) for c in world.color]
-
-
-def frame_bounds(scene, inputs):
-    """World points whose box holds everything a frame draws: the corners of each enabled domain's grid and
-    of the in-memory particles' box (padded by the largest radius)."""
-    corners = []
-    for obj in enabled_objects(scene):
-        if liquid_domain_settings(obj) is None:
-            continue
-        vertices = np.empty(len(obj.data.vertices) * 3, dtype=np.float64)
-        obj.data.vertices.foreach_get("co", vertices)
-        if vertices.size == 0:
-            continue
-        vertices = vertices.reshape(-1, 3)
-        lo, hi = vertices.min(axis=0), vertices.max(axis=0)
-        matrix = np.asarray(obj.matrix_world, dtype=np.float64)
-        box = np.array([[x, y, z] for x in (lo[0], hi[0]) for y in (lo[1], hi[1]) for z in (lo[2], hi[2])])
-        corners.append(box @ matrix[:3, :3].T + matrix[:3, 3])
-    particles = inputs.kwargs.get("particles")
-    if particles is not None and len(particles["radii"]):
-        pad = float(particles["radii"].max())
-        lo = particles["positions"].min(axis=0) - pad
-        hi = particles["positions"].max(axis=0) + pad
-        corners.append(np.array([[x, y, z] for x in (lo[0], hi[0]) for y in (lo[1], hi[1]) for z in (lo[2], hi[2])]))
-    return np.concatenate(corners) if corners else np.zeros((0, 3))

@@ -77,18 +77,17 @@ def collect(scene, depsgraph, frame, camera, *, mode="OVER", occluders=True, qua
             particle_sets.extend(sets)
 
     values = parameter_values(export.primary_object(scene), quality)
+    # Lamps light the background under the liquid (liquid_shadow, caustics); with the liquid in the render
+    # (FOAM_ONLY) Cycles has lit it already.
+    lights = export.scene_lights(depsgraph, for_render=for_render) if mode == "OVER" else []
     document = scene_json.scene_document(camera, frame, sources, {"color": export.world_color(scene)},
-                                         values["liquid"], values["foam"])
+                                         values["liquid"], values["foam"], lights)
     kwargs = {}
     particles = export.merge_particles(particle_sets)
     if particles is not None:
         kwargs["particles"] = particles
     if occluders:
-        # Point and domain objects are Spindrift's to draw; an emitter that renders its own mesh is a solid.
-        excluded = {obj.name for obj in objects
-                    if not (obj.particle_systems and obj.show_instancer_for_render)
-                    or export.liquid_domain_settings(obj) is not None}
-        triangles = export.occluder_triangles(depsgraph, excluded, for_render=for_render)
+        triangles = scene_occluders(scene, depsgraph, for_render=for_render)
         if triangles is not None:
             kwargs["occluders"] = triangles
     if liquid_meshes:
@@ -96,6 +95,15 @@ def collect(scene, depsgraph, frame, camera, *, mode="OVER", occluders=True, qua
     if not sources and particles is None:
         issues.append("no particles to render")
     return Frame(document, kwargs, issues)
+
+
+def scene_occluders(scene, depsgraph, for_render=True):
+    """The scene's solids as one triangle soup for the occluder depth prepass, or None. Point and domain
+    objects are Spindrift's to draw; an emitter that renders its own mesh is a solid."""
+    excluded = {obj.name for obj in export.enabled_objects(scene)
+                if not (obj.particle_systems and obj.show_instancer_for_render)
+                or export.liquid_domain_settings(obj) is not None}
+    return export.occluder_triangles(depsgraph, excluded, for_render=for_render)
 
 
 def merge_triangles(meshes):

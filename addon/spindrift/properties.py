@@ -69,12 +69,17 @@ class SpindriftSceneSettings(PropertyGroup):
                                            "rendered frame, for the compositor")
     occluders: BoolProperty(name="Scene Hides Liquid", default=True,
                             description="Draw the scene's visible geometry into a depth prepass, so solids in "
-                                        "front of the liquid and foam hide them in the rendered layers")
+                                        "front of the liquid and foam hide them in the rendered layers and the "
+                                        "viewport preview")
     composite_mode: EnumProperty(
         name="Composite", default="OVER",
         items=[("OVER", "Liquid and Foam Over", "Liquid and foam over a render without the liquid"),
                ("FOAM_ONLY", "Foam Only", "Foam over a render that contains the domain's liquid mesh")],
         description="What the layers hold; set by Set Up Compositing")
+    all_layers: BoolProperty(name="Every Layer", default=False,
+                             description="Render and write every Spindrift layer (normal, thickness, foam parts, "
+                                         "...) for nodes of your own, not only those the Spindrift group reads; "
+                                         "costs render and write time per frame")
     on_error: EnumProperty(name="On Error", items=ON_ERROR_ITEMS, default="SKIP",
                            description="What a frame does when Spindrift cannot render its layer")
 

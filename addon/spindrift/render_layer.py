@@ -16,6 +16,11 @@ from bpy.app.handlers import persistent
 from . import compositing, export, frame as frame_inputs, native, reports
 from .scene_json import BadInput
 
+# The frame's EXR is temporary (the compositor reads it once), so it is written for speed: only the layers the
+# compositing group reads are rendered at all, colour layers as half float (depth and refraction_uv stay
+# float32: half moves a UV by up to ~1 px at 1920 px), compressed as measured fastest (docs/blender.md).
+EXR_OPTIONS = {"exr_half_color": True, "exr_compression": "zips"}
+
 _state = {"pending": None, "frames_done": 0, "frames_total": 0, "progress": False, "started": 0.0}
 
 
@@ -29,7 +34,7 @@ def layer_path(scene, frame):
 def render_frame(scene, depsgraph, frame, exr_path):
     """Renders the scene's Spindrift layers for `frame` into `exr_path`; returns (result, Frame, timing).
     Raises BadInput (the scene) or the module's Error (rendering)."""
-    camera = export.scene_camera(scene, depsgraph)
+    camera, crop = export.render_camera(scene, depsgraph)
     settings = scene.spindrift
     mode = settings.composite_mode if settings.composite_mode in frame_inputs.MODES else "OVER"
     renderer = native.renderer()  # made once (EGL context, shaders): not part of any frame's time
@@ -37,7 +42,10 @@ def render_frame(scene, depsgraph, frame, exr_path):
     inputs = frame_inputs.collect(scene, depsgraph, frame, camera, mode=mode, occluders=settings.occluders)
     collected = time.perf_counter() - started
     os.makedirs(os.path.dirname(exr_path), exist_ok=True)
-    result = renderer.render(inputs.scene_text, frame, exr_path=exr_path, layers=[], **inputs.kwargs)
+    lit = bool(inputs.document.get("lights"))
+    exr_layers = None if settings.all_layers else compositing.frame_layers(mode, lit)
+    result = renderer.render(inputs.scene_text, frame, exr_path=exr_path, layers=[], exr_layers=exr_layers,
+                             crop=crop, **EXR_OPTIONS, **inputs.kwargs)
     total = time.perf_counter() - started
     return result, inputs, timing(result.get("stats", {}), collected, total)
 
@@ -45,12 +53,14 @@ def render_frame(scene, depsgraph, frame, exr_path):
 def timing(stats, collect_s, total_s):
     """Where a final frame's time went. Spindrift's own frame is the native total without the occluder
     prepass; the add-on's overhead is everything else: reading Blender's data into arrays, handing them over,
-    the prepass of the scene's triangles, writing the EXR (the call's time beyond the native total)."""
+    the prepass of the scene's triangles, writing the EXR (exr_write_ms, part of the call's time beyond the
+    native total)."""
     native_ms = float(stats.get("total_ms", 0.0))
     prepass_ms = sum(max(float(p.get("gpu_ms", 0.0)), float(p.get("cpu_ms", 0.0)))
                      for p in stats.get("passes", []) if p.get("name") in ("occluder_depth", "liquid_mesh_depth"))
     call_ms = (total_s - collect_s) * 1000
     return {"collect_ms": collect_s * 1000, "call_ms": call_ms, "native_total_ms": native_ms,
+            "exr_write_ms": float(stats.get("exr_write_ms", 0.0)),
             "prepass_ms": prepass_ms, "spindrift_ms": native_ms - prepass_ms,
             "overhead_ms": collect_s * 1000 + prepass_ms + max(call_ms - native_ms, 0.0), "total_s": total_s}
 

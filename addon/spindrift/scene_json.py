@@ -132,22 +132,14 @@ def camera_description(width, height, world_from_camera, projection):
     return camera, (left, bottom)
 
 
-def planar_depth(window_depth, projection):
-    """Blender's window depth (0..1, OpenGL's default range) as planar eye depth, FAR_DEPTH where cleared."""
-    p = np.asarray(projection, dtype=np.float64)
-    ndc = window_depth.astype(np.float64) * 2.0 - 1.0
-    with np.errstate(divide="ignore", invalid="ignore"):
-        depth = p[2][3] / (ndc + p[2][2])
-    depth = np.where((window_depth >= 1.0) | ~np.isfinite(depth) | (depth <= 0), FAR_DEPTH, depth)
-    return depth.astype(np.float32)
-
-
 # --- The document ----------------------------------------------------------------------------------------------
 
-def scene_document(camera, frame, sources=(), background=None, liquid=None, foam=None):
+def scene_document(camera, frame, sources=(), background=None, liquid=None, foam=None, lights=()):
     document = {"version": 1, "frame": int(frame), "camera": camera, "particles": list(sources)}
     if background:
         document["background"] = background
+    if lights:
+        document["lights"] = list(lights)
     document["liquid"] = dict(liquid or {})
     document["foam"] = dict(foam or {})
     return document

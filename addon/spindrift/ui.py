@@ -106,6 +106,7 @@ class SPINDRIFT_PT_render(bpy.types.Panel):
             layout.label(text="Sources: " + ", ".join(obj.name for obj in enabled))
         layout.prop(settings, "render_layer")
         layout.prop(settings, "occluders")
+        layout.prop(settings, "all_layers")
         layout.prop(settings, "on_error")
         row = layout.row(align=True)
         row.operator("spindrift.setup_compositing", text="Liquid and Foam Over").mode = "OVER"

@@ -1,8 +1,11 @@
 """The live preview in the 3D viewport.
 
 Main thread (the draw callback, POST_PIXEL): when the view, the frame or the scene changed and the worker is
-idle, read the viewport's depth, collect the frame's inputs and hand them to the worker; then draw the latest
-finished image (premultiplied, with the gpu module). Worker thread: calls the native renderer (which releases
+idle, collect the frame's inputs and hand them to the worker; then draw the latest finished image
+(premultiplied, with the gpu module). The scene's solids hide the liquid through the native occluder depth
+prepass, which draws their triangles on the renderer's own thread: the viewport's depth buffer is never read,
+because reading it waits for llvmpipe to finish drawing the viewport (150-300 ms per handed frame, measured in
+docs/blender.md). The triangles are extracted once per depsgraph change and frame, not per view. Worker thread: calls the native renderer (which releases
 the GIL while it renders on its own GL thread), turns the liquid and foam layers into one premultiplied sRGB
 image and posts it. A timer on the main thread notices new images and redraws the viewports.
 
@@ -96,7 +99,6 @@ class Worker:
         started = time.perf_counter()
         try:
             inputs = job.inputs
-            inputs.kwargs["background"] = {"depth": preview_background_depth(*job.depth)}
             result = native.renderer().render(inputs.scene_text, inputs.document["frame"],
                                               layers=["liquid", "foam"], **inputs.kwargs)
             pixels = premultiplied_display(result)
@@ -132,7 +134,7 @@ def premultiplied_display(result):
 # --- State shared by the callbacks -----------------------------------------------------------------------------
 
 _state = {"worker": None, "draw_handler": None, "timer": False, "version": 0, "submitted": {}, "status": {},
-          "redraw_ms": []}
+          "redraw_ms": [], "occluders": {}}
 
 
 def settings_changed():
@@ -152,7 +154,7 @@ def status(region_key=None):
 
 
 def redraw_times_ms():
-    """The draw callback's recent main-thread times: dicts of total_ms, and read_depth_ms, job_ms (a new
+    """The draw callback's recent main-thread times: dicts of total_ms, and occluders_ms, job_ms (a new
     frame handed to the worker), texture (a new image uploaded), draw_ms where they happened."""
     return list(_state["redraw_ms"])
 
@@ -187,62 +189,14 @@ def preview_size(region_width, region_height, scale):
     return width, height
 
 
-def screen_rect(points, perspective, region_width, region_height, margin=8):
-    """The region's pixel rectangle (x, y, width, height) covering `points` (N,3 world) as seen through
-    `perspective` (window_matrix @ view_matrix), or the whole region when a point is behind the eye."""
-    if len(points) == 0:
-        return None
-    homogeneous = np.concatenate([points, np.ones((len(points), 1))], axis=1) @ np.asarray(perspective).T
-    if (homogeneous[:, 3] <= 1e-6).any():
-        return 0, 0, region_width, region_height
-    ndc = homogeneous[:, :2] / homogeneous[:, 3:4]
-    x0 = int(np.floor((ndc[:, 0].min() + 1) / 2 * region_width)) - margin
-    x1 = int(np.ceil((ndc[:, 0].max() + 1) / 2 * region_width)) + margin
-    y0 = int(np.floor((ndc[:, 1].min() + 1) / 2 * region_height)) - margin
-    y1 = int(np.ceil((ndc[:, 1].max() + 1) / 2 * region_height)) + margin
-    x0, y0 = max(x0, 0), max(y0, 0)
-    x1, y1 = min(x1, region_width), min(y1, region_height)
-    if x1 <= x0 or y1 <= y0:
-        return None
-    return x0, y0, x1 - x0, y1 - y0
-
-
-_depth_buffers = {}
-
-
-def read_depth_samples(region_width, region_height, width, height, rect):
-    """The viewport's window depth at the preview's pixel centres (rows top first), read only inside `rect`
-    (the screen box of what Spindrift draws; 1.0, nothing, elsewhere). Reading the whole 1280x800 depth costs
-    llvmpipe 12-27 ms and more under load; the liquid's box is usually a fraction of it. Reads into a reused
-    1-D gpu Buffer: its numpy view is exact, multi-dimensional Buffers have wrong strides (environment notes)."""
-    samples = np.ones((height, width), dtype=np.float32)
-    if rect is None:
-        return samples
-    x0, y0, rect_width, rect_height = rect
-    buffer = _depth_buffers.get((rect_width, rect_height))
-    if buffer is None:
-        _depth_buffers.clear()
-        buffer = _depth_buffers[(rect_width, rect_height)] = gpu.types.Buffer("FLOAT", rect_width * rect_height)
-    gpu.state.active_framebuffer_get().read_depth(x0, y0, rect_width, rect_height, data=buffer)
-    depth = np.asarray(buffer).reshape(rect_height, rect_width)
-    rows = ((np.arange(height) + 0.5) * region_height / height).astype(np.int64)[::-1] - y0
-    columns = ((np.arange(width) + 0.5) * region_width / width).astype(np.int64) - x0
-    row_inside = (rows >= 0) & (rows < rect_height)
-    column_inside = (columns >= 0) & (columns < rect_width)
-    samples[np.ix_(row_inside, column_inside)] = depth[np.ix_(rows[row_inside], columns[column_inside])]
-    return samples
-
-
-def preview_background_depth(window_depth, projection, camera, left, bottom):
-    """On the worker: planar eye depth for the preview's camera, padded with 'far' where an off-centre view's
-    larger camera reaches beyond the region. Rows top first."""
-    depth = scene_json.planar_depth(window_depth, projection)
-    height, width = depth.shape
-    full = np.full((camera["height"], camera["width"]), scene_json.FAR_DEPTH, dtype=np.float32)
-    x0, y0 = int(round(left)), int(round(bottom))
-    top = camera["height"] - y0 - height
-    full[top:top + height, x0:x0 + width] = depth
-    return full
+def cached_occluders(scene, depsgraph):
+    """The scene's solid triangles, extracted again only when the depsgraph changed or the frame moved: a view
+    change (orbit, zoom) reuses them, so handing a frame costs the main thread no extraction."""
+    key = (_state["version"], scene.name, scene.frame_current)
+    cache = _state["occluders"]
+    if cache.get("key") != key:
+        cache.update(key=key, triangles=frame_inputs.scene_occluders(scene, depsgraph, for_render=False))
+    return cache["triangles"]
 
 
 def build_job(context, region, region_data, key, phases):
@@ -253,18 +207,17 @@ def build_job(context, region, region_data, key, phases):
     camera, (left, bottom) = scene_json.camera_description(
         width, height, region_data.view_matrix.inverted(), projection)
     started = time.perf_counter()
-    inputs = frame_inputs.collect(scene, context.evaluated_depsgraph_get(), scene.frame_current, camera,
-                                  occluders=False, quality=settings.preview_quality, for_render=False,
-                                  mode="OVER")
-    perspective = np.asarray(projection) @ np.asarray([list(row) for row in region_data.view_matrix])
-    rect = screen_rect(export.frame_bounds(scene, inputs), perspective, region.width, region.height)
-    depth_started = time.perf_counter()
-    window_depth = read_depth_samples(region.width, region.height, width, height, rect)
-    phases["read_depth_ms"] = (time.perf_counter() - depth_started) * 1000
-    phases["depth_rect"] = rect
+    depsgraph = context.evaluated_depsgraph_get()
+    inputs = frame_inputs.collect(scene, depsgraph, scene.frame_current, camera, occluders=False,
+                                  quality=settings.preview_quality, for_render=False, mode="OVER")
+    occluders_started = time.perf_counter()
+    if settings.occluders:
+        triangles = cached_occluders(scene, depsgraph)
+        if triangles is not None:
+            inputs.kwargs["occluders"] = triangles
+    phases["occluders_ms"] = (time.perf_counter() - occluders_started) * 1000
     job = Job(key, inputs, (-round(left) * region.width / width, -round(bottom) * region.height / height),
               region.width / width)
-    job.depth = (window_depth, projection, camera, left, bottom)
     phases["job_ms"] = (time.perf_counter() - started) * 1000
     return job
 
@@ -317,6 +270,7 @@ def _draw_image(image, phases):
     if image.texture is None:
         phases["texture"] = True
         # gpu.types.GPUTexture takes FLOAT buffers only (Blender 3.4); the overlay it is drawn into is 8-bit.
+        # RGBA8 uploads faster than RGBA32F here: 13-49 ms against 105-133 ms for a 640x400 frame on llvmpipe.
         buffer = gpu.types.Buffer("FLOAT", image.pixels.size, image.pixels.ravel())
         image.texture = gpu.types.GPUTexture((image.width, image.height), format="RGBA8", data=buffer)
     gpu.state.blend_set("ALPHA_PREMULT")
@@ -327,9 +281,9 @@ def _draw_image(image, phases):
 
 # --- Switching on and off --------------------------------------------------------------------------------------
 
-# The preview's occlusion reads the viewport's depth, so what Blender itself draws of the liquid (a domain's
-# mesh drawn solid, its particles as points) would hide Spindrift's liquid behind its own stand-in. While the
-# preview is on, enabled objects draw as wire and their particles not at all; the originals come back after.
+# Blender's own stand-ins for the liquid (a domain's mesh drawn solid, its particles as points) would show
+# beside Spindrift's liquid and hide the scene behind it. While the preview is on, enabled objects draw as
+# wire and their particles not at all; the originals come back after.
 SAVED_DISPLAY = "spindrift_saved_display"
 
 
@@ -391,6 +345,7 @@ def shutdown():
         bpy.app.timers.unregister(_poll)
     _state["timer"] = False
     _state["submitted"].clear()
+    _state["occluders"].clear()
 
 
 def on_depsgraph_update(_scene, _depsgraph=None):

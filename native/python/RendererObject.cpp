@@ -7,6 +7,7 @@
 #include <dlfcn.h>
 
 #include <algorithm>
+#include <chrono>
 #include <cstring>
 #include <utility>
 
@@ -21,6 +22,8 @@
 #include "FrameArguments.h"
 #include "PythonErrors.h"
 #include "PythonValues.h"
+#include "Readback.h"
+#include "ResultCrop.h"
 #include "gl/ShaderLibrary.h"
 #include "spindrift/Error.h"
 #include "spindrift/Output.h"
@@ -132,24 +135,80 @@ PyObject* rendererExit(PyObject* object, PyObject*) {
   return rendererClose(object, nullptr);
 }
 
-// The layer names asked for; nothing means every layer (None), an empty list none at all.
-std::optional<std::vector<std::string>> readLayerNames(PyObject* layers) {
+// The layer names asked for; nothing means every layer (None), an empty list none at all. `argument` names
+// the keyword in messages; an unknown layer is a ValueError listing the frame's layers.
+std::optional<std::vector<std::string>> readLayerNames(PyObject* layers, const char* argument) {
   std::vector<std::string> names;
   if (layers == Py_None) return std::nullopt;
   if (!PyList_Check(layers) && !PyTuple_Check(layers))
-    throw ArgumentError(PyExc_TypeError, "layers: expected a list of layer names");
+    throw ArgumentError(PyExc_TypeError, std::string(argument) + ": expected a list of layer names");
   Reference items(check(PySequence_List(layers)));
+  const std::vector<std::string>& known = LayerSelection::allNames();
   for (Py_ssize_t i = 0; i < PyList_Size(items.get()); ++i) {
     PyObject* name = PyList_GetItem(items.get(), i);
     Py_ssize_t size = 0;
     const char* text = PyUnicode_Check(name) ? PyUnicode_AsUTF8AndSize(name, &size) : nullptr;
     if (!text) {
       PyErr_Clear();
-      throw ArgumentError(PyExc_TypeError, "layers[" + std::to_string(i) + "]: expected a str");
+      throw ArgumentError(PyExc_TypeError,
+                          std::string(argument) + "[" + std::to_string(i) + "]: expected a str");
     }
     names.emplace_back(text, std::size_t(size));
+    if (std::find(known.begin(), known.end(), names.back()) == known.end()) {
+      std::string list;
+      for (const std::string& layer : known)
+        list += (list.empty() ? "" : ", ") + layer;
+      throw ArgumentError(PyExc_ValueError, std::string(argument) + ": no layer named '" + names.back() +
+                                                "' (the frame has " + list + ")");
+    }
   }
   return names;
+}
+
+// The layers the frame must render: those returned and those written, or every layer when either set is
+// "all". Passes that feed none of them are not run at all (Renderer::setLayers), which is what makes a frame
+// that only needs the compositor's six layers cheaper than a full one.
+std::vector<std::string> layersToRender(const std::optional<std::vector<std::string>>& returned,
+                                        const std::optional<std::vector<std::string>>& written,
+                                        bool writing) {
+  if (!returned || (writing && !written)) return {};  // Empty: all.
+  std::vector<std::string> names = *returned;
+  if (writing)
+    for (const std::string& name : *written)
+      if (std::find(names.begin(), names.end(), name) == names.end()) names.push_back(name);
+  return names;
+}
+
+// The result's layers named in `written` (all when it is None), as a copy: called only when some must be left
+// out.
+RenderResult layersToWrite(const RenderResult& result,
+                           const std::optional<std::vector<std::string>>& written) {
+  RenderResult subset;
+  subset.width = result.width;
+  subset.height = result.height;
+  for (const ImageLayer& layer : result.layers)
+    if (!written || std::find(written->begin(), written->end(), layer.name) != written->end())
+      subset.layers.push_back(layer);
+  return subset;
+}
+
+// `crop`: None, or (x, y, width, height) in pixels, y from the top, inside the camera's image.
+std::optional<CropWindow> readCropWindow(PyObject* crop, const Camera& camera) {
+  if (crop == Py_None) return std::nullopt;
+  CropWindow window;
+  if (!PyTuple_Check(crop) ||
+      !PyArg_ParseTuple(crop, "iiii", &window.x, &window.y, &window.width, &window.height)) {
+    PyErr_Clear();
+    throw ArgumentError(PyExc_TypeError, "crop: expected a tuple (x, y, width, height) of ints");
+  }
+  if (window.x < 0 || window.y < 0 || window.width < 1 || window.height < 1 ||
+      window.x + window.width > camera.width || window.y + window.height > camera.height)
+    throw ArgumentError(PyExc_ValueError, "crop: " + std::to_string(window.width) + "x" +
+                                              std::to_string(window.height) + " at (" +
+                                              std::to_string(window.x) + ", " + std::to_string(window.y) +
+                                              ") does not lie inside the " + std::to_string(camera.width) +
+                                              "x" + std::to_string(camera.height) + " camera image");
+  return window;
 }
 
 char* checkBytes(char* bytes) {
@@ -158,7 +217,8 @@ char* checkBytes(char* bytes) {
 }
 
 // {"width", "height", "stats", "layers": {name: (channels, float32 bytes)}}, only the layers asked for.
-PyObject* resultToPython(const RenderResult& result, const std::optional<std::vector<std::string>>& wanted) {
+PyObject* resultToPython(const RenderResult& result, const std::optional<std::vector<std::string>>& wanted,
+                         double exrWriteMilliseconds) {
   std::set<std::string> available;
   for (const ImageLayer& layer : result.layers)
     available.insert(layer.name);
@@ -191,24 +251,29 @@ PyObject* resultToPython(const RenderResult& result, const std::optional<std::ve
   Py_END_ALLOW_THREADS Reference dictionary(check(PyDict_New()));
   setItem(dictionary.get(), "width", Reference(check(PyLong_FromLong(result.width))));
   setItem(dictionary.get(), "height", Reference(check(PyLong_FromLong(result.height))));
-  setItem(dictionary.get(), "stats", Reference(check(toPython(result.stats.toJson()))));
+  nlohmann::json stats = result.stats.toJson();
+  if (exrWriteMilliseconds >= 0.0) stats["exr_write_ms"] = exrWriteMilliseconds;
+  setItem(dictionary.get(), "stats", Reference(check(toPython(stats))));
   setItem(dictionary.get(), "layers", std::move(layers));
   return dictionary.release();
 }
 
 PyObject* rendererRender(PyObject* object, PyObject* args, PyObject* kwargs) {
   auto* self = reinterpret_cast<RendererObject*>(object);
-  static const char* keywords[] = {"scene_json",  "frame",      "base_dir", "particles", "occluders",
-                                   "liquid_mesh", "background", "exr_path", "layers",    nullptr};
+  static const char* keywords[] = {"scene_json",     "frame",           "base_dir", "particles", "occluders",
+                                   "liquid_mesh",    "background",      "exr_path", "layers",    "exr_layers",
+                                   "exr_half_color", "exr_compression", "crop",     nullptr};
   const char* sceneJson = nullptr;
   int frame = 0;
   const char* baseDir = "";
   PyObject *particles = Py_None, *occluders = Py_None, *liquidMesh = Py_None, *background = Py_None;
   const char* exrPath = nullptr;
-  PyObject* layers = Py_None;
-  if (!PyArg_ParseTupleAndKeywords(args, kwargs, "si|$sOOOOzO", const_cast<char**>(keywords), &sceneJson,
+  PyObject *layers = Py_None, *exrLayers = Py_None, *crop = Py_None;
+  int exrHalfColor = 0;
+  const char* exrCompression = "zip";
+  if (!PyArg_ParseTupleAndKeywords(args, kwargs, "si|$sOOOOzOOpsO", const_cast<char**>(keywords), &sceneJson,
                                    &frame, &baseDir, &particles, &occluders, &liquidMesh, &background,
-                                   &exrPath, &layers))
+                                   &exrPath, &layers, &exrLayers, &exrHalfColor, &exrCompression, &crop))
     return nullptr;
   try {
     // Relative paths in the scene are anchored at base_dir; messages name the scene "<base_dir>/scene_json".
@@ -234,16 +299,32 @@ PyObject* rendererRender(PyObject* object, PyObject* args, PyObject* kwargs) {
       scene.background.depthExplicit = false;
       readBackground(background, scene.camera, inputs);
     }
-    const std::optional<std::vector<std::string>> layerNames = readLayerNames(layers);
+    const std::optional<std::vector<std::string>> layerNames = readLayerNames(layers, "layers");
+    const std::optional<std::vector<std::string>> exrLayerNames = readLayerNames(exrLayers, "exr_layers");
     const std::optional<std::filesystem::path> exr =
         exrPath ? std::optional<std::filesystem::path>(exrPath) : std::nullopt;
+    const ExrOptions exrOptions{exrHalfColor != 0, exrCompression};
+    const std::optional<CropWindow> window = readCropWindow(crop, scene.camera);
     std::optional<RenderResult> result;
+    double exrWriteMilliseconds = -1.0;  // Reported in stats as exr_write_ms when a file was written.
     withoutGil(self, [&] {
       if (!self->renderer) throw Error("the renderer is closed");
+      // Every call sets its own selection: the Renderer keeps it, and calls may ask for different layers.
+      self->renderer->setLayers(layersToRender(layerNames, exrLayerNames, exr.has_value()));
       result = self->renderer->renderFrame(scene, frame, inputs);
-      if (exr) writeExr(*result, *exr);
+      if (window) cropResult(*result, *window);
+      if (!exr) return;
+      const bool everyLayer =
+          !exrLayerNames ||
+          std::all_of(result->layers.begin(), result->layers.end(), [&](const ImageLayer& l) {
+            return std::find(exrLayerNames->begin(), exrLayerNames->end(), l.name) != exrLayerNames->end();
+          });
+      const auto writeStart = std::chrono::steady_clock::now();
+      writeExr(everyLayer ? *result : layersToWrite(*result, exrLayerNames), *exr, exrOptions);
+      exrWriteMilliseconds =
+          std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - writeStart).count();
     });
-    return resultToPython(*result, layerNames);
+    return resultToPython(*result, layerNames, exrWriteMilliseconds);
   } catch (...) {
     return raiseCurrentException();
   }
@@ -274,7 +355,8 @@ PyMethodDef rendererMethods[] = {
     {"render", reinterpret_cast<PyCFunction>(reinterpret_cast<void (*)()>(rendererRender)),
      METH_VARARGS | METH_KEYWORDS,
      "render(scene_json, frame, *, base_dir='', particles=None, occluders=None, liquid_mesh=None, "
-     "background=None, exr_path=None, layers=None) -> dict\n\nRenders one frame; see docs/python-module.md."},
+     "background=None, exr_path=None, layers=None, exr_layers=None, exr_half_color=False, "
+     "exr_compression='zip', crop=None) -> dict\n\nRenders one frame; see docs/python-module.md."},
     {"close", rendererClose, METH_NOARGS, "Releases the native renderer (its GL thread and context) now."},
     {"__enter__", rendererEnter, METH_NOARGS, nullptr},
     {"__exit__", rendererExit, METH_VARARGS, nullptr},

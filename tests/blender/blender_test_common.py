@@ -72,6 +72,33 @@ def read_exr_layers(path):
             for layer, channels in layers.items()}
 
 
+def largest_view3d():
+    """(window, area, region) of the largest 3D viewport of the first window, its WINDOW region."""
+    window = bpy.context.window_manager.windows[0]
+    area = max((a for a in window.screen.areas if a.type == "VIEW_3D"), key=lambda a: a.width * a.height)
+    return window, area, next(r for r in area.regions if r.type == "WINDOW")
+
+
+def preview_ready(region):
+    """Whether the viewport preview has finished the frame last handed for `region`; raises when it
+    failed (the worker's result is then the error's text)."""
+    from spindrift import viewport
+
+    worker = viewport._state["worker"]
+    image = worker.latest(region.as_pointer()) if worker else None
+    if isinstance(image, str):
+        raise AssertionError(f"the preview failed: {image}")
+    return image is not None and image.key == viewport._state["submitted"].get(region.as_pointer())
+
+
+def image_pixels(path):
+    """An image file's pixels as float32 (H, W, channels), rows bottom first, as Blender loads them."""
+    image = bpy.data.images.load(path)
+    pixels = np.array(image.pixels[:], dtype=np.float32).reshape(image.size[1], image.size[0], image.channels)
+    bpy.data.images.remove(image)
+    return pixels
+
+
 def spindrift_module():
     import spindrift
 

@@ -16,7 +16,7 @@ sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 
 import bpy  # noqa: E402
 
-from blender_test_common import arguments, install_addon, open_fixture_scene  # noqa: E402
+from blender_test_common import arguments, image_pixels, install_addon, open_fixture_scene, preview_ready  # noqa: E402,E501
 
 FRAME = 5
 state = {"step": 0, "started": time.time()}
@@ -58,9 +58,7 @@ def shoot(area, name, keep_last_rows=None, crop_to_content=True):
     with bpy.context.temp_override(window=window, area=area):
         bpy.ops.wm.redraw_timer(type="DRAW_WIN_SWAP", iterations=1)
         bpy.ops.screen.screenshot(filepath=full)
-    image = bpy.data.images.load(full)
-    pixels = np.array(image.pixels[:], dtype=np.float32).reshape(image.size[1], image.size[0], image.channels)
-    bpy.data.images.remove(image)
+    pixels = image_pixels(full)
     os.remove(full)
     crop = pixels[area.y:area.y + area.height, area.x:area.x + area.width]
     if crop_to_content:
@@ -98,17 +96,6 @@ def setup():
     properties[0].spaces.active.context = "PHYSICS"
 
 
-def preview_ready():
-    from spindrift import viewport
-
-    worker = viewport._state["worker"]
-    _, views = areas("VIEW_3D")
-    region = next(r for r in max(views, key=lambda a: a.width * a.height).regions if r.type == "WINDOW")
-    image = worker.latest(region.as_pointer()) if worker else None
-    return image is not None and not isinstance(image, str) and \
-        image.key == viewport._state["submitted"].get(region.as_pointer())
-
-
 def step():
     try:
         if state["step"] == 0:
@@ -119,7 +106,8 @@ def step():
             _, views = areas("VIEW_3D")
             view = max(views, key=lambda a: a.width * a.height)
             view.tag_redraw()
-            if not preview_ready() and time.time() - state["started"] < 300:
+            region = next(r for r in view.regions if r.type == "WINDOW")
+            if not preview_ready(region) and time.time() - state["started"] < 300:
                 return 1.0
             shoot(view, "blender_viewport.png", crop_to_content=False)
             bpy.context.scene.spindrift.preview = False

@@ -1,5 +1,7 @@
 """Measures the add-on's per-final-frame overhead against Spindrift's own frame time (docs/blender.md):
-the fixture's frame 5 at 960x540, layers rendered as the render handler does, five times.
+the fixture's frame 5 at 960x540, layers rendered as the render handler does. First the previous way (every
+layer, float32, ZIP) and each EXR compression with the group's layers in half float, RUNS times each, then the
+add-on's defaults five times.
 
 Run: tests/blender/run_blender.py --zip build/spindrift-addon.zip tests/blender/measure_overhead.py -- \
          build/fixtures/addon_scene OUTPUT_JSON
@@ -16,6 +18,27 @@ import bpy  # noqa: E402
 
 from blender_test_common import arguments, install_addon, open_fixture_scene  # noqa: E402
 
+RUNS = 3
+COMPRESSIONS = ("none", "zips", "zip", "piz")
+
+
+def measure(scene, runs, exr_options, all_layers):
+    from spindrift import render_layer, reports
+
+    render_layer.EXR_OPTIONS = exr_options
+    scene.spindrift.all_layers = all_layers
+    timings = []
+    for _ in range(runs):
+        render_layer.render_layers_now(scene, bpy.context.evaluated_depsgraph_get(), 5)
+        timings.append(dict(reports.last_render["timing"]))
+    summary = {key: statistics.median(run[key] for run in timings) for key in timings[0]}
+    summary["overhead_fraction"] = summary["overhead_ms"] / summary["spindrift_ms"]
+    summary["exr_bytes"] = os.path.getsize(render_layer.layer_path(scene, 5))
+    summary["runs"] = timings
+    print("overhead:", exr_options, "all layers" if all_layers else "group layers",
+          json.dumps({k: round(v, 3) for k, v in summary.items() if k != "runs"}), flush=True)
+    return summary
+
 
 def main():
     fixture, output = arguments()[:2]
@@ -25,20 +48,17 @@ def main():
     bpy.data.objects["Domain"].spindrift.enabled = True
     scene.frame_set(5)
     bpy.ops.spindrift.setup_compositing(mode="OVER")
-    from spindrift import render_layer, reports
+    from spindrift import render_layer
 
-    runs = []
-    for _ in range(5):
-        render_layer.render_layers_now(scene, bpy.context.evaluated_depsgraph_get(), 5)
-        runs.append(dict(reports.last_render["timing"]))
-    summary = {key: statistics.median(run[key] for run in runs) for key in runs[0]}
-    summary["overhead_fraction"] = summary["overhead_ms"] / summary["spindrift_ms"]
-    summary["resolution"] = [960, 540]
-    summary["load"] = os.getloadavg()[0]
-    summary["runs"] = runs
+    defaults = dict(render_layer.EXR_OPTIONS)
+    results = {"resolution": [960, 540], "load_before": os.getloadavg()[0]}
+    results["previous"] = measure(scene, RUNS, {"exr_half_color": False, "exr_compression": "zip"}, True)
+    for compression in COMPRESSIONS:
+        results[compression] = measure(scene, RUNS, {"exr_half_color": True, "exr_compression": compression}, False)
+    results["defaults"] = measure(scene, 5, defaults, False)
+    results["load_after"] = os.getloadavg()[0]
     with open(output, "w") as file:
-        json.dump(summary, file, indent=1)
-    print("overhead:", json.dumps({k: v for k, v in summary.items() if k != "runs"}), flush=True)
+        json.dump(results, file, indent=1)
 
 
 main()

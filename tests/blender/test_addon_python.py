@@ -214,16 +214,3 @@ def test_orthographic_and_empty_views_are_bad_input():
         scene_json.camera_description(100, 100, np.identity(4), ortho)
     with pytest.raises(scene_json.BadInput, match="0x100 pixels"):
         scene_json.camera_description(0, 100, np.identity(4), perspective(1, 1, 0.1, 10))
-
-
-def test_window_depth_becomes_planar_eye_depth():
-    near, far = 0.1, 50.0
-    projection = perspective(math.radians(50), 1.5, near, far)
-    eye_depth = np.array([[0.1, 0.5, 3.0], [10.0, 49.0, 1.0]])
-    clip_z = projection[2, 2] * -eye_depth + projection[2, 3]
-    window = (clip_z / eye_depth + 1) / 2
-    window_with_sky = np.concatenate([window, [[1.0, 1.0, 1.0]]])
-    depth = scene_json.planar_depth(window_with_sky.astype(np.float32), projection)
-    assert depth.dtype == np.float32
-    assert depth[:2] == pytest.approx(eye_depth, rel=2e-3)
-    assert (depth[2] == scene_json.FAR_DEPTH).all()

@@ -21,7 +21,8 @@ from bpy_extras.view3d_utils import (location_3d_to_region_2d, region_2d_to_orig
                                      region_2d_to_vector_3d)
 from mathutils import Vector  # noqa: E402
 
-from blender_test_common import arguments, check, install_addon, open_fixture_scene, scratch  # noqa: E402
+from blender_test_common import (arguments, check, image_pixels, install_addon, largest_view3d,  # noqa: E402
+                                 open_fixture_scene, preview_ready, scratch)
 
 FRAME = 5
 TIMEOUT_S = 240
@@ -32,10 +33,7 @@ state = {"step": "setup", "started": time.time(), "results": {}}
 
 
 def view3d():
-    window = bpy.context.window_manager.windows[0]
-    area = max((a for a in window.screen.areas if a.type == "VIEW_3D"), key=lambda a: a.width * a.height)
-    region = next(r for r in area.regions if r.type == "WINDOW")
-    return window, area, region
+    return largest_view3d()
 
 
 def redraw(count=1):
@@ -49,10 +47,7 @@ def screenshot(name):
     window, area, _ = view3d()
     with bpy.context.temp_override(window=window, area=area):
         bpy.ops.screen.screenshot(filepath=path)
-    image = bpy.data.images.load(path)
-    pixels = np.array(image.pixels[:], dtype=np.float32).reshape(image.size[1], image.size[0], image.channels)
-    bpy.data.images.remove(image)
-    return pixels[..., :3]
+    return image_pixels(path)[..., :3]
 
 
 def setup():
@@ -72,18 +67,6 @@ def setup():
     scene.spindrift.preview = True
     state["region_size"] = (region.width, region.height)
     print(f"viewport region {region.width}x{region.height}, window {window.width}x{window.height}", flush=True)
-
-
-def preview_ready():
-    from spindrift import viewport
-
-    _, _, region = view3d()
-    worker = viewport._state["worker"]
-    key = viewport._state["submitted"].get(region.as_pointer())
-    image = worker.latest(region.as_pointer()) if worker else None
-    if isinstance(image, str):
-        raise AssertionError(f"the preview failed: {image}")
-    return image is not None and image.key == key
 
 
 def particle_pixels():
@@ -183,7 +166,7 @@ def measure_redraws():
     state["results"].update(
         redraws_moving=len(moving), redraws_submitting=len(submitting),
         redraw_ms_moving_mean=mean(moving, "total_ms"), redraw_ms_moving_max=float(max(r["total_ms"] for r in moving)),
-        redraw_ms_submitting_mean=mean(submitting, "total_ms"), read_depth_ms_mean=mean(submitting, "read_depth_ms"),
+        redraw_ms_submitting_mean=mean(submitting, "total_ms"), occluders_ms_mean=mean(submitting, "occluders_ms"),
         job_ms_mean=mean(submitting, "job_ms"), draw_ms_mean=mean(moving + still, "draw_ms"),
         redraw_ms_still_mean=mean(still, "total_ms"), preview_frame_ms=frame_times[-1:] or None,
         region=list(state["region_size"]), load=os.getloadavg()[0], records=moving + still)
@@ -229,7 +212,7 @@ def step():
             return 0.5
         if state["step"] == "wait":
             redraw()
-            if not preview_ready():
+            if not preview_ready(view3d()[2]):
                 if time.time() - state["started"] > TIMEOUT_S:
                     raise AssertionError("the preview did not finish a frame in time")
                 return 0.5

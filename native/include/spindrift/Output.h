@@ -1,14 +1,29 @@
 #pragma once
 
 #include <filesystem>
+#include <string>
 
 #include "spindrift/RenderResult.h"
 
 namespace spindrift {
 
-/// Writes every layer as one multilayer OpenEXR (channels "layer.channel", 32-bit float). The file is written
-/// under a temporary name beside the target and renamed, so a failed write never replaces a good file.
-void writeExr(const RenderResult& result, const std::filesystem::path& path);
+/// How writeExr stores the pixels. The defaults (every channel 32-bit float, ZIP) are the command line's.
+struct ExrOptions {
+  /// Colour layers as 16-bit half float. Layers whose values are positions stay 32-bit float (see
+  /// exrLayerNeedsFloat): a half's 11-bit mantissa would move a refraction UV by up to ~1 px at 1920 px.
+  bool halfColor = false;
+  /// An OpenEXR compression as OpenImageIO names it: "none", "zip", "zips", "piz", "rle", "dwaa", ...
+  std::string compression = "zip";
+};
+
+/// True for the layers writeExr keeps in 32-bit float under `halfColor`: depths (eye depth in scene units,
+/// and the 1e10 "nothing" value, which half cannot hold) and `refraction_uv` (image coordinates).
+bool exrLayerNeedsFloat(const std::string& layerName);
+
+/// Writes every layer as one multilayer OpenEXR (channels "layer.channel"). The file is written under a
+/// temporary name beside the target and renamed, so a failed write never replaces a good file. Throws Error
+/// for an unknown compression.
+void writeExr(const RenderResult& result, const std::filesystem::path& path, const ExrOptions& options = {});
 /// Writes the composite layer as 8-bit sRGB PNG (alpha kept), also through a temporary name.
 void writePng(const RenderResult& result, const std::filesystem::path& path);
 

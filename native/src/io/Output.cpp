@@ -6,12 +6,14 @@
 #include <atomic>
 #include <cmath>
 #include <cstdint>
+#include <cstring>
 #include <memory>
 #include <set>
 #include <string>
 #include <system_error>
 #include <vector>
 
+#include <Imath/half.h>
 #include <OpenImageIO/imageio.h>
 
 #include "io/OiioErrors.h"
@@ -110,9 +112,57 @@ int channelIndex(const ImageLayer& layer, const std::string& channel) {
   return found == layer.channels.end() ? -1 : int(found - layer.channels.begin());
 }
 
+bool endsWith(const std::string& text, const std::string& suffix) {
+  return text.size() >= suffix.size() &&
+         text.compare(text.size() - suffix.size(), suffix.size(), suffix) == 0;
+}
+
+// OpenEXR's compressions as OpenImageIO's writer names them; a misspelt name would silently fall back to ZIP.
+bool knownCompression(const std::string& name) {
+  static const std::set<std::string> names = {"none",  "rle", "zip",  "zips", "piz",
+                                              "pxr24", "b44", "b44a", "dwaa", "dwab"};
+  return names.count(name) > 0;
+}
+
+// The result's layers as one interleaved pixel buffer in the spec's channel formats (float or half). Pixel by
+// pixel, so the target is written once, front to back, and each layer is read front to back.
+std::vector<std::uint8_t> interleaveNative(const RenderResult& result, const OIIO::ImageSpec& spec) {
+  struct Channel {
+    const float* source;
+    std::size_t stride;  // The layer's channel count.
+    bool half;
+  };
+  std::vector<Channel> channels;
+  for (const ImageLayer& layer : result.layers)
+    for (std::size_t c = 0; c < layer.channelCount(); ++c)
+      channels.push_back({layer.pixels.data() + c, layer.channelCount(),
+                          spec.channelformat(int(channels.size())) == OIIO::TypeHalf});
+  const std::size_t pixelCount = std::size_t(result.width) * std::size_t(result.height);
+  std::vector<std::uint8_t> interleaved(pixelCount * spec.pixel_bytes(true));
+  std::uint8_t* target = interleaved.data();
+  for (std::size_t pixel = 0; pixel < pixelCount; ++pixel) {
+    for (const Channel& channel : channels) {
+      const float value = channel.source[pixel * channel.stride];
+      if (channel.half) {
+        const Imath::half stored(value);
+        std::memcpy(target, &stored, sizeof(stored));
+        target += sizeof(stored);
+      } else {
+        std::memcpy(target, &value, sizeof(value));
+        target += sizeof(value);
+      }
+    }
+  }
+  return interleaved;
+}
+
 }  // namespace
 
-void writeExr(const RenderResult& result, const std::filesystem::path& path) {
+bool exrLayerNeedsFloat(const std::string& layerName) {
+  return layerName == "depth" || layerName == "refraction_uv" || endsWith(layerName, "_depth");
+}
+
+void writeExr(const RenderResult& result, const std::filesystem::path& path, const ExrOptions& options) {
   checkLayerSizes(result, path);
   if (result.layers.empty()) fail(path, "nothing to write: the result has no layers");
 
@@ -125,34 +175,30 @@ void writeExr(const RenderResult& result, const std::filesystem::path& path) {
   const std::set<std::string> uniqueNames(channelNames.begin(), channelNames.end());
   if (uniqueNames.size() != channelNames.size()) fail(path, "two layers have a channel of the same name");
 
-  // Interleave every layer's channels into one pixel, layer after layer.
-  const std::size_t pixelCount = std::size_t(result.width) * std::size_t(result.height);
-  const std::size_t channelCount = channelNames.size();
-  std::vector<float> interleaved(pixelCount * channelCount);
-  std::size_t firstChannel = 0;
-  for (const ImageLayer& layer : result.layers) {
-    const std::size_t layerChannels = layer.channelCount();
-    for (std::size_t pixel = 0; pixel < pixelCount; ++pixel) {
-      std::copy_n(&layer.pixels[pixel * layerChannels], layerChannels,
-                  &interleaved[pixel * channelCount + firstChannel]);
-    }
-    firstChannel += layerChannels;
-  }
-
-  OIIO::ImageSpec spec(result.width, result.height, int(channelCount), OIIO::TypeFloat);
+  if (!knownCompression(options.compression))
+    fail(path, "unknown EXR compression \"" + options.compression + "\"");
+  OIIO::ImageSpec spec(result.width, result.height, int(channelNames.size()), OIIO::TypeFloat);
   spec.channelnames = channelNames;
+  if (options.halfColor) {
+    for (const ImageLayer& layer : result.layers)
+      for (std::size_t c = 0; c < layer.channelCount(); ++c)
+        spec.channelformats.push_back(exrLayerNeedsFloat(layer.name) ? OIIO::TypeFloat : OIIO::TypeHalf);
+  }
+  // Every layer's channels interleaved into one pixel, layer after layer, already in the file's per-channel
+  // types, so OpenImageIO writes them as they are instead of converting mixed formats itself.
+  const std::vector<std::uint8_t> interleaved = interleaveNative(result, spec);
   const auto indexOf = [&](const std::string& name) {
     const auto found = std::find(channelNames.begin(), channelNames.end(), name);
     return found == channelNames.end() ? -1 : int(found - channelNames.begin());
   };
   spec.alpha_channel = indexOf("composite.A");
   spec.z_channel = indexOf("depth.Z");
-  spec.attribute("compression", "zip");
+  spec.attribute("compression", options.compression);
   spec.attribute("oiio:ColorSpace", "Linear");
   // OpenImageIO stamps the current time into the header (capDate) unless DateTime is given: left empty, the
   // same frame gives the same file on every node and every run, so farm output can be checked byte for byte.
   spec.attribute("DateTime", "");
-  writeThroughTemporaryFile(path, "openexr", spec, OIIO::TypeFloat, interleaved.data());
+  writeThroughTemporaryFile(path, "openexr", spec, OIIO::TypeUnknown, interleaved.data());
 }
 
 void writePng(const RenderResult& result, const std::filesystem::path& path) {
