@@ -20,7 +20,8 @@ SolidDepthTiles::SolidDepthTiles(const Camera& camera)
       nearest_(std::size_t(columns_) * rows_, kInfinity) {}
 
 void SolidDepthTiles::lower(float firstX, float firstY, float lastX, float lastY, float depth) {
-  if (!(lastX >= 0.0f && lastY >= 0.0f && firstX < float(camera_.width) && firstY < float(camera_.height))) return;
+  if (!(lastX >= 0.0f && lastY >= 0.0f && firstX < float(camera_.width) && firstY < float(camera_.height)))
+    return;
   const int column0 = std::max(0, int(firstX) / kTileSize), row0 = std::max(0, int(firstY) / kTileSize);
   const int column1 = std::min(columns_ - 1, int(std::min(lastX, float(camera_.width - 1))) / kTileSize);
   const int row1 = std::min(rows_ - 1, int(std::min(lastY, float(camera_.height - 1))) / kTileSize);
@@ -36,7 +37,8 @@ void SolidDepthTiles::addDepthImage(const FloatImage& eyeDepth) {
     for (int x = 0; x < eyeDepth.width; ++x) {
       const float depth = eyeDepth.pixels[(std::size_t(y) * eyeDepth.width + x) * eyeDepth.channels];
       // NaN counts as a solid at the camera: whatever the passes make of it, nothing is dropped there.
-      if (!(depth >= kInfinity)) lower(float(x), float(y), float(x), float(y), std::isnan(depth) ? 0.0f : depth);
+      if (!(depth >= kInfinity))
+        lower(float(x), float(y), float(x), float(y), std::isnan(depth) ? 0.0f : depth);
     }
 }
 
@@ -77,7 +79,8 @@ bool SolidDepthTiles::solidNearerThan(const glm::vec3& centre, float radius, flo
   if (!(lastX >= 0.0f && lastY >= 0.0f && firstX < float(camera_.width) && firstY < float(camera_.height)))
     return false;  // Off screen: it draws no pixel.
   const int column0 = std::max(0, int(firstX) / kTileSize), row0 = std::max(0, int(firstY) / kTileSize);
-  const int column1 = std::min(columns_ - 1, int(std::min(lastX + 1.0f, float(camera_.width - 1))) / kTileSize);
+  const int column1 =
+      std::min(columns_ - 1, int(std::min(lastX + 1.0f, float(camera_.width - 1))) / kTileSize);
   const int row1 = std::min(rows_ - 1, int(std::min(lastY + 1.0f, float(camera_.height - 1))) / kTileSize);
   for (int row = row0; row <= row1; ++row)
     for (int column = column0; column <= column1; ++column)
