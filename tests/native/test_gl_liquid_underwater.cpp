@@ -1,7 +1,8 @@
-// A camera under water (issue 9, item 6): the first surface it sees is the liquid's surface from below, and the
-// liquid between the camera and whatever it sees absorbs. Checked against closed-form optics computed here:
-// the depth of a flat surface, its normal facing the camera, Fresnel and Beer-Lambert inside the critical
-// angle, total internal reflection beyond it, and a solid seen through the water alone. GL tests on llvmpipe.
+// A camera under water (issue 9, item 6): the first surface it sees is the liquid's surface from below, and
+// the liquid between the camera and whatever it sees absorbs. Checked against closed-form optics computed
+// here: the depth of a flat surface, its normal facing the camera, Fresnel and Beer-Lambert inside the
+// critical angle, total internal reflection beyond it, and a solid seen through the water alone. GL tests on
+// llvmpipe.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -73,7 +74,8 @@ float surfaceHeightFromAbove() {
     for (int column = 0; column < camera.width; ++column) {
       const float depth = at(*result.layer("depth"), camera.width, column, row, 0);
       const glm::vec3 hit = eye + depth * pixelRay(camera, column, row);
-      if (depth < 1e9f && hit.x > 0.4f && hit.x < 1.6f && hit.y > 0.4f && hit.y < 1.6f) heights.push_back(hit.z);
+      if (depth < 1e9f && hit.x > 0.4f && hit.x < 1.6f && hit.y > 0.4f && hit.y < 1.6f)
+        heights.push_back(hit.z);
     }
   EXPECT_GT(heights.size(), 1000u);
   return median(heights);
@@ -133,9 +135,9 @@ UnderwaterErrors underwaterErrors(const Scene& scene, const RenderResult& result
           }
         }
       } else if (incidence > criticalDegrees + 4.0f) {
-        // Total internal reflection: the sky cannot be seen straight through; the light comes back down through
-        // more water, so it is darker than the sky through the water above the pixel (the red channel, which
-        // water absorbs most, by a factor of two at least).
+        // Total internal reflection: the sky cannot be seen straight through; the light comes back down
+        // through more water, so it is darker than the sky through the water above the pixel (the red
+        // channel, which water absorbs most, by a factor of two at least).
         ++errors.reflectedPixels;
         errors.reflectedShowingTheSky += colour.r > 0.5f * kSky.r * beforeSurface.r;
       }
@@ -149,8 +151,8 @@ TEST(GLLiquidUnderwater, SurfaceFromBelowStandsWhereItDoesFromAbove) {
   // (docs/mantaflow-caches.md); the box clip does not reach it. Measured on llvmpipe: 1.1037 against 1.1040.
   EXPECT_NEAR(surfaceHeight, 0.95f + 1.4f * kRadius, 0.3f * kRadius);
 
-  // From 0.45 below the surface, looking up at 41 degrees from the vertical: the view spans rays from about 21
-  // to 61 degrees, both sides of water's critical angle of 48.8 degrees.
+  // From 0.45 below the surface, looking up at 41 degrees from the vertical: the view spans rays from about
+  // 21 to 61 degrees, both sides of water's critical angle of 48.8 degrees.
   const Scene scene = poolScene({1.0f, 0.6f, 0.6f}, {1.0f, 1.3f, 1.4f});
   const RenderResult result = liquid_test::renderer().renderParticles(scene, pool(), 1);
   liquid_test::expectAllChannelsFinite(result);
@@ -164,9 +166,9 @@ TEST(GLLiquidUnderwater, SurfaceFromBelowStandsWhereItDoesFromAbove) {
   EXPECT_EQ(uncovered, 0);
 
   const UnderwaterErrors errors = underwaterErrors(scene, result, surfaceHeight);
-  // Measured on llvmpipe: median depth error 0.004 r, median normal error 1.3 degrees, every transmitted pixel
-  // within its bounds (largest excess below 1e-4), no reflected pixel showing the sky. Without the under-water
-  // path every one of these checks fails.
+  // Measured on llvmpipe: median depth error 0.004 r, median normal error 1.3 degrees, every transmitted
+  // pixel within its bounds (largest excess below 1e-4), no reflected pixel showing the sky. Without the
+  // under-water path every one of these checks fails.
   ASSERT_GT(errors.depthErrorsInRadii.size(), 3000u);
   EXPECT_LT(median(errors.depthErrorsInRadii), 0.25f);
   EXPECT_LT(median(errors.normalDegrees), 3.0f);
@@ -186,7 +188,8 @@ TEST(GLLiquidUnderwater, SolidSeenThroughTheWaterIsAbsorbedOnTheWay) {
   scene.background.color = kSky;
   scene.parameters.liquid.absorption = 2.0f;
   FrameInputs inputs;
-  inputs.particles = liquid_test::particlesOf(liquid_test::block({-1, -1, -1}, {1, 1.5f, 1}, kSpacing), kRadius);
+  inputs.particles =
+      liquid_test::particlesOf(liquid_test::block({-1, -1, -1}, {1, 1.5f, 1}, kSpacing), kRadius);
   TriangleMesh wall;
   wall.vertices = {{-3, 0.5f, -3}, {3, 0.5f, -3}, {3, 0.5f, 3}, {-3, 0.5f, 3}};
   wall.triangles = {{0, 1, 2}, {0, 2, 3}};
@@ -199,7 +202,8 @@ TEST(GLLiquidUnderwater, SolidSeenThroughTheWaterIsAbsorbedOnTheWay) {
   int surfacesSeen = 0;
   for (int row = 0; row < scene.camera.height; ++row)
     for (int column = 0; column < scene.camera.width; ++column) {
-      const glm::vec3 expected = kSky * glm::exp(-absorption * (0.5f * glm::length(pixelRay(scene.camera, column, row))));
+      const glm::vec3 expected =
+          kSky * glm::exp(-absorption * (0.5f * glm::length(pixelRay(scene.camera, column, row))));
       for (int c = 0; c < 3; ++c)
         largestRelativeError =
             std::max(largestRelativeError,
