@@ -36,8 +36,11 @@ void main() {
   if (halfChordSquared < 0.0) discard;
   float halfChord = sqrt(halfChordSquared);
   float nearT = closest - halfChord;
-  if (nearT <= 0.0) discard;  // The camera is inside or past the ellipsoid; the CPU culls these.
   float farT = closest + halfChord;
+  if (farT <= 0.0) discard;  // The ellipsoid lies behind the camera.
+  // A camera inside the ellipsoid (the camera under water) sees only its back surface.
+  bool cameraInside = nearT <= 0.0;
+  if (cameraInside && !backFaces) discard;
 
   // Clip the chord [nearT, farT] to the domain's box (slab test in the box's frame); where the box cuts the
   // ellipsoid the surface is the box's face, with its normal.
@@ -64,15 +67,16 @@ void main() {
     }
     nearT = clippedNear;
     farT = clippedFar;
-    if (nearT <= 0.0) discard;
+    if (farT <= 0.0 || (nearT <= 0.0 && !backFaces)) discard;
+    cameraInside = nearT <= 0.0;
   }
   float t = backFaces ? farT : nearT;
 
-  float nearDepth = nearT * -direction.z;
+  float nearDepth = cameraInside ? getNearClip() : nearT * -direction.z;
   if (nearDepth < getNearClip() || nearDepth >= texelFetch(backgroundEyeDepth, ivec2(gl_FragCoord.xy), 0).r)
     discard;
   float eyeDepth = t * -direction.z;
-  if (eyeDepth > getFarClip()) discard;
+  if (eyeDepth > getFarClip() || eyeDepth < getNearClip()) discard;
 
   // The gradient of |A^-1 x|^2 is A^-T A^-1 x: the outward normal.
   vec3 unitPoint = origin + t * unitDirection;

@@ -15,6 +15,8 @@ layout(std430, binding = 0) readonly buffer Ellipsoids {
   Ellipsoid ellipsoids[];
 };
 
+uniform bool backFaces;
+
 flat out vec3 vCameraCentre;
 flat out mat3 vInverseAxesCamera;  // maps camera-space offsets from the centre to the unit sphere
 
@@ -54,8 +56,16 @@ void main() {
   }
 
   float distanceToCentre = length(centre);
-  // The CPU culls spheres that contain the camera or lie behind it; this guards the square root anyway.
-  if (distanceToCentre <= radius * 1.0001 || centre.z >= 0.0) {
+  vec2 corner = vec2(gl_VertexID & 1, gl_VertexID >> 1) * 2.0 - 1.0;
+  if (distanceToCentre <= radius * 1.0001) {
+    // A camera inside the liquid sits inside a few particles. Their back surfaces are what it sees above it
+    // (the liquid's surface from below), so the back layer draws them over the whole screen and the fragment
+    // shader ray-casts each pixel; the front layer has no use for them.
+    gl_Position = backFaces ? vec4(corner, 0.0, 1.0) : vec4(2.0, 2.0, 2.0, 1.0);
+    return;
+  }
+  // Spheres behind the camera are culled; this also guards the square root below.
+  if (centre.z >= 0.0) {
     gl_Position = vec4(2.0, 2.0, 2.0, 1.0);
     return;
   }
@@ -68,7 +78,6 @@ void main() {
   // its circle has radius D r / sqrt(d^2 - r^2); the square around it gets a 1% margin.
   float planeDistance = max(distanceToCentre - radius, 1.01 * getNearClip() / max(-direction.z, 1e-3));
   float halfSize = planeDistance * radius / sqrt((distanceToCentre - radius) * (distanceToCentre + radius));
-  vec2 corner = vec2(gl_VertexID & 1, gl_VertexID >> 1) * 2.0 - 1.0;
   vec3 position = direction * planeDistance + (right * corner.x + up * corner.y) * halfSize * 1.01;
   gl_Position = frame.clipFromCamera * vec4(position, 1.0);
 }

@@ -33,6 +33,9 @@ uniform vec3 fallbackColor;
 uniform float indexOfRefraction;
 uniform vec3 absorptionPerUnitLength;  // a * c_a of equation 9, per RGB channel
 uniform int maxRefractions;            // 1, 2 or 4
+// The camera is inside the aggregated body (under water): every ray starts in liquid, the body's front is the
+// near plane and the first surface a ray meets is the body's back layer, the liquid's surface seen from below.
+uniform bool cameraInLiquid;
 
 layout(location = 0) out vec4 outLiquid;       // premultiplied RGBA over transparent
 layout(location = 1) out vec4 outSplash;       // the same, where the first surface is a splash
@@ -52,6 +55,7 @@ const int kSplash = 0;
 const int kAggregate = 1;
 
 float frontDepth(int body, ivec2 pixel) {
+  if (body == kAggregate && cameraInLiquid) return getNearClip();
   return body == kSplash ? texelFetch(splashFrontDepth, pixel, 0).r : texelFetch(aggregateFrontDepth, pixel, 0).r;
 }
 float backDepth(int body, ivec2 pixel) {
@@ -173,21 +177,37 @@ Crossing crossingAt(int body, vec3 origin, vec3 direction, float t) {
   return crossing;
 }
 
+ivec2 texelOf(vec3 position) {
+  return ivec2(clamp(fragCoordFromCamera(position), vec2(0.0), frame.viewportSize.xy - 1.0));
+}
+
+// Under water, marches skip their samples that are still in the texel the ray starts in: there the march
+// compares the ray with the depth of the very surface it starts from, and the sign of the difference is noise
+// (a reflection from below near the screen's edge would "leave" through the surface that just reflected it, a
+// ray just out of the water would "enter" it again). Above water the same noise makes a ray leave a body and
+// enter it again at once, which nets out; that case is left as it was measured.
+bool inStartTexel(vec3 origin, vec3 direction, float t, ivec2 startTexel) {
+  return cameraInLiquid && texelOf(origin + t * direction) == startTexel;
+}
+
 // Marches from inside `body` to where the ray leaves it.
 Crossing findExit(vec3 origin, vec3 direction, int body) {
   ScreenRay ray = screenRay(origin, direction);
   float previousT = 0.0, previousF = 1e-6;
   float t = 0.0;
+  Crossing none;
+  none.found = false;
+  none.t = 0.0;
+  ivec2 startTexel = texelOf(origin);
   for (int k = 1; k <= ray.samples; ++k) {
     t = screenRaySampleT(ray, k);
+    if (inStartTexel(origin, direction, t, startTexel)) continue;
     float f = crossingFunction(kInsideBody, body, origin, direction, t, false);
     if (f < 0.0) return crossingAt(body, origin, direction, refineCrossing(kInsideBody, body, origin, direction, previousT, previousF, t, f));
     previousT = t;
     previousF = f;
   }
   // The ray left the screen inside the liquid: the liquid ends where the view does.
-  Crossing none;
-  none.found = false;
   none.t = t;
   return none;
 }
@@ -200,11 +220,17 @@ Crossing findEntry(vec3 origin, vec3 direction) {
   ScreenRay ray = screenRay(origin, direction);
   float previousT = 0.0;
   vec2 previousF = vec2(-1e-6);
+  ivec2 startTexel = texelOf(origin);
   for (int k = 1; k <= ray.samples; ++k) {
     float t = screenRaySampleT(ray, k);
+    if (inStartTexel(origin, direction, t, startTexel)) continue;
     if (crossingFunction(kBehindSolid, 0, origin, direction, t, false) >= 0.0) break;
     vec2 f = vec2(hasSplash ? crossingFunction(kBehindFront, kSplash, origin, direction, t, false) : -1.0,
-                  hasAggregate ? crossingFunction(kBehindFront, kAggregate, origin, direction, t, false) : -1.0);
+                  // Under water the aggregate's front is the near plane, so passing behind it says nothing:
+                  // a ray that has left the water is followed into splashes only.
+                  hasAggregate && !cameraInLiquid
+                      ? crossingFunction(kBehindFront, kAggregate, origin, direction, t, false)
+                      : -1.0);
     for (int body = 0; body < 2; ++body) {
       if (f[body] >= 0.0 && previousF[body] < 0.0) {
         float tEntry = refineCrossing(kBehindFront, body, origin, direction, previousT, previousF[body], t, f[body]);
@@ -224,16 +250,20 @@ Crossing findEntry(vec3 origin, vec3 direction) {
 // where the ray meets a solid of its depth; a ray towards the sky sees the background image at the direction's
 // vanishing point when that pixel is infinitely far; a ray that leaves the screen sees the environment (or the
 // background colour). `backgroundTexel` is the window position of the background texel looked up (its
-// centre), or negative when the colour came from the environment or the flat colour.
-vec3 colourAlong(vec3 origin, vec3 direction, out vec2 backgroundTexel) {
+// centre), or negative when the colour came from the environment or the flat colour; `travelled` is how far
+// the ray went: to the solid it met, or as far as the screen let it be followed.
+vec3 colourAlong(vec3 origin, vec3 direction, out vec2 backgroundTexel, out float travelled) {
   backgroundTexel = vec2(-1.0);
   ScreenRay ray = screenRay(origin, direction);
   float previousT = 0.0, previousF = -1.0;
+  travelled = 0.0;
   for (int k = 1; k <= ray.samples; ++k) {
     float t = screenRaySampleT(ray, k);
+    travelled = t;
     float f = crossingFunction(kBehindSolid, 0, origin, direction, t, false);
     if (f >= 0.0) {
       float tHit = refineCrossing(kBehindSolid, 0, origin, direction, previousT, previousF, t, f);
+      travelled = tHit;
       vec2 hit = clamp(fragCoordFromCamera(origin + tHit * direction), vec2(0.0), frame.viewportSize.xy - 1.0);
       backgroundTexel = vec2(ivec2(hit)) + 0.5;
       return texelFetch(backgroundColor, ivec2(hit), 0).rgb;
@@ -267,15 +297,8 @@ void main() {
   imageStore(refractionUvImage, pixel, vec4(0.0));
   imageStore(transmittanceImage, pixel, vec4(0.0));
   imageStore(reflectionImage, pixel, vec4(0.0));
-  if (firstDepth >= kNoSurfaceDepth * 0.5) return;
-
-  int body = splashDepth <= aggregateDepth ? kSplash : kAggregate;
-  int firstBody = body;
-  vec3 position = viewDirection * (firstDepth / -viewDirection.z);
-  vec3 normal = surfaceNormal(body, false, gl_FragCoord.xy);
-  if (dot(normal, normal) == 0.0) normal = -viewDirection;
-  outFrontDepth = firstDepth;
-  outFrontNormal = vec4(mat3(frame.worldFromCamera) * normal, 1.0);
+  bool underLiquid = cameraInLiquid && hasAggregate;
+  if (firstDepth >= kNoSurfaceDepth * 0.5 && !underLiquid) return;
   atomicAdd(rayCounters[6], 1u);
 
   // Equations 6-8 unrolled into a running sum: colour += throughput * F_k * b(r_k), throughput *= 1 - F_k, and
@@ -289,6 +312,44 @@ void main() {
   int secondBody = -1;
   ivec2 entryPixel = pixel;  // where the path last entered a body, for the thickness of an unseen remainder
   vec2 ignoredTexel;
+  float ignoredDistance;
+  int body, firstBody;
+  vec3 position, normal;
+  if (underLiquid) {
+    // Under water the whole view is liquid. The path runs from the eye through liquid to the body's back
+    // layer, the surface seen from below, unless a solid comes first: then the pixel is that solid, absorbed.
+    body = firstBody = kAggregate;
+    float surfaceDepth = backDepth(kAggregate, pixel);
+    float solidDepth = texelFetch(backgroundEyeDepth, pixel, 0).r;
+    float endDepth = min(min(surfaceDepth, solidDepth), getFarClip());
+    pathInLiquid = endDepth / -viewDirection.z;
+    throughput = exp(-absorptionPerUnitLength * pathInLiquid);
+    outClass = 2.0;
+    outThickness = pathInLiquid;
+    if (!(surfaceDepth < solidDepth && surfaceDepth < getFarClip())) {
+      bool seesSolid = solidDepth < getFarClip();
+      vec3 seen = seesSolid ? texelFetch(backgroundColor, pixel, 0).rgb : vec3(0.0);
+      vec4 ownUv = vec4(gl_FragCoord.xy * frame.viewportSize.zw, 1.0, 0.0);
+      imageStore(refractionUvImage, pixel, seesSolid ? ownUv : vec4(0.0));
+      imageStore(transmittanceImage, pixel, vec4(seesSolid ? throughput : vec3(0.0), 0.0));
+      outLiquid = vec4(throughput * seen, 1.0);
+      return;
+    }
+    position = viewDirection * (surfaceDepth / -viewDirection.z);
+    normal = surfaceNormal(kAggregate, true, gl_FragCoord.xy);
+    if (dot(normal, normal) == 0.0) normal = viewDirection;
+    inside = true;
+    outFrontDepth = surfaceDepth;
+    // The normal pass shows the side that faces the camera, as Cycles' does for a surface seen from behind.
+    outFrontNormal = vec4(mat3(frame.worldFromCamera) * (dot(normal, viewDirection) > 0.0 ? -normal : normal), 1.0);
+  } else {
+    body = firstBody = splashDepth <= aggregateDepth ? kSplash : kAggregate;
+    position = viewDirection * (firstDepth / -viewDirection.z);
+    normal = surfaceNormal(body, false, gl_FragCoord.xy);
+    if (dot(normal, normal) == 0.0) normal = -viewDirection;
+    outFrontDepth = firstDepth;
+    outFrontNormal = vec4(mat3(frame.worldFromCamera) * normal, 1.0);
+  }
   for (int crossing = 0; crossing < 4; ++crossing) {
     // The normal faces the side the ray comes from.
     vec3 facing = dot(normal, direction) < 0.0 ? normal : -normal;
@@ -305,7 +366,12 @@ void main() {
     } else {
       // Schlick's cosine is taken on the rarer (air) side, which is the refracted side when leaving.
       float fresnel = schlickFresnel(inside ? -dot(refracted, facing) : cosine, indexOfRefraction);
-      colour += throughput * fresnel * colourAlong(position, reflected, ignoredTexel);
+      // Under water the light reflected at the surface from below crosses the liquid to the solid it comes
+      // from; inside a body seen from outside the reflection's path in liquid is short and left out.
+      float reflectedDistance;
+      vec3 reflectedColour = colourAlong(position, reflected, ignoredTexel, reflectedDistance);
+      if (inside && underLiquid) reflectedColour *= exp(-absorptionPerUnitLength * reflectedDistance);
+      colour += throughput * fresnel * reflectedColour;
       throughput *= 1.0 - fresnel;
       direction = refracted;
       ++refractions;
@@ -347,7 +413,8 @@ void main() {
   }
   // The last lookup is the background the compositor refracts, when it is one; all else is reflected light.
   vec2 finalTexel = vec2(-1.0);
-  vec3 finalColour = dot(throughput, throughput) > 0.0 ? colourAlong(position, direction, finalTexel) : vec3(0.0);
+  vec3 finalColour = dot(throughput, throughput) > 0.0 ? colourAlong(position, direction, finalTexel, ignoredDistance)
+                                                      : vec3(0.0);
   bool seesBackground = finalTexel.x >= 0.0;
   imageStore(refractionUvImage, pixel,
              seesBackground ? vec4(finalTexel * frame.viewportSize.zw, 1.0, 0.0) : vec4(0.0));

@@ -6,11 +6,11 @@ set -euo pipefail
 here="$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)"
 blender="${BLENDER:-blender}"
 
-# The frame range lives in bake.py; read it from there so the two never disagree.
-frame_start="$(sed -n 's/^FRAME_START = \([0-9]*\).*/\1/p' "$here/bake.py")"
-frame_end="$(sed -n 's/^FRAME_END = \([0-9]*\).*/\1/p' "$here/bake.py")"
+# The frame range lives in bake.py's LAYOUT; read it from there so the two never disagree.
+frame_start="$(sed -n 's/^ *frame_start=\([0-9]*\),.*/\1/p' "$here/bake.py")"
+frame_end="$(sed -n 's/^ *frame_end=\([0-9]*\),.*/\1/p' "$here/bake.py")"
 if [[ -z "$frame_start" || -z "$frame_end" ]]; then
-  echo "prepare.sh: could not read FRAME_START/FRAME_END from $here/bake.py" >&2
+  echo "prepare.sh: could not read frame_start/frame_end from the LAYOUT in $here/bake.py" >&2
   exit 1
 fi
 

@@ -247,7 +247,10 @@ RenderResult Renderer::renderPrepared(const Scene& scene, const Particles& parti
   FrameStats& stats = result.stats;
 
   const Clock::time_point prepareStart = Clock::now();
+  // Under water is decided on every aggregate; dropHiddenAggregates below leaves a body that reaches the
+  // camera's near plane whole, so the ellipsoids around the camera are still drawn.
   LiquidPreparation liquid = prepareLiquid(particles, camera, liquidParameters);
+  const bool cameraInLiquid = aggregatesContain(liquid.aggregates, camera.position(), domainBox);
   const float radius = typicalLiquidRadius(particles);
   const FoamPreparation foam = prepareFoam(particles, camera, foamParameters);
   std::optional<RaymarchPreparation> raymarch;
@@ -283,6 +286,7 @@ RenderResult Renderer::renderPrepared(const Scene& scene, const Particles& parti
   const LightingPreparation lighting = prepareLighting(particles, scene.lights, scene.parameters);
   stats.prepareMilliseconds = millisecondsSince(prepareStart);
   recordPreparation(liquid, foam, stats);
+  stats.liquid.cameraInLiquid = cameraInLiquid;
   recordLighting(scene.lights.size(), lighting, backgroundImages.lightPasses != nullptr, stats.light);
   const LayerSelection& layers = impl_->layers;
   FrameContents contents{liquid.splashes.size(),     liquid.aggregates.size(),   foam.instances.size(),
@@ -363,7 +367,8 @@ RenderResult Renderer::renderPrepared(const Scene& scene, const Particles& parti
     std::optional<LiquidData> liquidLayer;
     if (plan.runs(Pass::Refraction))
       liquidLayer.emplace(timed(Pass::Refraction, [&] {
-        return pipeline.refraction.run(splashes, aggregates, background, liquidParameters, width, height);
+        return pipeline.refraction.run(splashes, aggregates, background, liquidParameters, cameraInLiquid,
+                                       width, height);
       }));
 
     // Foam (foam paper, figure 2): the solids' and the liquid's depth, the foam's nearest depth, its

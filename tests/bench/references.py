@@ -5,7 +5,8 @@ Run inside Blender (tests/bench/benchmark.py does this when a reference is missi
     blender -b --factory-startup --python-exit-code 1 --python tests/bench/references.py -- \
         --example examples/drop --output build/bench/references/drop [--width 480 --height 270 ...]
 
-The scene is built by the example's own bake.py (its `build_scene`), never copied here. For every camera of
+The scene is built by the example's own bake.py (its `LAYOUT` and `build_scene`, over examples/bakelib), never
+copied here. For every camera of
 EXAMPLE/cameras.json it writes into OUTPUT/CAMERA/:
 
 - background.exr: everything but the liquid, colour and planar depth (Spindrift's background);
@@ -33,6 +34,10 @@ import time
 import bpy
 from mathutils import Vector
 
+ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
+sys.path.insert(0, os.path.join(ROOT, "examples"))
+from bakelib import render as example_render, scene_file  # noqa: E402 (Blender runs this file by path)
+
 
 def log(message):
     print(f"[references] {message}", flush=True)
@@ -59,8 +64,7 @@ def load_example(directory):
     spec = importlib.util.spec_from_file_location("example_bake", os.path.join(directory, "bake.py"))
     module = importlib.util.module_from_spec(spec)
     spec.loader.exec_module(module)
-    # drop/bake.py wraps dam_break/bake.py; either way the layout constants live beside build_scene.
-    return getattr(module, "dam_break", module)
+    return module
 
 
 def read_bobj(path):
@@ -90,8 +94,8 @@ def add_liquid_mesh(example, cache_directory, frame, absorption_rgb):
     prints for Blender's own evaluated mesh).
     """
     vertices, triangles = read_bobj(os.path.join(cache_directory, "mesh", f"fluid_mesh_{frame:04d}.bobj.gz"))
-    centre = example.DOMAIN_MIN + example.DOMAIN_SIZE / 2
-    scale = max(example.DOMAIN_SIZE)
+    centre = example.LAYOUT.domain_min + example.LAYOUT.domain_size / 2
+    scale = max(example.LAYOUT.domain_size)
     world = [tuple(centre + Vector(v) * scale) for v in vertices]
     mesh = bpy.data.meshes.new("LiquidMesh")
     mesh.from_pydata(world, [], [tuple(t) for t in triangles])
@@ -140,13 +144,13 @@ def place_camera(camera, definition, width, height):
 
 
 def write_scene_file(example, camera, domain, example_directory, path, width, height):
-    description = example.scene_description(camera, domain)
+    description = scene_file.scene_description(example.LAYOUT, camera, domain)
     description["camera"]["width"], description["camera"]["height"] = width, height
     for source in description["particles"]:
         source["path"] = os.path.join(example_directory, source["path"])
     description["background"]["image"] = "background.exr"
     with open(path, "w", encoding="utf-8") as handle:
-        handle.write(example.format_scene_json(description))
+        handle.write(scene_file.format_scene_json(description))
 
 
 def render(path, samples, seed=0):
@@ -167,7 +171,9 @@ def set_visible(objects, visible):
 
 def configure_cycles(example, output):
     scene = bpy.context.scene
-    example.configure_background_render(scene, output)
+    layout = example.LAYOUT
+    example_render.configure_background_render(scene, output, layout.render_width, layout.render_height,
+                                               layout.render_samples)
     # Adaptive sampling would make "N samples" mean fewer on easy pixels; the sweep wants exactly N.
     scene.cycles.use_adaptive_sampling = False
     scene.cycles.max_bounces = 16
@@ -233,12 +239,12 @@ def main():
         cameras = [c for c in cameras if c["name"] in wanted]
 
     # The example's domain gets a scratch cache directory: nothing here bakes, and Blender may free a cache
-    # it did not bake in this session (see dam_break/bake.py).
+    # it did not bake in this session (see examples/bakelib/example.py).
     with tempfile.TemporaryDirectory(prefix="references_cache_") as scratch:
         domain, _, camera = example.build_scene(scratch)
-        bpy.context.scene.frame_set(example.SHOWCASE_FRAME)
+        bpy.context.scene.frame_set(example.LAYOUT.showcase_frame)
         absorption = [float(c) for c in arguments.absorption_rgb.split(",")]
-        liquid = add_liquid_mesh(example, os.path.join(example_directory, "cache"), example.SHOWCASE_FRAME,
+        liquid = add_liquid_mesh(example, os.path.join(example_directory, "cache"), example.LAYOUT.showcase_frame,
                                  absorption)
         configure_cycles(example, arguments.output)
         for definition in cameras:

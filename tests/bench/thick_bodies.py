@@ -47,8 +47,10 @@ def load(path, name):
     return module
 
 
-dam_break = load(os.path.join(ROOT, "examples", "dam_break", "bake.py"), "dam_break_bake")
 references = load(os.path.join(HERE, "references.py"), "bench_references")
+# The dam-break example's floor, lighting and render settings (examples/bakelib, imported as its bake.py does).
+dam_break = load(os.path.join(ROOT, "examples", "dam_break", "bake.py"), "dam_break_bake")
+from bakelib import blender_scene, render, scene_file as scene_files  # noqa: E402 (on the path bake.py set)
 
 SUN_ROTATION = (math.radians(35.0), 0.0, math.radians(30.0))  # elevation 55 degrees
 SUN_STRENGTH = 3.0
@@ -121,7 +123,7 @@ def write_ply(path, points):
 
 def add_water(shape):
     if shape[0] == "box":
-        water = dam_break.add_box("Water", Vector(shape[1]), Vector(shape[2]))
+        water = blender_scene.add_box("Water", Vector(shape[1]), Vector(shape[2]))
     else:
         bpy.ops.mesh.primitive_uv_sphere_add(segments=96, ring_count=48, radius=shape[2], location=shape[1])
         water = bpy.context.active_object
@@ -133,33 +135,29 @@ def add_water(shape):
 
 def add_tank(shape):
     low, high = Vector(shape[1]), Vector(shape[2])
-    material = dam_break.make_material("TankWall", (0.72, 0.7, 0.66), roughness=0.8)
+    material = blender_scene.make_material("TankWall", (0.72, 0.7, 0.66), roughness=0.8)
     t = TANK_WALL
     walls = [((low.x - t, low.y - t, 0), (high.x + t, low.y, TANK_HEIGHT)),
              ((low.x - t, high.y, 0), (high.x + t, high.y + t, TANK_HEIGHT)),
              ((low.x - t, low.y, 0), (low.x, high.y, TANK_HEIGHT)),
              ((high.x, low.y, 0), (high.x + t, high.y, TANK_HEIGHT))]
     for index, (box_min, box_max) in enumerate(walls):
-        dam_break.add_box(f"Tank{index}", Vector(box_min), Vector(box_max)).data.materials.append(material)
+        blender_scene.add_box(f"Tank{index}", Vector(box_min), Vector(box_max)).data.materials.append(material)
 
 
 def build_frame(definition, width, height):
-    dam_break.clear_scene()
-    floor = dam_break.add_plane("Floor", 24.0, (0.0, 0.0, 0.0))
-    floor.data.materials.append(dam_break.make_checker_material("FloorTiles", (0.62, 0.6, 0.56),
-                                                                (0.36, 0.35, 0.33), scale=12.0))
+    blender_scene.clear_scene()
+    floor = blender_scene.add_plane("Floor", 24.0, (0.0, 0.0, 0.0))
+    floor.data.materials.append(blender_scene.make_checker_material("FloorTiles", (0.62, 0.6, 0.56),
+                                                                    (0.36, 0.35, 0.33), scale=12.0))
     if definition["tank"]:
         add_tank(definition["shape"])
     water = add_water(definition["shape"])
-    camera = dam_break.build_camera()
     location, target, lens = definition["camera"]
-    camera.location = Vector(location)
-    camera.rotation_euler = (Vector(target) - Vector(location)).to_track_quat('-Z', 'Y').to_euler()
-    camera.data.lens = lens
-    dam_break.build_lighting()
-    sun = bpy.data.objects["Sun"]
-    sun.rotation_euler = SUN_ROTATION
-    sun.data.energy = SUN_STRENGTH
+    camera = blender_scene.build_camera(Vector(location), Vector(target), lens)
+    layout = dam_break.LAYOUT
+    sun = blender_scene.build_lighting(layout.world_color, layout.world_strength, sun_energy=SUN_STRENGTH,
+                                       sun_rotation=SUN_ROTATION)
     scene = bpy.context.scene
     scene.render.resolution_x, scene.render.resolution_y = width, height
     bpy.context.view_layer.update()
@@ -168,8 +166,7 @@ def build_frame(definition, width, height):
 
 def configure(output_directory, width, height):
     scene = bpy.context.scene
-    dam_break.configure_background_render(scene, output_directory)
-    scene.render.resolution_x, scene.render.resolution_y = width, height
+    render.configure_background_render(scene, output_directory, width, height, dam_break.LAYOUT.render_samples)
     scene.cycles.use_adaptive_sampling = False
     scene.cycles.max_bounces = 16
     scene.cycles.transmission_bounces = 16
@@ -184,15 +181,14 @@ def configure(output_directory, width, height):
 def scene_file(camera, sun, width, height):
     description = {
         "version": 1,
-        "camera": dam_break.camera_description(camera),
+        "camera": scene_files.camera_description(camera, width, height),
         "particles": [{"path": "particles.ply", "role": "liquid", "radius": PARTICLE_RADIUS}],
         "background": {"image": "background.exr",
-                       "color": [dam_break.WORLD_COLOR[i] * dam_break.WORLD_STRENGTH for i in range(3)]},
+                       "color": [c * dam_break.LAYOUT.world_strength for c in dam_break.LAYOUT.world_color]},
         "lights": [{"type": "sun",
-                    "direction": [dam_break.clean_number(-c) for c in sun.matrix_world.col[2][:3]],
+                    "direction": [scene_files.clean_number(-c) for c in sun.matrix_world.col[2][:3]],
                     "color": list(sun.data.color), "strength": sun.data.energy}],
     }
-    description["camera"]["width"], description["camera"]["height"] = width, height
     return description
 
 

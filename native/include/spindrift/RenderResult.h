@@ -47,6 +47,8 @@ struct LiquidFrameStats {
   std::size_t totalInternalReflections = 0;
   /// Paths whose march inside a body left the screen; their unseen rest is estimated from the thickness.
   std::size_t exitsOffScreen = 0;
+  /// The camera is inside the aggregated body: the frame is seen from under water.
+  bool cameraInLiquid = false;
   /// Rays with a second body, by order: splash>splash, splash>aggregate, aggregate>splash,
   /// aggregate>aggregate.
   std::size_t orders[4] = {0, 0, 0, 0};

@@ -17,9 +17,11 @@ namespace spindrift {
 class RefractionPass {
  public:
   explicit RefractionPass(const ShaderLibrary& shaders);
-  /// Either layer set may be absent (no splash, or no aggregate, in view).
+  /// Either layer set may be absent (no splash, or no aggregate, in view). With `cameraInLiquid` every ray
+  /// starts inside the aggregated body and first meets its back layer, the surface seen from below.
   LiquidData run(const std::optional<SurfaceLayers>& splashes, const std::optional<SurfaceLayers>& aggregates,
-                 const BackgroundData& background, const LiquidParameters& parameters, int width, int height);
+                 const BackgroundData& background, const LiquidParameters& parameters, bool cameraInLiquid,
+                 int width, int height);
   /// The counters of the last run (waits for the GPU).
   RefractionStatistics statistics() const;
 

@@ -6,6 +6,9 @@
 
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
+#include <glm/geometric.hpp>
+#include <glm/mat3x3.hpp>
+#include <glm/matrix.hpp>
 
 #include "prep/LiquidStages.h"
 #include "prep/ViewFrustum.h"
@@ -138,6 +141,26 @@ void classifyAndPack(const NeighbourGrid& grid, const ParticleShapes& shapes,
   preparation.isotropicInterior = 0;
   for (std::size_t interior : interiorPerBlock)
     preparation.isotropicInterior += interior;
+}
+
+bool aggregatesContain(const std::vector<EllipsoidInstance>& aggregates, const glm::vec3& point,
+                       const DomainBox* domain) {
+  if (domain) {
+    const glm::vec3 inBox(glm::inverse(domain->worldFromBox) * glm::vec4(point, 1.0f));
+    if (glm::any(glm::lessThan(inBox, domain->low)) || glm::any(glm::greaterThan(inBox, domain->high)))
+      return false;
+  }
+  for (const EllipsoidInstance& ellipsoid : aggregates) {
+    const glm::vec3 offset = point - glm::vec3(ellipsoid.centreAndBoundingRadius);
+    const float bound = ellipsoid.centreAndBoundingRadius.w;
+    if (glm::dot(offset, offset) > bound * bound) continue;
+    // The rows of the inverse axes matrix map the offset onto the unit sphere.
+    const glm::vec3 unit(glm::dot(glm::vec3(ellipsoid.inverseAxesRows[0]), offset),
+                         glm::dot(glm::vec3(ellipsoid.inverseAxesRows[1]), offset),
+                         glm::dot(glm::vec3(ellipsoid.inverseAxesRows[2]), offset));
+    if (glm::dot(unit, unit) <= 1.0f) return true;
+  }
+  return false;
 }
 
 LiquidPreparation prepareLiquid(const Particles& particles, const Camera& camera,

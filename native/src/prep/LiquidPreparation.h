@@ -8,6 +8,7 @@
 #include "spindrift/Camera.h"
 #include "spindrift/Parameters.h"
 #include "spindrift/Particles.h"
+#include "spindrift/Scene.h"
 
 namespace spindrift {
 
@@ -36,5 +37,10 @@ struct LiquidPreparation {
 /// With liquid.layers = merged every visible particle is an aggregate (the earlier two-layer method).
 LiquidPreparation prepareLiquid(const Particles& particles, const Camera& camera,
                                 const LiquidParameters& parameters);
+
+/// Whether `point` lies inside the drawn aggregated body: inside one of its ellipsoids and, for a Mantaflow
+/// liquid, inside the domain's box that clips them. This is how the renderer knows the camera is under water.
+bool aggregatesContain(const std::vector<EllipsoidInstance>& aggregates, const glm::vec3& point,
+                       const DomainBox* domain);
 
 }  // namespace spindrift
