@@ -66,3 +66,5 @@ done
 log "PASS: frames $first-$last, each written once; Spindrift layers byte-identical and composites" \
     "pixel-identical to the local render; one task killed and requeued, a truncated frame replaced;" \
     "$((SECONDS - start)) s"
+echo "--- the killed task's log (both attempts):"
+grep -E '^(farm-task|farm-blender|frame [0-9]+ )' "$killed_log" | sed 's/^/  /'
