@@ -95,13 +95,20 @@ kill_renderer_after() {
   kill -KILL "$killed_pid"
 }
 
-# Waits for the job to leave the queue. Slurm holds a requeued job for about two minutes before it may start
-# again (so that a node can clean up); the test, being the administrator, lets it start at once.
+# Waits until all TASKS tasks of the job have ended: `squeue -t all` lists them with their state (finished
+# ones stay listed for MinJobAge), so neither a busy slurmctld (squeue fails, no output) nor the moment a
+# requeued task passes between states is taken for the end. Slurm holds a requeued task for about two
+# minutes before it may start again (so that a node can clean up); the test, being the administrator, lets
+# it start at once.
 wait_for_job() {
-  local seconds="$1" deadline
+  local seconds="$1" tasks="$2" deadline states
   deadline=$((SECONDS + seconds))
-  while [ -n "$(squeue -h -j "$job" 2>/dev/null)" ]; do
-    [ $SECONDS -lt $deadline ] || fail "the job did not finish in $seconds s"
+  while true; do
+    [ $SECONDS -lt $deadline ] || fail "the job did not finish in $seconds s: $(squeue -r -t all -h -j "$job" -o '%i %T' | xargs)"
+    if states="$(squeue -r -t all -h -j "$job" -o "%T" 2>/dev/null)" && [ "$(echo "$states" | grep -c .)" -eq "$tasks" ] &&
+       ! echo "$states" | grep -qvE '^(COMPLETED|FAILED|CANCELLED|TIMEOUT|NODE_FAIL|OUT_OF_MEMORY|BOOT_FAIL|DEADLINE)$'; then
+      break
+    fi
     if squeue -h -j "$job" -t PD -o "%i %r" 2>/dev/null | grep -q BeginTime; then
       for id in $(squeue -h -j "$job" -t PD -o "%i"); do scontrol update JobId="$id" StartTime=now 2>/dev/null || true; done
     fi

@@ -44,7 +44,7 @@ killed_log="$work/logs/${job}_${killed_task}.log"
 first_of_chunk=$((first + killed_task * chunk))
 kill_renderer_after "$killed_log" "^frame $first_of_chunk done" 300
 log "killed task $killed_task's Blender (pid $killed_pid) after frame $first_of_chunk"
-wait_for_job 600
+wait_for_job 600 $(( (last - first) / chunk + 1 ))
 log "job finished at $((SECONDS - start)) s"
 
 # --- every frame exactly once, the truncated one replaced, identical to the local render ------------------

@@ -30,7 +30,7 @@ killed_log="$work/logs/${job}_${killed_task}.log"
 first_of_chunk=$((1 + killed_task * chunk))
 kill_renderer_after "$killed_log" "^frame $first_of_chunk done" 120
 log "killed task $killed_task's renderer (pid $killed_pid) after frame $first_of_chunk"
-wait_for_job 240
+wait_for_job 240 $(( (frames + chunk - 1) / chunk ))
 log "job finished at $((SECONDS - start)) s"
 
 # --- every frame exactly once, complete, identical ------------------------------------------------------
