@@ -5,7 +5,8 @@ never counted as done.
 Blender writes a frame's image straight to its final name (not under a temporary one, checked in 3.4.1), so
 a file that exists may be truncated. This script therefore keeps a completion record per frame in DONE_DIR,
 written in `render_write` (which Blender calls after the frame's file is closed), and before the render:
-- a frame whose output exists and has a record is left alone (Blender's own Overwrite off skips it);
+- a frame whose output exists and has a record (and its Spindrift layer file, when the shot has layers) is
+  left alone (Blender's own Overwrite off skips it);
 - an output without a record (a killed write, or a render of unknown origin) is removed, so it is rendered.
 Placeholders stay off: a placeholder left by a killed task is an empty file that Overwrite off would skip.
 Spindrift's own layer EXR (spindrift_NNNN.exr) is written under a temporary name and renamed by the module,
@@ -61,20 +62,34 @@ def on_render_write(scene, _depsgraph=None):
     print(f"frame {frame} done", flush=True)
 
 
+def layers_missing(scene, frame):
+    """The frame's Spindrift layer file when the shot renders layers and it is not there (deleted by hand):
+    the composite exists without what it was made of, so the frame is rendered again."""
+    from spindrift import render_layer  # The add-on's package (loaded: main() checked).
+
+    if not render_layer._wants_layers(scene):
+        return None
+    path = render_layer.layer_path(scene, frame)
+    return None if os.path.isfile(path) else path
+
+
 def prepare(scene, first, last):
-    """Removes every output of FIRST..LAST that has no completion record; says which frames are skipped."""
+    """Removes every output of FIRST..LAST that has no completion record (or lost its layer file); says which
+    frames are skipped."""
     os.makedirs(DONE_DIR, exist_ok=True)
     for frame in range(first, last + 1):
-        output, record = output_path(scene, frame), None
+        output = output_path(scene, frame)
         record = record_path(output)
-        if os.path.isfile(output) and os.path.isfile(record):
+        missing = layers_missing(scene, frame)
+        if os.path.isfile(output) and os.path.isfile(record) and not missing:
             print(f"frame {frame} skipped: its files exist", flush=True)
         elif os.path.exists(output):
             os.remove(output)
-            say(f"frame {frame}: removed {output}: no record that it was completed (a killed task may have "
-                "truncated it)")
-        elif os.path.exists(record):
-            os.remove(record)  # The output was deleted by hand: render it again.
+            reason = (f"its Spindrift layers {missing} are missing" if os.path.isfile(record) and missing else
+                      "no record that it was completed (a killed task may have truncated it)")
+            say(f"frame {frame}: removed {output}: {reason}")
+        if os.path.exists(record) and not os.path.exists(output):
+            os.remove(record)  # The output is gone (removed above, or by hand): render it again.
 
 
 def main():

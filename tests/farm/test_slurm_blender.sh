@@ -5,12 +5,13 @@
 # reference, then submitted with scripts/farm-submit. One task's Blender is SIGKILLed after its first frame,
 # and a truncated file (what a write cut short leaves) waits at another frame's output. Checks that every
 # frame arrives exactly once, that the truncated file was replaced, and that the Spindrift layer EXRs are
-# byte-identical and the composited frames pixel-identical to the local render.
+# byte-identical and the composited frames pixel-identical to the local render. Then deletes one frame's
+# layer file and submits the shot again: only that frame is rendered again.
 #   tests/farm/test_slurm_blender.sh ADDON_ZIP FIXTURE_DIR
 set -euo pipefail
 source_dir="$(cd "$(dirname "$0")/../.." && pwd)"
 addon_zip="$(realpath "$1")" fixture="$(realpath "$2")"
-first=3 last=6 chunk=2 killed_task=0 truncated_frame=6
+first=3 last=6 chunk=2 killed_task=0 truncated_frame=6 lost_layers_frame=5
 test_name=slurm-blender
 work="$(mktemp -d /tmp/spindrift-slurm-blender-XXXXXX)"
 # shellcheck source=tests/farm/slurm_cluster.sh
@@ -63,8 +64,32 @@ for f in $(seq "$first" "$last"); do
 done
 /usr/bin/python3 "$source_dir/tests/farm/compare_images.py" "$work/reference" "$work/farm" "${names[@]}" \
   || fail "the farm's frames differ from the local render's"
+
+# --- a resubmission with the same logs renders only what is missing: a frame whose layer file was deleted --
+rm "$work/farm/$(printf 'spindrift_%04d.exr' "$lost_layers_frame")"
+first_job="$job"
+job="$("$source_dir/scripts/farm-submit" "$work/shot/shot.blend" --frames "$first-$last" --chunk "$chunk" \
+        --retries 0 --addon-zip "$addon_zip" -o "$work/farm/frame_####" --logs "$work/logs")" || fail "resubmitting"
+wait_for_job 300 $(( (last - first) / chunk + 1 ))
+resubmitted="$(cat "$work"/logs/"${job}"_*.log)"
+for f in $(seq "$first" "$last"); do
+  if [ "$f" -eq "$lost_layers_frame" ]; then
+    grep -q "frame $f: removed .*: its Spindrift layers .* are missing" <<< "$resubmitted" \
+      || fail "the resubmission did not notice frame $f's missing layers"
+    grep -q "^frame $f done" <<< "$resubmitted" || fail "the resubmission did not render frame $f again"
+  else
+    grep -q "^frame $f skipped" <<< "$resubmitted" || fail "the resubmission did not skip frame $f"
+    ! grep -q "^frame $f done" <<< "$resubmitted" || fail "the resubmission rendered frame $f again"
+  fi
+done
+[ "$(ls -A "$work/farm")" = "$expected" ] || fail "after the resubmission the output directory holds: $(ls -A "$work/farm" | xargs)"
+/usr/bin/python3 "$source_dir/tests/farm/compare_images.py" "$work/reference" "$work/farm" "${names[@]}" > /dev/null \
+  || fail "after the resubmission the frames differ from the local render's"
+log "resubmitted as job $job (first was $first_job): frame $lost_layers_frame, whose layers were deleted," \
+    "rendered again; the others skipped"
 log "PASS: frames $first-$last, each written once; Spindrift layers byte-identical and composites" \
-    "pixel-identical to the local render; one task killed and requeued, a truncated frame replaced;" \
+    "pixel-identical to the local render; one task killed and requeued, a truncated frame replaced, a frame" \
+    "with lost layers rendered again on resubmission;" \
     "$((SECONDS - start)) s"
 echo "--- the killed task's log (both attempts):"
 grep -E '^(farm-task|farm-blender|frame [0-9]+ )' "$killed_log" | sed 's/^/  /'
