@@ -92,20 +92,26 @@ CASES = {
     # The limits of docs/reliability.md ("Limits"), through the module: the scene's camera and radii. The
     # scene parser refuses them first, naming the key; a non-finite number cannot be written in JSON (1e999
     # overflows, and is refused as such; `validateCamera` checks matrices built through the C++ API).
-    "radius_zero": (dict(scene_json=scene_with(source={"radius": 0})), "Error", "particles[0].radius: 0 is outside (0, 1e+30]"),
-    "radius_negative": (dict(scene_json=scene_with(source={"radius": -0.1})), "Error", "radius: -0.1 is outside (0, 1e+30]"),
+    "radius_zero": (dict(scene_json=scene_with(source={"radius": 0})), "Error",
+                    "particles[0].radius: 0 is outside (0, 1e+30]"),
+    "radius_negative": (dict(scene_json=scene_with(source={"radius": -0.1})), "Error",
+                        "radius: -0.1 is outside (0, 1e+30]"),
     "fov_zero": (dict(scene_json=scene_with({"fov_y_deg": 0})), "Error", "camera.fov_y_deg: 0 is outside (0, 179]"),
     "fov_negative": (dict(scene_json=scene_with({"fov_y_deg": -30})), "Error", "fov_y_deg: -30 is outside (0, 179]"),
     "fov_180": (dict(scene_json=scene_with({"fov_y_deg": 180})), "Error", "fov_y_deg: 180 is outside (0, 179]"),
-    "near_equals_far": (dict(scene_json=scene_with({"near": 5, "far": 5})), "Error", "camera.far: must be greater than near"),
-    "near_beyond_far": (dict(scene_json=scene_with({"near": 50, "far": 5})), "Error", "camera.far: must be greater than near"),
+    "near_equals_far": (dict(scene_json=scene_with({"near": 5, "far": 5})), "Error",
+                        "camera.far: must be greater than near"),
+    "near_beyond_far": (dict(scene_json=scene_with({"near": 50, "far": 5})), "Error",
+                        "camera.far: must be greater than near"),
     "camera_matrix_infinite": (dict(scene_json=scene_with({"world_from_camera": IDENTITY[:3] + ["RAW"] + IDENTITY[4:],
                                                            "position": None, "target": None, "up": None},
-                                                          raw="1e999")), "Error", "number overflow parsing '1e999'"),
+                                                          raw="1e999")),
+                               "Error", "number overflow parsing '1e999'"),
     "camera_matrix_singular": (dict(scene_json=scene_with({"world_from_camera": [0] * 12 + [0, 0, 0, 1],
                                                            "position": None, "target": None, "up": None})),
                                "Error", "camera.world_from_camera: the matrix is singular"),
-    "width_over_16384": (dict(scene_json=scene_with({"width": 16385})), "Error", "camera.width: 16385 is outside [1, 16384]"),
+    "width_over_16384": (dict(scene_json=scene_with({"width": 16385})), "Error",
+                         "camera.width: 16385 is outside [1, 16384]"),
     "height_zero": (dict(scene_json=scene_with({"height": 0})), "Error", "camera.height: 0 is outside [1, 16384]"),
     # 16384² is within the hard cap, and GL's on llvmpipe, but its ~256 GiB of targets are not: refused
     # before anything is allocated.
