@@ -49,6 +49,21 @@ def test_nan_positions_are_dropped_and_counted(outcomes):
     assert outcome["liquid"] == N - 5
 
 
+def test_radii_not_positive_are_dropped_and_counted(outcomes):
+    outcome = outcomes[0]["radii_not_positive_dropped"]
+    assert outcome["dropped"] == 3
+    assert outcome["liquid"] == N - 3
+
+
+def test_memory_limits_name_what_is_available(outcomes):
+    """Both memory refusals say how much the frame needs against what is available, and where that comes
+    from; the particle case names the limit this test set."""
+    particles = outcomes[0]["particles_over_memory"]["message"]
+    assert "more than the 64 MiB available (SPINDRIFT_MEMORY_LIMIT_MB" in particles, particles
+    resolution = outcomes[0]["resolution_over_memory"]["message"]
+    assert "MiB available" in resolution or "larger than this OpenGL allows" in resolution, resolution
+
+
 def test_render_after_close_raises(outcomes):
     outcome = outcomes[0]["render_after_close"]
     assert outcome["exception"] == "Error" and "closed" in outcome["message"]

@@ -3,6 +3,7 @@ against one Renderer and prints one JSON line when a case starts and one when it
 would kill a pytest process, and Blender) is pinned on the case that caused it (test_module_validation.py)."""
 
 import json
+import os
 import sys
 
 import numpy as np
@@ -23,6 +24,19 @@ def quad(**changes):
     return mesh
 
 
+def scene_with(camera=None, source=None, raw=None):
+    """The test scene with camera keys changed and/or one particle source; RAW replaces a quoted placeholder
+    in the text (JSON has no literal for a non-finite number, but 1e999 parses to infinity)."""
+    base = json.loads(scene_json())
+    base["camera"].update(camera or {})
+    base["camera"] = {key: value for key, value in base["camera"].items() if value is not None}  # None: remove
+    if source is not None:
+        base["particles"] = [{"path": "none_####.ply", **source}]
+    text = json.dumps(base)
+    return text.replace('"RAW"', raw) if raw else text
+
+
+IDENTITY = [1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1]
 N = len(sphere_of_particles(count=50)["radii"])
 positions = sphere_of_particles(count=50)["positions"]
 
@@ -81,6 +95,39 @@ CASES = {
     "bad_scene_json": (dict(scene_json="{"), "Error", "not valid JSON"),
     "scene_unknown_key": (dict(scene_json='{"version": 1, "camera": {}, "particles": [], "bogus": 1}'), "Error",
                           "bogus"),
+    # The limits of docs/reliability.md ("Limits"), through the module: the scene's camera and radii. The
+    # scene parser refuses them first, naming the key; a non-finite number cannot be written in JSON (1e999
+    # overflows, and is refused as such; `validateCamera` checks matrices built through the C++ API).
+    "radius_zero": (dict(scene_json=scene_with(source={"radius": 0})), "Error",
+                    "particles[0].radius: 0 is outside (0, 1e+30]"),
+    "radius_negative": (dict(scene_json=scene_with(source={"radius": -0.1})), "Error",
+                        "radius: -0.1 is outside (0, 1e+30]"),
+    "fov_zero": (dict(scene_json=scene_with({"fov_y_deg": 0})), "Error", "camera.fov_y_deg: 0 is outside (0, 179]"),
+    "fov_negative": (dict(scene_json=scene_with({"fov_y_deg": -30})), "Error", "fov_y_deg: -30 is outside (0, 179]"),
+    "fov_180": (dict(scene_json=scene_with({"fov_y_deg": 180})), "Error", "fov_y_deg: 180 is outside (0, 179]"),
+    "near_equals_far": (dict(scene_json=scene_with({"near": 5, "far": 5})), "Error",
+                        "camera.far: must be greater than near"),
+    "near_beyond_far": (dict(scene_json=scene_with({"near": 50, "far": 5})), "Error",
+                        "camera.far: must be greater than near"),
+    "camera_matrix_infinite": (dict(scene_json=scene_with({"world_from_camera": IDENTITY[:3] + ["RAW"] + IDENTITY[4:],
+                                                           "position": None, "target": None, "up": None},
+                                                          raw="1e999")),
+                               "Error", "number overflow parsing '1e999'"),
+    "camera_matrix_singular": (dict(scene_json=scene_with({"world_from_camera": [0] * 12 + [0, 0, 0, 1],
+                                                           "position": None, "target": None, "up": None})),
+                               "Error", "camera.world_from_camera: the matrix is singular"),
+    "width_over_16384": (dict(scene_json=scene_with({"width": 16385})), "Error",
+                         "camera.width: 16385 is outside [1, 16384]"),
+    "height_zero": (dict(scene_json=scene_with({"height": 0})), "Error", "camera.height: 0 is outside [1, 16384]"),
+    # 16384² is within the hard cap, and GL's on llvmpipe, but its ~256 GiB of targets are not: refused
+    # before anything is allocated.
+    "resolution_over_memory": (dict(scene_json=scene_with({"width": 16384, "height": 16384})), "Error",
+                               "16384x16384"),
+    # A million particles need ~244 MiB of preparation, over the 64 MiB limit run_case sets for this case.
+    "particles_over_memory": (dict(particles=particles(positions=np.zeros((1_000_000, 3), np.float32),
+                                                       radii=np.full(1_000_000, 0.1, np.float32),
+                                                       kinds=np.zeros(1_000_000, np.uint8))), "Error",
+                              "frame of 1000000 particles needs"),
     # A directory cannot be made inside a file: the library's writer fails, and says where.
     "exr_path_under_a_file": (dict(exr_path=__file__ + "/frame.exr"), "Error", "frame.exr"),
     # Valid inputs at the edges: these must render.
@@ -91,17 +138,26 @@ CASES = {
                           occluders={"vertices": np.zeros((0, 3), np.float32),
                                      "triangles": np.zeros((0, 3), np.int32)}), None, ""),
     "occluder_list": (dict(occluders=[quad(), quad()]), None, ""),
+    # Per-particle radii ≤ 0 (or not finite) are dropped and counted, as file loading does (docs/python-module.md):
+    # one bad particle of a simulation must not cost the frame.
+    "radii_not_positive_dropped": (dict(particles=particles(radii=np.concatenate(
+        [np.array([0.0, -1.0, np.inf], np.float32), np.full(N - 3, 0.1, np.float32)]))), None, ""),
 }
+MEMORY_LIMIT_MB = {"particles_over_memory": 64}
 
 
 def run_case(spindrift, renderer, name):
     arguments, _, _ = CASES[name]
     arguments = dict(arguments)
     scene = arguments.pop("scene_json", scene_json())
+    if name in MEMORY_LIMIT_MB:  # The library reads it at every check (os.environ sets the C environment).
+        os.environ["SPINDRIFT_MEMORY_LIMIT_MB"] = str(MEMORY_LIMIT_MB[name])
     try:
         result = renderer.render(scene, 1, **arguments)
     except Exception as error:  # noqa: BLE001 (the test compares the exception's type)
         return {"exception": type(error).__name__, "message": str(error)}
+    finally:
+        os.environ.pop("SPINDRIFT_MEMORY_LIMIT_MB", None)
     return {"exception": None, "message": "", "dropped": result["stats"]["particles"]["dropped_invalid"],
             "liquid": result["stats"]["particles"]["liquid"]}
 

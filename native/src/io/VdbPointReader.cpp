@@ -1,7 +1,10 @@
 #include <algorithm>
 #include <cstdint>
+#include <limits>
 #include <mutex>
+#include <sstream>
 #include <string>
+#include <type_traits>
 #include <vector>
 
 #include <openvdb/io/File.h>
@@ -48,6 +51,32 @@ std::string joinNames(const std::vector<std::string>& names) {
   return joined;
 }
 
+// Converts one stored value of attribute NAME. A cast of a NaN or out-of-range floating value to an integer,
+// or of a double beyond float's range to float, is undefined behaviour (fuzz_vdb_points found a NaN flag):
+// such a flag is a corrupt file and an error naming the attribute; such a float becomes ±infinity, which
+// the particle checks downstream treat as any non-finite value.
+template <typename Out, typename Stored>
+Out convertValue(Stored value, const std::string& name) {
+  if constexpr (std::is_integral_v<Out> && std::is_floating_point_v<Stored>) {
+    if (!(double(value) >= double(std::numeric_limits<Out>::min()) &&
+          double(value) <= double(std::numeric_limits<Out>::max()))) {
+      std::ostringstream text;
+      text << "attribute '" << name << "' holds " << value << ", not a " << 8 * sizeof(Out) << "-bit integer";
+      throw Error(text.str());
+    }
+  } else if constexpr (std::is_integral_v<Out>) {
+    // In long long: every stored integer type (int16, int32, int64) and every Out fit in it.
+    if (static_cast<long long>(value) < static_cast<long long>(std::numeric_limits<Out>::min()) ||
+        static_cast<long long>(value) > static_cast<long long>(std::numeric_limits<Out>::max()))
+      throw Error("attribute '" + name + "' holds " + std::to_string(value) + ", not a " +
+                  std::to_string(8 * sizeof(Out)) + "-bit integer");
+  } else if constexpr (std::is_floating_point_v<Stored> && sizeof(Stored) > sizeof(Out)) {
+    if (value > Stored(std::numeric_limits<Out>::max())) return std::numeric_limits<Out>::infinity();
+    if (value < Stored(std::numeric_limits<Out>::lowest())) return -std::numeric_limits<Out>::infinity();
+  }
+  return Out(value);
+}
+
 // Reads a scalar attribute whatever its storage: Mantaflow writes flags as int32 and life as float, but a
 // file written at full precision, or by another tool, may use other numeric types.
 template <typename Out>
@@ -63,7 +92,7 @@ bool readScalar(const PointDataGrid& grid, const std::string& name, std::vector<
     for (auto leaf = grid.tree().cbeginLeaf(); leaf; ++leaf) {
       const AttributeHandle<Stored> handle(leaf->constAttributeArray(index));
       for (auto point = leaf->beginIndexOn(); point; ++point)
-        values.push_back(Out(handle.get(*point)));
+        values.push_back(convertValue<Out>(handle.get(*point), name));
     }
   };
   if (valueType == openvdb::typeNameAsString<std::int32_t>()) {

@@ -1,6 +1,7 @@
 #include "scene/JsonFields.h"
 
 #include <cmath>
+#include <sstream>
 
 #include <glm/gtc/matrix_access.hpp>
 
@@ -9,6 +10,16 @@
 namespace spindrift {
 
 using nlohmann::json;
+
+namespace {
+// Shortest form (%g): the bounds read "(0, 1e+30]" and "(0, 179]", as docs/scene-format.md shows them, not
+// std::to_string's "(0.000000, 1000000015047466219876688855040.000000]".
+std::string bound(double value) {
+  std::ostringstream text;
+  text << value;
+  return text.str();
+}
+}  // namespace
 
 JsonFields::JsonFields(const json& object, std::string fileLabel, std::string path)
     : object_(object), fileLabel_(std::move(fileLabel)), path_(std::move(path)) {
@@ -61,8 +72,7 @@ float JsonFields::number(const char* key, float minimumExclusive, float maximum)
   if (!value.is_number()) fail(key, "expected a number, got " + value.dump());
   const double number = value.get<double>();
   if (!std::isfinite(number) || number <= minimumExclusive || number > maximum) {
-    fail(key, value.dump() + " is outside (" + std::to_string(minimumExclusive) + ", " +
-                  std::to_string(maximum) + "]");
+    fail(key, value.dump() + " is outside (" + bound(minimumExclusive) + ", " + bound(maximum) + "]");
   }
   return float(number);
 }
