@@ -11,6 +11,7 @@
 
 #include <glm/glm.hpp>
 
+#include "EllipsoidRayCast.h"
 #include "LiquidTestScenes.h"
 #include "prep/LiquidPreparation.h"
 #include "spindrift/Renderer.h"
@@ -39,19 +40,11 @@ CpuLayers rayCast(const std::vector<EllipsoidInstance>& ellipsoids, const Camera
       const std::size_t index = std::size_t(row) * width + column;
       double nearest = 1e10, farthest = -1.0;
       for (const EllipsoidInstance& ellipsoid : ellipsoids) {
-        const glm::dmat3 inverseAxes = glm::transpose(glm::dmat3(glm::dvec3(ellipsoid.inverseAxesRows[0]),
-                                                                 glm::dvec3(ellipsoid.inverseAxesRows[1]),
-                                                                 glm::dvec3(ellipsoid.inverseAxesRows[2])));
-        const glm::dvec3 o = inverseAxes * (origin - glm::dvec3(ellipsoid.centreAndBoundingRadius));
-        const glm::dvec3 d = inverseAxes * direction;
-        const double a = glm::dot(d, d), closest = -glm::dot(o, d) / a;
-        const glm::dvec3 closestPoint = o + closest * d;
-        const double miss = 1.0 - glm::dot(closestPoint, closestPoint);  // > 0: the ray enters
-        if (std::abs(miss) < 2e-3) layers.ambiguous[index] = true;
-        if (miss < 0.0) continue;
-        const double halfChord = std::sqrt(miss / a);
-        nearest = std::min(nearest, closest - halfChord);
-        farthest = std::max(farthest, closest + halfChord);
+        const ellipsoid_test::Chord chord = ellipsoid_test::castRay(ellipsoid, origin, direction);
+        if (std::abs(chord.miss) < 2e-3) layers.ambiguous[index] = true;
+        if (chord.miss < 0.0) continue;
+        nearest = std::min(nearest, chord.entry);
+        farthest = std::max(farthest, chord.exit);
       }
       if (nearest < 1e10) {
         layers.front[index] = nearest;

@@ -1,0 +1,38 @@
+#pragma once
+
+#include <cmath>
+
+#include <glm/glm.hpp>
+
+#include "prep/LiquidPreparation.h"
+
+// A double-precision CPU ray cast of one ellipsoid instance, the reference the impostor tests compare with.
+namespace ellipsoid_test {
+
+struct Chord {
+  double entry = 0.0;  // in units of the direction's length
+  double exit = 0.0;
+  double miss = 0.0;  // 1 - |closest point|^2 in the unit sphere's space: > 0 where the ray enters
+};
+
+// Solving around the ray's closest approach keeps the discriminant accurate far from the ellipsoid. The chord
+// is meaningful only where miss >= 0.
+inline Chord castRay(const spindrift::EllipsoidInstance& ellipsoid, const glm::dvec3& origin,
+                     const glm::dvec3& direction) {
+  const glm::dmat3 inverseAxes = glm::transpose(glm::dmat3(glm::dvec3(ellipsoid.inverseAxesRows[0]),
+                                                           glm::dvec3(ellipsoid.inverseAxesRows[1]),
+                                                           glm::dvec3(ellipsoid.inverseAxesRows[2])));
+  const glm::dvec3 o = inverseAxes * (origin - glm::dvec3(ellipsoid.centreAndBoundingRadius));
+  const glm::dvec3 d = inverseAxes * direction;
+  const double a = glm::dot(d, d), closest = -glm::dot(o, d) / a;
+  const glm::dvec3 closestPoint = o + closest * d;
+  Chord chord;
+  chord.miss = 1.0 - glm::dot(closestPoint, closestPoint);
+  if (chord.miss < 0.0) return chord;
+  const double halfChord = std::sqrt(chord.miss / a);
+  chord.entry = closest - halfChord;
+  chord.exit = closest + halfChord;
+  return chord;
+}
+
+}  // namespace ellipsoid_test
