@@ -270,11 +270,14 @@ RenderResult Renderer::renderPrepared(const Scene& scene, const Particles& parti
     backgroundImages.generation = ++impl_->hostBackgroundGeneration;
   if (liquidParameters.drop_hidden_interior) {
     // The solids the impostor passes test against: the background's depth and the occluder triangles.
-    SolidDepthTiles solids(camera);
-    if (backgroundImages.eyeDepth) solids.addDepthImage(*backgroundImages.eyeDepth);
-    for (const TriangleMesh* mesh : extras.occluders)
-      solids.addTriangles(*mesh);
-    const HiddenInteriorResult hidden = dropHiddenAggregates(liquid, camera, domainBox, &solids);
+    const auto solids = [&] {
+      SolidDepthTiles tiles(camera);
+      if (backgroundImages.eyeDepth) tiles.addDepthImage(*backgroundImages.eyeDepth);
+      for (const TriangleMesh* mesh : extras.occluders)
+        tiles.addTriangles(*mesh);
+      return tiles;
+    };
+    const HiddenInteriorResult hidden = dropHiddenAggregates(liquid, camera, domainBox, solids);
     stats.liquid.hiddenInteriorDropped = hidden.dropped;
     stats.liquid.hiddenInteriorNotApplied = hidden.notApplied;
     stats.liquid.hiddenInteriorMilliseconds = hidden.milliseconds;

@@ -221,7 +221,8 @@ HiddenInteriorResult dropHiddenInterior(std::vector<EllipsoidInstance>& ellipsoi
 }
 
 HiddenInteriorResult dropHiddenAggregates(LiquidPreparation& liquid, const Camera& camera,
-                                          const DomainBox* domain, const SolidDepthTiles* solids) {
+                                          const DomainBox* domain,
+                                          const std::function<SolidDepthTiles()>& solids) {
   // Deep particles are the ones the anisotropy found isotropic; where they are few the body is a sheet or a
   // spray, which hides almost nothing (the dam-break example: 5 % deep, 0.8 % hidden), and the grid's cost
   // would be lost.
@@ -231,7 +232,9 @@ HiddenInteriorResult dropHiddenAggregates(LiquidPreparation& liquid, const Camer
                         std::to_string(liquid.aggregates.size()) + ")";
     return result;
   }
-  return dropHiddenInterior(liquid.aggregates, camera, domain, solids);
+  if (!solids) return dropHiddenInterior(liquid.aggregates, camera, domain);
+  const SolidDepthTiles tiles = solids();
+  return dropHiddenInterior(liquid.aggregates, camera, domain, &tiles);
 }
 
 }  // namespace spindrift

@@ -1,6 +1,7 @@
 #pragma once
 
 #include <cstddef>
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -31,8 +32,11 @@ struct HiddenInteriorResult {
 HiddenInteriorResult dropHiddenInterior(std::vector<EllipsoidInstance>& ellipsoids, const Camera& camera,
                                         const DomainBox* domain, const SolidDepthTiles* solids = nullptr);
 
-/// dropHiddenInterior on a preparation's aggregates, unless few of them are deep inside the body.
+/// dropHiddenInterior on a preparation's aggregates, unless few of them are deep inside the body. `solids`,
+/// when given, makes the frame's solids; it is called only when the step is tried (its cost, a pass over the
+/// background's depth, is not paid on frames that skip the step).
 HiddenInteriorResult dropHiddenAggregates(LiquidPreparation& liquid, const Camera& camera,
-                                          const DomainBox* domain, const SolidDepthTiles* solids = nullptr);
+                                          const DomainBox* domain,
+                                          const std::function<SolidDepthTiles()>& solids = {});
 
 }  // namespace spindrift
