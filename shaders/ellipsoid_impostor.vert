@@ -16,12 +16,13 @@ layout(std430, binding = 0) readonly buffer Ellipsoids {
 };
 
 uniform bool backFaces;
+uniform int firstEllipsoid;  // This layer draws ellipsoids [firstEllipsoid, firstEllipsoid + instances).
 
 flat out vec3 vCameraCentre;
 flat out mat3 vInverseAxesCamera;  // maps camera-space offsets from the centre to the unit sphere
 
 void main() {
-  Ellipsoid ellipsoid = ellipsoids[gl_InstanceID];
+  Ellipsoid ellipsoid = ellipsoids[firstEllipsoid + gl_InstanceID];
   vec3 centre = (frame.cameraFromWorld * vec4(ellipsoid.centreAndBoundingRadius.xyz, 1.0)).xyz;
   float radius = ellipsoid.centreAndBoundingRadius.w;
   mat3 inverseAxesWorld = transpose(mat3(ellipsoid.inverseAxesRows[0].xyz, ellipsoid.inverseAxesRows[1].xyz,

@@ -16,7 +16,8 @@ SurfaceLayers LightDepthLayers::run(const LightPreparation& light, const Camera&
   // The impostor and smoothing shaders read the view from binding 0: give them the light's for a while.
   lightUniforms_.update(light.view.camera, 0);
   const BackgroundData noBackground{noSolids_, noSolids_, nullptr, glm::vec3(0.0f), nullptr};
-  const SurfaceLayers drawn = impostors_.run(light.liquid.aggregates, noBackground, size, size);
+  const SurfaceLayers drawn =
+      impostors_.run(light.liquid.aggregates, light.liquid.aggregateLayers, noBackground, size, size);
   const auto restoreViews = [&] {
     lightUniforms_.update(light.view.camera, 2);
     cameraUniforms_.update(camera, 0);

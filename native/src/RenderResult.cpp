@@ -48,6 +48,8 @@ nlohmann::json FrameStats::toJson() const {
         {"isotropic_interior", liquid.isotropicInterior},
         {"culled", liquid.culled},
         {"hidden_interior_dropped", liquid.hiddenInteriorDropped},
+        {"hidden_interior_front_layer_only", liquid.hiddenInteriorFrontLayerOnly},
+        {"hidden_interior_back_layer_only", liquid.hiddenInteriorBackLayerOnly},
         {"hidden_interior_not_applied", liquid.hiddenInteriorNotApplied},
         {"hidden_interior_ms", liquid.hiddenInteriorMilliseconds},
         {"liquid_pixels", liquid.liquidPixels},

@@ -279,6 +279,8 @@ RenderResult Renderer::renderPrepared(const Scene& scene, const Particles& parti
     };
     const HiddenInteriorResult hidden = dropHiddenAggregates(liquid, camera, domainBox, solids);
     stats.liquid.hiddenInteriorDropped = hidden.dropped;
+    stats.liquid.hiddenInteriorFrontLayerOnly = hidden.split.frontOnly;
+    stats.liquid.hiddenInteriorBackLayerOnly = hidden.split.backOnly;
     stats.liquid.hiddenInteriorNotApplied = hidden.notApplied;
     stats.liquid.hiddenInteriorMilliseconds = hidden.milliseconds;
   }
@@ -338,13 +340,14 @@ RenderResult Renderer::renderPrepared(const Scene& scene, const Particles& parti
     std::optional<SurfaceLayers> splashes, aggregates;
     if (plan.runs(Pass::SplashDepthLayers)) {
       splashes.emplace(timed(Pass::SplashDepthLayers, [&] {
-        return pipeline.splashImpostors.run(liquid.splashes, background, width, height, domainBox);
+        return pipeline.splashImpostors.run(liquid.splashes, {}, background, width, height, domainBox);
       }));
       intermediate.keep(*splashes, "splash");
     }
     if (plan.runs(Pass::AggregateDepthLayers)) {
       aggregates.emplace(timed(Pass::AggregateDepthLayers, [&] {
-        return pipeline.aggregateImpostors.run(liquid.aggregates, background, width, height, domainBox);
+        return pipeline.aggregateImpostors.run(liquid.aggregates, liquid.aggregateLayers, background, width,
+                                               height, domainBox);
       }));
       intermediate.keep(*aggregates, "aggregate");
     }

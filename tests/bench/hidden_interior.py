@@ -71,6 +71,8 @@ def render(scene, drop, work, name):
     passes = {entry["name"]: entry["gpu_ms"] for entry in stats["passes"]}
     return exr, {"drawn": stats["liquid"]["aggregate_particles"],
                  "dropped": stats["liquid"]["hidden_interior_dropped"],
+                 "front_only": stats["liquid"]["hidden_interior_front_layer_only"],
+                 "back_only": stats["liquid"]["hidden_interior_back_layer_only"],
                  "why_not": stats["liquid"]["hidden_interior_not_applied"],
                  "drop_ms": stats["liquid"]["hidden_interior_ms"],
                  "aggregate_ms": passes.get("aggregate_depth_layers", 0.0),
@@ -97,15 +99,15 @@ def main():
                                   capture_output=True).returncode == 0
             identical[name] = identical.get(name, True) and same
     print(f"load average at end: {os.getloadavg()}\n")
-    print("| scene | drop_hidden_interior | aggregates drawn | dropped | drop ms | aggregate depth layers ms "
-          "| prepare ms | frame ms | EXR identical |")
-    print("|---|---|---|---|---|---|---|---|---|")
+    print("| scene | drop_hidden_interior | aggregates kept | dropped | front layer only / back layer only "
+          "| drop ms | aggregate depth layers ms | prepare ms | frame ms | EXR identical |")
+    print("|---|---|---|---|---|---|---|---|---|---|")
     for (name, drop), runs in results.items():
         median = {key: statistics.median(run[key] for run in runs) for key in ("drop_ms", "aggregate_ms",
                                                                                  "prepare_ms", "total_ms")}
         note = f" ({runs[0]['why_not']})" if runs[0]["why_not"] else ""
         print(f"| {name} | {'true' if drop else 'false'} | {runs[0]['drawn']:,} | {runs[0]['dropped']:,}{note} "
-              f"| {median['drop_ms']:.0f} | {median['aggregate_ms']:.0f} | {median['prepare_ms']:.0f} "
+              f"| {runs[0]['front_only']:,} / {runs[0]['back_only']:,} | {median['drop_ms']:.0f} | {median['aggregate_ms']:.0f} | {median['prepare_ms']:.0f} "
               f"| {median['total_ms']:.0f} | {'yes' if identical[name] else 'NO'} |")
 
 

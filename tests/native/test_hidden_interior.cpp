@@ -1,6 +1,7 @@
 // Leaving out the aggregates hidden inside the body (prep/HiddenInterior.cpp, liquid.drop_hidden_interior):
 // every ellipsoid left out must lie inside the union of those kept, checked by a brute-force CPU test of
-// points on its surface against every kept ellipsoid; the frame's layers must be bit-identical with and
+// points on its surface against every kept ellipsoid; each depth layer's own list must give what all
+// ellipsoids give (a CPU ray cast from the camera); the frame's layers must be bit-identical with and
 // without it; and nothing may be left out where a clip plane or the domain's walls cut the body.
 #include <gtest/gtest.h>
 
@@ -83,17 +84,29 @@ std::pair<double, double> rayCast(const std::vector<EllipsoidInstance>& ellipsoi
   return {nearest, farthest};
 }
 
-// The ellipsoids of `all` that are not in `kept` (which keeps the order of `all`).
+bool contains(const std::vector<EllipsoidInstance>& ellipsoids, const EllipsoidInstance& ellipsoid) {
+  for (const EllipsoidInstance& other : ellipsoids)
+    if (std::memcmp(&other, &ellipsoid, sizeof(EllipsoidInstance)) == 0) return true;
+  return false;
+}
+
+// The ellipsoids of `all` that are not in `kept` (kept is reordered by layer).
 std::vector<EllipsoidInstance> leftOut(const std::vector<EllipsoidInstance>& all,
                                        const std::vector<EllipsoidInstance>& kept) {
   std::vector<EllipsoidInstance> dropped;
-  for (std::size_t i = 0, k = 0; i < all.size(); ++i) {
-    if (k < kept.size() && std::memcmp(&all[i], &kept[k], sizeof(EllipsoidInstance)) == 0)
-      ++k;
-    else
-      dropped.push_back(all[i]);
-  }
+  for (const EllipsoidInstance& ellipsoid : all)
+    if (!contains(kept, ellipsoid)) dropped.push_back(ellipsoid);
   return dropped;
+}
+
+// The front layer's ellipsoids (all but the trailing back-only ones) and the back layer's.
+std::vector<EllipsoidInstance> frontLayer(const std::vector<EllipsoidInstance>& kept,
+                                          const LayerSplit& split) {
+  return {kept.begin(), kept.end() - std::ptrdiff_t(split.backOnly)};
+}
+std::vector<EllipsoidInstance> backLayer(const std::vector<EllipsoidInstance>& kept,
+                                         const LayerSplit& split) {
+  return {kept.begin() + std::ptrdiff_t(split.frontOnly), kept.end()};
 }
 
 TEST(HiddenInterior, EveryEllipsoidLeftOutLiesInsideTheOthers) {
@@ -154,6 +167,70 @@ TEST(HiddenInterior, RaysFromAnySideMeetTheSameFrontAndBack) {
   EXPECT_EQ(differing, 0u) << "of " << hits << " rays";
 }
 
+// Rays from the camera's eye towards random points of a box: the front layer's ellipsoids give every ray's
+// nearest entry, the back layer's its farthest exit, exactly as all of them do.
+void expectLayersSeeWhatAllGive(const std::vector<EllipsoidInstance>& all,
+                                const std::vector<EllipsoidInstance>& kept, const LayerSplit& split,
+                                const Camera& camera, const glm::dvec3& low, const glm::dvec3& high) {
+  ASSERT_LE(split.frontOnly + split.backOnly, kept.size());
+  const std::vector<EllipsoidInstance> front = frontLayer(kept, split);
+  const std::vector<EllipsoidInstance> back = backLayer(kept, split);
+  const glm::dvec3 eye(camera.position());
+  std::mt19937 random(13);
+  std::uniform_real_distribution<double> unit(0.0, 1.0);
+  std::size_t hits = 0, differing = 0;
+  for (int ray = 0; ray < 4000; ++ray) {
+    const glm::dvec3 target = low + (high - low) * glm::dvec3(unit(random), unit(random), unit(random));
+    const glm::dvec3 direction = glm::normalize(target - eye);
+    const auto [allFront, allBack] = rayCast(all, eye, direction);
+    if (allFront > 1e9) continue;
+    ++hits;
+    differing += rayCast(front, eye, direction).first != allFront;
+    differing += rayCast(back, eye, direction).second != allBack;
+  }
+  EXPECT_GT(hits, 2500u);
+  EXPECT_EQ(differing, 0u) << "of " << 2 * hits << " layer values";
+}
+
+TEST(HiddenInterior, EachLayerSeesFromTheCameraWhatAllEllipsoidsGive) {
+  const Camera camera = obliqueCamera();
+  const std::vector<EllipsoidInstance> all =
+      prepareLiquid(jitteredBlock(), camera, grownParticles()).aggregates;
+  std::vector<EllipsoidInstance> kept = all;
+  const HiddenInteriorResult result = dropHiddenInterior(kept, camera, nullptr);
+  EXPECT_GT(result.split.frontOnly, 0u);
+  EXPECT_GT(result.split.backOnly, 0u);
+  expectLayersSeeWhatAllGive(all, kept, result.split, camera, {0.0, 0.0, 0.0}, {1.6, 1.6, 1.0});
+}
+
+TEST(HiddenInterior, AFlatSlabSeenFromAboveDrawsItsTopIntoTheFrontLayerAndItsBottomIntoTheBack) {
+  // 24 x 24 x 6 particles seen from straight above: the top face's particles are drawn into the front layer
+  // only and the bottom face's into the back layer only; a split the wrong way round fails here.
+  std::mt19937 random(5);
+  std::uniform_real_distribution<float> jitter(-0.3f * kSpacing, 0.3f * kSpacing);
+  std::vector<glm::vec3> positions =
+      liquid_test::block({0.05f, 0.05f, 0.05f}, {2.35f, 2.35f, 0.55f}, kSpacing);
+  for (glm::vec3& position : positions)
+    position += glm::vec3(jitter(random), jitter(random), jitter(random));
+  const Camera above = Camera::lookAt(128, 128, 40.0f, {1.2f, 1.2f, 6.0f}, {1.2f, 1.2f, 0.3f}, {0, 1, 0});
+  const std::vector<EllipsoidInstance> all =
+      prepareLiquid(liquid_test::particlesOf(positions, kRadius), above, grownParticles()).aggregates;
+  std::vector<EllipsoidInstance> kept = all;
+  const HiddenInteriorResult result = dropHiddenInterior(kept, above, nullptr);
+  EXPECT_GT(result.split.frontOnly, kept.size() / 10) << "of " << kept.size();
+  EXPECT_GT(result.split.backOnly, kept.size() / 10) << "of " << kept.size();
+  const auto meanHeight = [&](std::size_t first, std::size_t count) {
+    double sum = 0.0;
+    for (std::size_t i = first; i < first + count; ++i)
+      sum += kept[i].centreAndBoundingRadius.z;
+    return count ? sum / double(count) : 0.0;
+  };
+  const double middle = 0.3;  // of the particles' heights, 0.05 to 0.55
+  EXPECT_GT(meanHeight(0, result.split.frontOnly), middle + 0.1);
+  EXPECT_LT(meanHeight(kept.size() - result.split.backOnly, result.split.backOnly), middle - 0.1);
+  expectLayersSeeWhatAllGive(all, kept, result.split, above, {0.0, 0.0, 0.0}, {2.4, 2.4, 0.6});
+}
+
 TEST(HiddenInterior, NothingIsLeftOutWhenTheNearPlaneCutsTheBody) {
   // The camera inside the block: rays start inside the body, where a cavity would show.
   const Camera camera = Camera::lookAt(128, 96, 40.0f, {0.8f, 0.8f, 0.5f}, {1.5f, 0.8f, 0.5f}, {0, 0, 1});
@@ -178,7 +255,9 @@ TEST(HiddenInterior, EllipsoidsThatReachTheDomainWallsAreKept) {
   const HiddenInteriorResult withoutBox = dropHiddenInterior(unclipped, camera, nullptr);
   EXPECT_GT(withBox.dropped, 0u);
   EXPECT_LT(withBox.dropped, withoutBox.dropped);
-  // Every ellipsoid whose bounding sphere reaches a wall is still there.
+  // The camera is above the floor, so rays leave the box through it: the floor cuts the back layer, and
+  // every ellipsoid whose bounding sphere reaches it is still drawn there (its front may be hidden).
+  const std::vector<EllipsoidInstance> back = backLayer(clipped, withBox.split);
   std::size_t atWalls = 0;
   for (const EllipsoidInstance& ellipsoid : all) {
     const glm::vec3 centre(ellipsoid.centreAndBoundingRadius);
@@ -187,12 +266,10 @@ TEST(HiddenInterior, EllipsoidsThatReachTheDomainWallsAreKept) {
         glm::all(glm::lessThan(centre + reach, box.high)))
       continue;
     ++atWalls;
-    bool found = false;
-    for (const EllipsoidInstance& kept : clipped)
-      found = found || std::memcmp(&kept, &ellipsoid, sizeof(EllipsoidInstance)) == 0;
-    EXPECT_TRUE(found);
+    EXPECT_TRUE(contains(back, ellipsoid));
   }
   EXPECT_GT(atWalls, 0u);
+  EXPECT_GT(withBox.split.backOnly, 0u) << "fronts hidden although the floor cuts their backs";
 }
 
 TEST(HiddenInterior, ScatteredDropsAndSmallSetsAreLeftAlone) {
@@ -235,6 +312,9 @@ void expectIdenticalFrames(Scene scene, const Particles& particles,
   const RenderResult dropped = render();
   liquid_test::expectAllChannelsFinite(dropped);
   EXPECT_GT(dropped.stats.liquid.hiddenInteriorDropped, 0u);
+  EXPECT_GT(
+      dropped.stats.liquid.hiddenInteriorFrontLayerOnly + dropped.stats.liquid.hiddenInteriorBackLayerOnly,
+      0u);
   EXPECT_EQ(all.stats.liquid.hiddenInteriorDropped, 0u);
   ASSERT_EQ(all.layers.size(), dropped.layers.size());
   for (std::size_t l = 0; l < all.layers.size(); ++l) {

@@ -38,7 +38,9 @@ struct LiquidFrameStats {
   std::size_t isotropicInterior = 0;   ///< Aggregates deep inside the body, drawn without anisotropy.
   std::size_t culled = 0;              ///< Outside the view frustum.
   /// Aggregates left out because they lie inside the union of the others (liquid.drop_hidden_interior).
-  std::size_t hiddenInteriorDropped = 0;
+  std::size_t hiddenInteriorDropped = 0;         ///< Aggregates hidden from both depth layers: not drawn.
+  std::size_t hiddenInteriorFrontLayerOnly = 0;  ///< Their far half hidden: drawn into the front layer only.
+  std::size_t hiddenInteriorBackLayerOnly = 0;   ///< Their near half hidden: drawn into the back layer only.
   std::string hiddenInteriorNotApplied;  ///< Why none were left out this frame, if something ruled it out.
   double hiddenInteriorMilliseconds = 0.0;
   std::size_t liquidPixels = 0;

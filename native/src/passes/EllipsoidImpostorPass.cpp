@@ -14,8 +14,8 @@ EllipsoidImpostorPass::EllipsoidImpostorPass(const ShaderLibrary& shaders)
 }
 
 SurfaceLayers EllipsoidImpostorPass::run(const std::vector<EllipsoidInstance>& ellipsoids,
-                                         const BackgroundData& background, int width, int height,
-                                         const DomainBox* domain) {
+                                         const LayerSplit& split, const BackgroundData& background, int width,
+                                         int height, const DomainBox* domain) {
   // Grow-only storage: a sequence reallocates only when a frame has more particles than any before it.
   const std::size_t bytes = ellipsoids.size() * sizeof(EllipsoidInstance);
   if (bytes > ellipsoidBufferBytes_) {
@@ -25,12 +25,14 @@ SurfaceLayers EllipsoidImpostorPass::run(const std::vector<EllipsoidInstance>& e
   }
   if (bytes > 0) glNamedBufferSubData(ellipsoidBuffer_.id(), 0, GLsizeiptr(bytes), ellipsoids.data());
   checkGlError("uploading liquid particles");
-  drawLayer(front_, false, GLsizei(ellipsoids.size()), background, width, height, domain);
-  drawLayer(back_, true, GLsizei(ellipsoids.size()), background, width, height, domain);
+  const GLsizei all = GLsizei(ellipsoids.size());
+  drawLayer(front_, false, 0, all - GLsizei(split.backOnly), background, width, height, domain);
+  drawLayer(back_, true, GLint(split.frontOnly), all - GLsizei(split.frontOnly), background, width, height,
+            domain);
   return {{front_.eyeDepth, front_.normal}, {back_.eyeDepth, back_.normal}};
 }
 
-void EllipsoidImpostorPass::drawLayer(Target& target, bool backFaces, GLsizei count,
+void EllipsoidImpostorPass::drawLayer(Target& target, bool backFaces, GLint first, GLsizei count,
                                       const BackgroundData& background, int width, int height,
                                       const DomainBox* domain) {
   ensureTexture(target.eyeDepth, GL_R32F, width, height);
@@ -50,7 +52,7 @@ void EllipsoidImpostorPass::drawLayer(Target& target, bool backFaces, GLsizei co
   glClearNamedFramebufferfv(framebuffer, GL_COLOR, 0, noSurface);
   glClearNamedFramebufferfv(framebuffer, GL_COLOR, 1, noNormal);
   glClearNamedFramebufferfv(framebuffer, GL_DEPTH, 0, &clearDepth);
-  if (count == 0) return;
+  if (count <= 0) return;
 
   glBindFramebuffer(GL_FRAMEBUFFER, framebuffer);
   glViewport(0, 0, width, height);
@@ -60,6 +62,7 @@ void EllipsoidImpostorPass::drawLayer(Target& target, bool backFaces, GLsizei co
   glDisable(GL_BLEND);
   glUseProgram(program_.id());
   glUniform1i(uniformLocation(program_.id(), "backFaces"), backFaces ? 1 : 0);
+  glUniform1i(uniformLocation(program_.id(), "firstEllipsoid"), first);
   glUniform1i(uniformLocation(program_.id(), "clipToDomain"), domain ? 1 : 0);
   if (domain) {
     const glm::mat4 domainFromWorld = glm::inverse(domain->worldFromBox);

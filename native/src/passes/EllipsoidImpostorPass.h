@@ -16,9 +16,11 @@ namespace spindrift {
 class EllipsoidImpostorPass {
  public:
   explicit EllipsoidImpostorPass(const ShaderLibrary& shaders);
-  /// `domain`, when not null, clips the surfaces to a Mantaflow domain's box.
-  SurfaceLayers run(const std::vector<EllipsoidInstance>& ellipsoids, const BackgroundData& background,
-                    int width, int height, const DomainBox* domain = nullptr);
+  /// `split` says which ellipsoids each layer draws (all of them by default); `domain`, when not null,
+  /// clips the surfaces to a Mantaflow domain's box.
+  SurfaceLayers run(const std::vector<EllipsoidInstance>& ellipsoids, const LayerSplit& split,
+                    const BackgroundData& background, int width, int height,
+                    const DomainBox* domain = nullptr);
 
  private:
   struct Target {
@@ -27,8 +29,8 @@ class EllipsoidImpostorPass {
     Texture2D normal;
     Texture2D depthBuffer;
   };
-  void drawLayer(Target& target, bool backFaces, GLsizei count, const BackgroundData& background, int width,
-                 int height, const DomainBox* domain);
+  void drawLayer(Target& target, bool backFaces, GLint first, GLsizei count, const BackgroundData& background,
+                 int width, int height, const DomainBox* domain);
 
   ProgramObject program_;
   VertexArrayObject emptyVertexArray_;

@@ -74,16 +74,164 @@ bool farthestDepths(const std::vector<EllipsoidInstance>& ellipsoids, const Came
   return true;
 }
 
-// Whether the ellipsoid's bounding sphere lies strictly inside the domain box, which then does not cut it.
-bool insideDomain(const EllipsoidInstance& ellipsoid, const DomainBox& domain, const glm::mat4& boxFromWorld,
-                  float boxScale) {
+// Which layers a domain box may cut an ellipsoid in. The front layer keeps max(entry, box entry): the box
+// cuts it only through faces that rays enter by, those whose plane has the eye outside. The back layer keeps
+// min(exit, box exit): only faces that rays leave by, those with the eye inside. An ellipsoid whose bounding
+// sphere crosses no such face is, in that layer, its own surface inside the box or nothing.
+struct DomainCuts {
+  bool front = false;
+  bool back = false;
+};
+
+DomainCuts domainCuts(const EllipsoidInstance& ellipsoid, const DomainBox& domain,
+                      const glm::mat4& boxFromWorld, float boxScale, const glm::vec3& eyeInBox) {
   const glm::vec3 centre =
       glm::vec3(boxFromWorld * glm::vec4(glm::vec3(ellipsoid.centreAndBoundingRadius), 1.0f));
   const float reach = ellipsoid.centreAndBoundingRadius.w * boxScale;
-  return glm::all(glm::greaterThan(centre - reach, domain.low)) &&
-         glm::all(glm::lessThan(centre + reach, domain.high));
+  DomainCuts cuts;
+  for (int axis = 0; axis < 3; ++axis) {
+    if (!(centre[axis] - reach > domain.low[axis])) {
+      (eyeInBox[axis] < domain.low[axis] ? cuts.front : cuts.back) = true;
+    }
+    if (!(centre[axis] + reach < domain.high[axis])) {
+      (eyeInBox[axis] > domain.high[axis] ? cuts.front : cuts.back) = true;
+    }
+  }
+  return cuts;
 }
 
+// The domain box in the frame the voxels are tested in: its cache-to-world inverse and a bound of its
+// stretch.
+struct ClipBox {
+  glm::mat4 boxFromWorld{1.0f};
+  float scale = 1.0f;
+  glm::vec3 low{0.0f};
+  glm::vec3 high{0.0f};
+};
+
+struct HiddenHalves {
+  bool front = false;  ///< Every camera-facing point lies inside another ellipsoid: no front pixel to win.
+  bool back = false;   ///< Likewise every point facing away: no back pixel to win.
+};
+
+// Narrows [from, to] to the voxels of row (y, z) that may reach inside the box (their centres within a half
+// diagonal of it, in the box's frame); false when none do.
+bool insideBoxSpan(const ClipBox& box, const VoxelGrid& grid, int y, int z, float halfDiagonal, int& from,
+                   int& to) {
+  const glm::vec3 start = glm::vec3(box.boxFromWorld * glm::vec4(grid.centre(0, y, z), 1.0f));
+  const glm::vec3 step = glm::mat3(box.boxFromWorld) * glm::vec3(grid.size, 0.0f, 0.0f);
+  const float reach = halfDiagonal * box.scale;
+  double low = from, high = to;
+  for (int axis = 0; axis < 3; ++axis) {
+    const double lowEdge = double(box.low[axis] - reach) - start[axis];
+    const double highEdge = double(box.high[axis] + reach) - start[axis];
+    if (step[axis] == 0.0f) {
+      if (lowEdge > 0.0 || highEdge < 0.0) return false;
+      continue;
+    }
+    double a = lowEdge / step[axis], b = highEdge / step[axis];
+    if (a > b) std::swap(a, b);
+    low = std::max(low, a - 0.01);  // Rounded outwards: more voxels checked, never fewer.
+    high = std::min(high, b + 0.01);
+  }
+  if (low > high) return false;
+  from = std::max(from, int(std::ceil(low)));
+  to = std::min(to, int(std::floor(high)));
+  return from <= to;
+}
+
+// Which halves of the ellipsoid's surface lie inside the covered voxels of other ellipsoids. With M the
+// inverse axes (|M (x - c)| = 1 on the surface) the normal at x is Q (x - c), Q = M^T M, and x faces the eye
+// e when Q (x - c) . (x - e) < 0, that is (x - c) . m < -1 with m = Q (c - e): the camera-facing half lies
+// below a plane through the centre, the far half above the parallel plane (points on the silhouette belong to
+// both). x -> |M (x - c)| is Lipschitz with the largest singular value s = 1 / inscribed, so a voxel of half
+// diagonal h touches the surface only where 1 - h s <= |M (v - c)| <= 1 + h s at its centre v, and a half
+// only where (v - c) . m is within h |m| of that half's side.
+//
+// With a domain box, surface points outside it do not count: a half is a candidate only where the box cuts
+// the other layer (domainCuts), and there a point outside the box is never reached by a ray of this layer
+// while the ray is inside the box.
+HiddenHalves hiddenHalves(const EllipsoidInstance& ellipsoid, std::int32_t self, float inscribed,
+                          const glm::vec3& eye, const VoxelGrid& grid, HiddenHalves candidates,
+                          const ClipBox* box) {
+  const glm::vec3 centre(ellipsoid.centreAndBoundingRadius);
+  const glm::mat3 rows = glm::transpose(glm::mat3(glm::vec3(ellipsoid.inverseAxesRows[0]),
+                                                  glm::vec3(ellipsoid.inverseAxesRows[1]),
+                                                  glm::vec3(ellipsoid.inverseAxesRows[2])));
+  const glm::vec3 facing = glm::transpose(rows) * (rows * (centre - eye));
+  const float halfDiagonal = 0.5f * std::sqrt(3.0f) * grid.size;
+  // The voxel's reach, and rounding in the offsets (a ten-thousandth of the ellipsoid's size).
+  const float facingSlack =
+      (halfDiagonal + 1e-4f * ellipsoid.centreAndBoundingRadius.w) * glm::length(facing);
+  const auto covered = [&](std::int32_t owner) { return owner != kNoOwner && owner != self; };
+  HiddenHalves halves = candidates;
+  if (!halves.front && !halves.back) return halves;
+  const auto uncover = [&](float side) {
+    if (side <= -1.0f + facingSlack) halves.front = false;
+    if (side >= -1.0f - facingSlack) halves.back = false;
+  };
+
+  // The six ends of the axes lie on the surface: a particle at the surface usually shows an uncovered half
+  // on one of them, before the neighbourhood is scanned (ends outside the box are left to the scan).
+  for (int k = 0; k < 6; ++k) {
+    const glm::vec3 row(ellipsoid.inverseAxesRows[k / 2]);
+    const glm::vec3 offset = (k % 2 ? -1.0f : 1.0f) * row / glm::dot(row, row);
+    if (box) {
+      const glm::vec3 end = glm::vec3(box->boxFromWorld * glm::vec4(centre + offset, 1.0f));
+      if (glm::any(glm::lessThan(end, box->low)) || glm::any(glm::greaterThan(end, box->high))) continue;
+    }
+    const glm::ivec3 voxel = glm::clamp(glm::ivec3(glm::floor((centre + offset - grid.low) / grid.size)),
+                                        glm::ivec3(0), grid.dims - 1);
+    if (!covered(grid.owners[grid.index(voxel.x, voxel.y, voxel.z)].load(std::memory_order_relaxed)))
+      uncover(glm::dot(offset, facing));
+  }
+  if (!halves.front && !halves.back) return halves;
+
+  // The shell of voxels that may touch the surface, row by row: along a row of voxel centres v(x) = v0 + x d,
+  // |M (v - c)|^2 is a quadratic in x, so each row's shell is an outer interval less an inner one.
+  const float slack = halfDiagonal / inscribed + 1e-4f;
+  const double outer = double(1.0f + slack) * (1.0f + slack);
+  const double inner = slack < 1.0f ? double(1.0f - slack) * (1.0f - slack) : -1.0;
+  const glm::vec3 step = rows * glm::vec3(grid.size, 0.0f, 0.0f);
+  const double a = glm::dot(step, step);
+  const auto interval = [&](double b, double c, double limit, double& low, double& high) {
+    const double discriminant = b * b - 4.0 * a * (c - limit);
+    if (discriminant < 0.0) return false;
+    const double root = std::sqrt(discriminant);
+    low = (-b - root) / (2.0 * a);
+    high = (-b + root) / (2.0 * a);
+    return true;
+  };
+  glm::ivec3 first, last;
+  grid.range(centre, ellipsoid.centreAndBoundingRadius.w + halfDiagonal, first, last);
+  for (int z = first.z; z <= last.z; ++z) {
+    for (int y = first.y; y <= last.y; ++y) {
+      const glm::vec3 rowStart = grid.centre(0, y, z) - centre;
+      const glm::vec3 mapped = rows * rowStart;
+      const double b = 2.0 * glm::dot(step, mapped), c = glm::dot(mapped, mapped);
+      double outerLow, outerHigh;
+      if (!interval(b, c, outer, outerLow, outerHigh)) continue;
+      // Rounded outwards by a hundredth of a voxel: more voxels checked, never fewer.
+      const int from = std::max(first.x, int(std::ceil(outerLow - 0.01)));
+      const int to = std::min(last.x, int(std::floor(outerHigh + 0.01)));
+      double innerLow = 1.0, innerHigh = 0.0;  // Empty unless the row passes through the core.
+      if (inner > 0.0 && interval(b, c, inner, innerLow, innerHigh)) {
+        innerLow += 0.01;
+        innerHigh -= 0.01;
+      }
+      int boxFrom = from, boxTo = to;
+      if (box && !insideBoxSpan(*box, grid, y, z, halfDiagonal, boxFrom, boxTo)) continue;
+      const float sideStart = glm::dot(rowStart, facing), sideStep = grid.size * facing.x;
+      for (int x = boxFrom; x <= boxTo; ++x) {
+        if (x > innerLow && x < innerHigh) continue;
+        if (covered(grid.owners[grid.index(x, y, z)].load(std::memory_order_relaxed))) continue;
+        uncover(sideStart + float(x) * sideStep);
+        if (!halves.front && !halves.back) return halves;
+      }
+    }
+  }
+  return halves;
+}
 }  // namespace
 
 HiddenInteriorResult dropHiddenInterior(std::vector<EllipsoidInstance>& ellipsoids, const Camera& camera,
@@ -157,64 +305,52 @@ HiddenInteriorResult dropHiddenInterior(std::vector<EllipsoidInstance>& ellipsoi
     }
   });
 
-  // An ellipsoid is hidden when every voxel that may touch it is covered by another ellipsoid. x -> |M x| is
-  // Lipschitz with the largest singular value of M, so a voxel whose centre has |M (v - c)| above
-  // 1 + halfDiagonal / inscribed holds no point of the ellipsoid.
-  glm::mat4 boxFromWorld(1.0f);
-  float boxScale = 1.0f;
+  ClipBox box;
   if (domain) {
-    boxFromWorld = glm::inverse(domain->worldFromBox);
-    const glm::mat3 linear(boxFromWorld);
-    boxScale = std::sqrt(glm::dot(linear[0], linear[0]) + glm::dot(linear[1], linear[1]) +
-                         glm::dot(linear[2], linear[2]));  // Frobenius: at least the largest stretch.
+    box.boxFromWorld = glm::inverse(domain->worldFromBox);
+    const glm::mat3 linear(box.boxFromWorld);
+    box.scale = std::sqrt(glm::dot(linear[0], linear[0]) + glm::dot(linear[1], linear[1]) +
+                          glm::dot(linear[2], linear[2]));  // Frobenius: at least the largest stretch.
+    box.low = domain->low;
+    box.high = domain->high;
   }
-  std::vector<std::uint8_t> hidden(count, 0);
+  const glm::mat4& boxFromWorld = box.boxFromWorld;
+  const float boxScale = box.scale;
+  const glm::vec3 eye = camera.position();
+  const glm::vec3 eyeInBox = glm::vec3(boxFromWorld * glm::vec4(eye, 1.0f));
+  std::vector<HiddenHalves> hidden(count);
   tbb::parallel_for(tbb::blocked_range<std::size_t>(0, count), [&](const tbb::blocked_range<std::size_t>& r) {
     for (std::size_t i = r.begin(); i != r.end(); ++i) {
       const EllipsoidInstance& ellipsoid = ellipsoids[i];
-      if (domain && !insideDomain(ellipsoid, *domain, boxFromWorld, boxScale)) continue;
-      const glm::vec3 centre(ellipsoid.centreAndBoundingRadius);
-      if (solids && solids->solidNearerThan(centre, ellipsoid.centreAndBoundingRadius.w, depths[i])) continue;
-      const glm::mat3 rows = glm::transpose(glm::mat3(glm::vec3(ellipsoid.inverseAxesRows[0]),
-                                                      glm::vec3(ellipsoid.inverseAxesRows[1]),
-                                                      glm::vec3(ellipsoid.inverseAxesRows[2])));
-      const float touchLimit = 1.0f + halfDiagonal / inscribed[i] + 1e-4f;
-      // The six ends of the axes lie on the ellipsoid: a particle at the surface usually fails on one of
-      // them, before the whole neighbourhood is scanned.
-      bool endUncovered = false;
-      for (int k = 0; k < 6 && !endUncovered; ++k) {
-        const glm::vec3 row(ellipsoid.inverseAxesRows[k / 2]);
-        const glm::vec3 end = centre + (k % 2 ? -1.0f : 1.0f) * row / glm::dot(row, row);
-        const glm::ivec3 voxel =
-            glm::clamp(glm::ivec3(glm::floor((end - grid.low) / grid.size)), glm::ivec3(0), grid.dims - 1);
-        const std::int32_t owner =
-            grid.owners[grid.index(voxel.x, voxel.y, voxel.z)].load(std::memory_order_relaxed);
-        endUncovered = owner == kNoOwner || owner == std::int32_t(i);
+      // Which halves may be hidden: not where the domain box cuts the layer's surface, and in the back layer
+      // not where a solid may lie in front of the ellipsoid's far side. (A solid hides a fragment whose entry
+      // lies behind it; the ellipsoid that holds a front entry point entered earlier and is not hidden, but
+      // the one that holds an exit point may have entered behind the solid.)
+      HiddenHalves candidates{true, true};
+      if (domain) {
+        const DomainCuts cuts = domainCuts(ellipsoid, *domain, boxFromWorld, boxScale, eyeInBox);
+        candidates = {!cuts.front, !cuts.back};
       }
-      if (endUncovered) continue;
-      glm::ivec3 first, last;
-      grid.range(centre, ellipsoid.centreAndBoundingRadius.w + halfDiagonal, first, last);
-      bool covered = true;
-      for (int z = first.z; z <= last.z && covered; ++z)
-        for (int y = first.y; y <= last.y && covered; ++y)
-          for (int x = first.x; x <= last.x; ++x) {
-            const glm::vec3 scaled = rows * (grid.centre(x, y, z) - centre);
-            if (glm::dot(scaled, scaled) > touchLimit * touchLimit) continue;
-            const std::int32_t owner = grid.owners[grid.index(x, y, z)].load(std::memory_order_relaxed);
-            if (owner == kNoOwner || owner == std::int32_t(i)) {
-              covered = false;
-              break;
-            }
-          }
-      hidden[i] = covered;
+      const glm::vec3 centre(ellipsoid.centreAndBoundingRadius);
+      if (candidates.back && solids &&
+          solids->solidNearerThan(centre, ellipsoid.centreAndBoundingRadius.w, depths[i]))
+        candidates.back = false;
+      hidden[i] = hiddenHalves(ellipsoid, std::int32_t(i), inscribed[i], eye, grid, candidates,
+                               domain ? &box : nullptr);
     }
   });
 
-  std::size_t kept = 0;
-  for (std::size_t i = 0; i < count; ++i)
-    if (!hidden[i]) ellipsoids[kept++] = ellipsoids[i];
-  result.dropped = count - kept;
-  ellipsoids.resize(kept);
+  // [front layer only | both | back layer only], each group in the original order; hidden from both: out.
+  std::vector<EllipsoidInstance> frontOnly, both, backOnly;
+  for (std::size_t i = 0; i < count; ++i) {
+    if (hidden[i].front && hidden[i].back) continue;
+    (hidden[i].back ? frontOnly : hidden[i].front ? backOnly : both).push_back(ellipsoids[i]);
+  }
+  result.dropped = count - frontOnly.size() - both.size() - backOnly.size();
+  result.split = {frontOnly.size(), backOnly.size()};
+  ellipsoids = std::move(frontOnly);
+  ellipsoids.insert(ellipsoids.end(), both.begin(), both.end());
+  ellipsoids.insert(ellipsoids.end(), backOnly.begin(), backOnly.end());
   result.milliseconds =
       std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
   return result;
@@ -224,17 +360,22 @@ HiddenInteriorResult dropHiddenAggregates(LiquidPreparation& liquid, const Camer
                                           const DomainBox* domain,
                                           const std::function<SolidDepthTiles()>& solids) {
   // Deep particles are the ones the anisotropy found isotropic; where they are few the body is a sheet or a
-  // spray, which hides almost nothing (the dam-break example: 5 % deep, 0.8 % hidden), and the grid's cost
-  // would be lost.
+  // spray, which hides little: on the dam-break example (5 % deep) 0.8 % of the aggregates are hidden from
+  // both layers and 6 % from one, fewer fragments than the grid's cost on the CPU (docs/frame-cost.md).
+  HiddenInteriorResult result;
   if (double(liquid.isotropicInterior) < kMinDeepFraction * double(liquid.aggregates.size())) {
-    HiddenInteriorResult result;
     result.notApplied = "few deep aggregates (" + std::to_string(liquid.isotropicInterior) + " of " +
                         std::to_string(liquid.aggregates.size()) + ")";
     return result;
   }
-  if (!solids) return dropHiddenInterior(liquid.aggregates, camera, domain);
-  const SolidDepthTiles tiles = solids();
-  return dropHiddenInterior(liquid.aggregates, camera, domain, &tiles);
+  if (!solids) {
+    result = dropHiddenInterior(liquid.aggregates, camera, domain);
+  } else {
+    const SolidDepthTiles tiles = solids();
+    result = dropHiddenInterior(liquid.aggregates, camera, domain, &tiles);
+  }
+  liquid.aggregateLayers = result.split;
+  return result;
 }
 
 }  // namespace spindrift

@@ -14,27 +14,30 @@ namespace spindrift {
 
 /// What dropHiddenInterior did to one set of ellipsoids.
 struct HiddenInteriorResult {
-  std::size_t dropped = 0;
-  std::string notApplied;  ///< Why nothing was tried, when something ruled it out for this frame.
+  std::size_t dropped = 0;  ///< Hidden from both layers: left out.
+  LayerSplit split;         ///< Hidden from one layer: drawn into the other only.
+  std::string notApplied;   ///< Why nothing was tried, when something ruled it out for this frame.
   double milliseconds = 0.0;
 };
 
-/// Removes the ellipsoids that lie inside the interior of the union of the others. A depth layer keeps the
-/// nearest entry (front) or farthest exit (back) over all ellipsoids; a point of such an ellipsoid is never
-/// on the union's boundary, so the ellipsoid never wins a pixel and the layers stay bit-identical without it
-/// (the union of those kept may have cavities, but no ray reaches them first). It is checked conservatively
-/// on a voxel grid: a voxel counts as covered when it fits inside the inscribed ball of some ellipsoid, and
-/// an ellipsoid is dropped when every voxel that may touch it is covered by another one. Rays start at the
-/// near plane and end at the far plane, the domain box clips the body and the passes hide a particle whose
-/// front lies behind a solid, so nothing is dropped when the body reaches the near or far plane, nor any
-/// ellipsoid that reaches the domain's walls or may reach behind a solid (`solids`, null where there are
-/// none).
+/// Leaves out of each depth layer the ellipsoids that cannot win a pixel of it. The front layer keeps each
+/// pixel's nearest entry over all ellipsoids, and an entry point is a camera-facing point of the ellipsoid's
+/// surface; if it lies strictly inside another ellipsoid, the ray entered that one earlier. So an ellipsoid
+/// whose camera-facing half lies inside the union of the others never wins a front pixel, and likewise the
+/// back layer (farthest exit) with the far half: the layers stay bit-identical without it. The ellipsoids
+/// are reordered as [front layer only | both | back layer only] (`split` gives the counts), and those hidden
+/// from both are left out. Checked conservatively on a voxel grid: a voxel counts as covered when it fits
+/// inside the inscribed ball of some ellipsoid, and a half is hidden when every voxel that may touch that
+/// half of the surface is covered by another ellipsoid. Rays start at the near plane and end at the far
+/// plane, the domain box clips the body and the passes hide a particle whose front lies behind a solid, so
+/// nothing is left out when the body reaches the near or far plane, nor any ellipsoid that reaches the
+/// domain's walls or may reach behind a solid (`solids`, null where there are none).
 HiddenInteriorResult dropHiddenInterior(std::vector<EllipsoidInstance>& ellipsoids, const Camera& camera,
                                         const DomainBox* domain, const SolidDepthTiles* solids = nullptr);
 
-/// dropHiddenInterior on a preparation's aggregates, unless few of them are deep inside the body. `solids`,
-/// when given, makes the frame's solids; it is called only when the step is tried (its cost, a pass over the
-/// background's depth, is not paid on frames that skip the step).
+/// dropHiddenInterior on a preparation's aggregates, recording the split in `liquid.aggregateLayers`.
+/// `solids`, when given, makes the frame's solids; it is called only when the step is tried (its cost, a pass
+/// over the background's depth, is not paid on frames that skip the step).
 HiddenInteriorResult dropHiddenAggregates(LiquidPreparation& liquid, const Camera& camera,
                                           const DomainBox* domain,
                                           const std::function<SolidDepthTiles()>& solids = {});

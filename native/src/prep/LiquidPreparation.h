@@ -20,11 +20,20 @@ struct EllipsoidInstance {
 };
 static_assert(sizeof(EllipsoidInstance) == 64, "EllipsoidInstance must match the shaders' std430 layout");
 
+/// How an ellipsoid list is split between the front and the back depth layer: the first `frontOnly` are drawn
+/// into the front layer only, the last `backOnly` into the back layer only, the others into both
+/// (dropHiddenInterior orders them so; docs/frame-cost.md).
+struct LayerSplit {
+  std::size_t frontOnly = 0;
+  std::size_t backOnly = 0;
+};
+
 /// The liquid particles of one frame, ready to draw: splashes as spheres, the aggregated body as
 /// anisotropic ellipsoids (Yu and Turk 2013), as the liquid paper's section 4.1 and 4.2 describe.
 struct LiquidPreparation {
   std::vector<EllipsoidInstance> splashes;    ///< Spheres of the particle's radius.
   std::vector<EllipsoidInstance> aggregates;  ///< Ellipsoids whose longest axis is at most 1.2 r.
+  LayerSplit aggregateLayers;                 ///< Which aggregates each depth layer draws.
   std::size_t culled = 0;                     ///< Outside the view frustum (they still count as neighbours).
   std::size_t isotropicInterior = 0;  ///< Aggregates deep inside the body, drawn as spheres without PCA.
   double neighbourMilliseconds = 0.0;
