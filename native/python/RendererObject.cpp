@@ -181,17 +181,6 @@ std::vector<std::string> layersToRender(const std::optional<std::vector<std::str
 
 // The result's layers named in `written` (all when it is None), as a copy: called only when some must be left
 // out.
-RenderResult layersToWrite(const RenderResult& result,
-                           const std::optional<std::vector<std::string>>& written) {
-  RenderResult subset;
-  subset.width = result.width;
-  subset.height = result.height;
-  for (const ImageLayer& layer : result.layers)
-    if (!written || std::find(written->begin(), written->end(), layer.name) != written->end())
-      subset.layers.push_back(layer);
-  return subset;
-}
-
 // `crop`: None, or (x, y, width, height) in pixels, y from the top, inside the camera's image.
 std::optional<CropWindow> readCropWindow(PyObject* crop, const Camera& camera) {
   if (crop == Py_None) return std::nullopt;
@@ -303,7 +292,8 @@ PyObject* rendererRender(PyObject* object, PyObject* args, PyObject* kwargs) {
     const std::optional<std::vector<std::string>> exrLayerNames = readLayerNames(exrLayers, "exr_layers");
     const std::optional<std::filesystem::path> exr =
         exrPath ? std::optional<std::filesystem::path>(exrPath) : std::nullopt;
-    const ExrOptions exrOptions{exrHalfColor != 0, exrCompression};
+    const ExrOptions exrOptions{exrHalfColor != 0, exrCompression,
+                                exrLayerNames.value_or(std::vector<std::string>{})};
     const std::optional<CropWindow> window = readCropWindow(crop, scene.camera);
     std::optional<RenderResult> result;
     double exrWriteMilliseconds = -1.0;  // Reported in stats as exr_write_ms when a file was written.
@@ -314,13 +304,8 @@ PyObject* rendererRender(PyObject* object, PyObject* args, PyObject* kwargs) {
       result = self->renderer->renderFrame(scene, frame, inputs);
       if (window) cropResult(*result, *window);
       if (!exr) return;
-      const bool everyLayer =
-          !exrLayerNames ||
-          std::all_of(result->layers.begin(), result->layers.end(), [&](const ImageLayer& l) {
-            return std::find(exrLayerNames->begin(), exrLayerNames->end(), l.name) != exrLayerNames->end();
-          });
       const auto writeStart = std::chrono::steady_clock::now();
-      writeExr(everyLayer ? *result : layersToWrite(*result, exrLayerNames), *exr, exrOptions);
+      writeExr(*result, *exr, exrOptions);
       exrWriteMilliseconds =
           std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - writeStart).count();
     });

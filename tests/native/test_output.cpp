@@ -13,6 +13,7 @@
 #include <string>
 #include <vector>
 
+#include <Imath/half.h>
 #include <OpenImageIO/imageio.h>
 #include <gtest/gtest.h>
 
@@ -119,6 +120,51 @@ TEST_F(OutputTest, ExrHoldsEveryLayerAsNamedFloatChannels) {
     }
   }
   EXPECT_EQ(filesIn(path.parent_path()), std::vector<std::string>{"frame.exr"});
+}
+
+TEST_F(OutputTest, ExrWritesTheChosenLayersWithHalfColourAcrossRowChunks) {
+  // 37 x 131: an odd width, and rows that do not fill the writer's last chunk of 64.
+  RenderResult result;
+  result.width = 37;
+  result.height = 131;
+  const std::size_t pixels = 37 * 131;
+  std::vector<float> colour(pixels * 4), depth(pixels), normal(pixels * 3);
+  for (std::size_t i = 0; i < colour.size(); ++i)
+    colour[i] = float((i * 7919) % 1000) / 997.0f;
+  for (std::size_t i = 0; i < pixels; ++i)
+    depth[i] = 1.0f + float(i) * 1.0001f;  // beyond half's precision
+  result.layers.push_back(makeLayer("composite", {"R", "G", "B", "A"}, colour));
+  result.layers.push_back(makeLayer("normal", {"X", "Y", "Z"}, normal));
+  result.layers.push_back(makeLayer("depth", {"Z"}, depth));
+  const std::filesystem::path path = directory_ / "chosen.exr";
+  ExrOptions options;
+  options.halfColor = true;
+  options.compression = "zips";
+  options.layers = {"depth", "composite"};
+  writeExr(result, path, options);
+
+  std::unique_ptr<OIIO::ImageInput> input = OIIO::ImageInput::open(path.string());
+  ASSERT_TRUE(input) << OIIO::geterror();
+  const OIIO::ImageSpec spec = input->spec();
+  ASSERT_EQ(spec.nchannels, 5) << "composite.RGBA and depth.Z only";
+  std::vector<float> read(pixels * 5);
+  ASSERT_TRUE(input->read_image(0, 0, 0, 5, OIIO::TypeFloat, read.data()));
+  std::size_t wrong = 0;
+  for (int channel = 0; channel < 5; ++channel) {
+    const std::string& name = spec.channelnames[channel];
+    if (name == "depth.Z") {
+      EXPECT_EQ(spec.channelformat(channel), OIIO::TypeFloat);
+      for (std::size_t i = 0; i < pixels; ++i)
+        wrong += read[i * 5 + channel] != depth[i];
+    } else {
+      EXPECT_EQ(spec.channelformat(channel), OIIO::TypeHalf) << name;
+      const int c = int(std::string("RGBA").find(name.back()));
+      ASSERT_GE(c, 0) << name;
+      for (std::size_t i = 0; i < pixels; ++i)
+        wrong += read[i * 5 + channel] != float(Imath::half(colour[i * 4 + std::size_t(c)]));
+    }
+  }
+  EXPECT_EQ(wrong, 0u);
 }
 
 TEST_F(OutputTest, PngEncodesLinearValuesWithTheSrgbTransferFunction) {

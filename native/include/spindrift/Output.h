@@ -2,6 +2,7 @@
 
 #include <filesystem>
 #include <string>
+#include <vector>
 
 #include "spindrift/RenderResult.h"
 
@@ -14,13 +15,16 @@ struct ExrOptions {
   bool halfColor = false;
   /// An OpenEXR compression as OpenImageIO names it: "none", "zip", "zips", "piz", "rle", "dwaa", ...
   std::string compression = "zip";
+  /// The layers to write (by name, in the result's order); empty: every layer.
+  std::vector<std::string> layers;
 };
 
 /// True for the layers writeExr keeps in 32-bit float under `halfColor`: depths (eye depth in scene units,
 /// and the 1e10 "nothing" value, which half cannot hold) and `refraction_uv` (image coordinates).
 bool exrLayerNeedsFloat(const std::string& layerName);
 
-/// Writes every layer as one multilayer OpenEXR (channels "layer.channel"). The file is written under a
+/// Writes the layers (every one, or those `options.layers` names) as one multilayer OpenEXR (channels
+/// "layer.channel"). The file is written under a
 /// temporary name beside the target and renamed, so a failed write never replaces a good file. Throws Error
 /// for an unknown compression.
 void writeExr(const RenderResult& result, const std::filesystem::path& path, const ExrOptions& options = {});

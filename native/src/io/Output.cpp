@@ -7,6 +7,7 @@
 #include <cmath>
 #include <cstdint>
 #include <cstring>
+#include <functional>
 #include <memory>
 #include <set>
 #include <string>
@@ -25,13 +26,15 @@ namespace {
 using oiio_errors::fail;
 using oiio_errors::oneLine;
 
-void checkLayerSizes(const RenderResult& result, const std::filesystem::path& path) {
+void checkLayerSizes(const RenderResult& result, const std::vector<const ImageLayer*>& layers,
+                     const std::filesystem::path& path) {
   if (result.width <= 0 || result.height <= 0) {
     fail(path, "nothing to write: the image is " + std::to_string(result.width) + "x" +
                    std::to_string(result.height));
   }
   const std::size_t pixelCount = std::size_t(result.width) * std::size_t(result.height);
-  for (const ImageLayer& layer : result.layers) {
+  for (const ImageLayer* layerPointer : layers) {
+    const ImageLayer& layer = *layerPointer;
     if (layer.channels.empty() || layer.pixels.size() != pixelCount * layer.channelCount()) {
       fail(path, "layer '" + layer.name + "' has " + std::to_string(layer.pixels.size()) +
                      " values, expected " + std::to_string(pixelCount) + " pixels of " +
@@ -71,7 +74,8 @@ class TemporaryFile {
 // place, so `target` is either the old file or the complete new one. The format is named rather than
 // guessed from the extension because the temporary name has none.
 void writeThroughTemporaryFile(const std::filesystem::path& target, const char* formatName,
-                               const OIIO::ImageSpec& spec, OIIO::TypeDesc pixelType, const void* pixels) {
+                               const OIIO::ImageSpec& spec,
+                               const std::function<bool(OIIO::ImageOutput&)>& writePixels) {
   const std::filesystem::path directory = target.parent_path();
   if (!directory.empty()) {
     std::error_code directoryError;
@@ -84,8 +88,8 @@ void writeThroughTemporaryFile(const std::filesystem::path& target, const char* 
   if (!output) fail(target, std::string("no ") + formatName + " writer: " + oneLine(OIIO::geterror()));
 
   TemporaryFile temporary(temporaryPathBeside(target));
-  const bool written = output->open(temporary.path().string(), spec) &&
-                       output->write_image(pixelType, pixels) && output->close();
+  const bool written =
+      output->open(temporary.path().string(), spec) && writePixels(*output) && output->close();
   if (!written) {
     const std::string message = oneLine(output->geterror());
     output.reset();  // Closes the file before the temporary is removed.
@@ -124,36 +128,48 @@ bool knownCompression(const std::string& name) {
   return names.count(name) > 0;
 }
 
-// The result's layers as one interleaved pixel buffer in the spec's channel formats (float or half). Pixel by
-// pixel, so the target is written once, front to back, and each layer is read front to back.
-std::vector<std::uint8_t> interleaveNative(const RenderResult& result, const OIIO::ImageSpec& spec) {
+// Rows per call to the writer: a multiple of every OpenEXR compression's block (1, 16 or 32 scanlines), and a
+// buffer small enough to be reused warm. Interleaving the whole image at once allocated tens of MB per frame,
+// and first touching those pages cost more than compressing them (docs/blender.md, "Per-final-frame
+// overhead").
+constexpr int kRowsPerChunk = 64;
+
+// Writes the layers' channels interleaved into one pixel, layer after layer, in the spec's channel formats
+// (float or half), a chunk of rows at a time, so OpenImageIO writes them as they are instead of converting
+// mixed formats itself.
+bool writeInterleavedRows(OIIO::ImageOutput& output, const std::vector<const ImageLayer*>& layers,
+                          const OIIO::ImageSpec& spec) {
   struct Channel {
     const float* source;
     std::size_t stride;  // The layer's channel count.
     bool half;
   };
   std::vector<Channel> channels;
-  for (const ImageLayer& layer : result.layers)
-    for (std::size_t c = 0; c < layer.channelCount(); ++c)
-      channels.push_back({layer.pixels.data() + c, layer.channelCount(),
+  for (const ImageLayer* layer : layers)
+    for (std::size_t c = 0; c < layer->channelCount(); ++c)
+      channels.push_back({layer->pixels.data() + c, layer->channelCount(),
                           spec.channelformat(int(channels.size())) == OIIO::TypeHalf});
-  const std::size_t pixelCount = std::size_t(result.width) * std::size_t(result.height);
-  std::vector<std::uint8_t> interleaved(pixelCount * spec.pixel_bytes(true));
-  std::uint8_t* target = interleaved.data();
-  for (std::size_t pixel = 0; pixel < pixelCount; ++pixel) {
-    for (const Channel& channel : channels) {
-      const float value = channel.source[pixel * channel.stride];
-      if (channel.half) {
-        const Imath::half stored(value);
-        std::memcpy(target, &stored, sizeof(stored));
-        target += sizeof(stored);
-      } else {
-        std::memcpy(target, &value, sizeof(value));
-        target += sizeof(value);
+  const std::size_t width = std::size_t(spec.width);
+  std::vector<std::uint8_t> chunk(width * kRowsPerChunk * spec.pixel_bytes(true));
+  for (int firstRow = 0; firstRow < spec.height; firstRow += kRowsPerChunk) {
+    const int endRow = std::min(spec.height, firstRow + kRowsPerChunk);
+    std::uint8_t* target = chunk.data();
+    for (std::size_t pixel = std::size_t(firstRow) * width; pixel < std::size_t(endRow) * width; ++pixel) {
+      for (const Channel& channel : channels) {
+        const float value = channel.source[pixel * channel.stride];
+        if (channel.half) {
+          const Imath::half stored(value);
+          std::memcpy(target, &stored, sizeof(stored));
+          target += sizeof(stored);
+        } else {
+          std::memcpy(target, &value, sizeof(value));
+          target += sizeof(value);
+        }
       }
     }
+    if (!output.write_scanlines(firstRow, endRow, 0, OIIO::TypeUnknown, chunk.data())) return false;
   }
-  return interleaved;
+  return true;
 }
 
 }  // namespace
@@ -163,13 +179,18 @@ bool exrLayerNeedsFloat(const std::string& layerName) {
 }
 
 void writeExr(const RenderResult& result, const std::filesystem::path& path, const ExrOptions& options) {
-  checkLayerSizes(result, path);
-  if (result.layers.empty()) fail(path, "nothing to write: the result has no layers");
+  std::vector<const ImageLayer*> layers;
+  for (const ImageLayer& layer : result.layers)
+    if (options.layers.empty() ||
+        std::find(options.layers.begin(), options.layers.end(), layer.name) != options.layers.end())
+      layers.push_back(&layer);
+  checkLayerSizes(result, layers, path);
+  if (layers.empty()) fail(path, "nothing to write: the result has no layers");
 
   std::vector<std::string> channelNames;
-  for (const ImageLayer& layer : result.layers) {
-    for (const std::string& channel : layer.channels) {
-      channelNames.push_back(layer.name.empty() ? channel : layer.name + "." + channel);
+  for (const ImageLayer* layer : layers) {
+    for (const std::string& channel : layer->channels) {
+      channelNames.push_back(layer->name.empty() ? channel : layer->name + "." + channel);
     }
   }
   const std::set<std::string> uniqueNames(channelNames.begin(), channelNames.end());
@@ -180,13 +201,10 @@ void writeExr(const RenderResult& result, const std::filesystem::path& path, con
   OIIO::ImageSpec spec(result.width, result.height, int(channelNames.size()), OIIO::TypeFloat);
   spec.channelnames = channelNames;
   if (options.halfColor) {
-    for (const ImageLayer& layer : result.layers)
-      for (std::size_t c = 0; c < layer.channelCount(); ++c)
-        spec.channelformats.push_back(exrLayerNeedsFloat(layer.name) ? OIIO::TypeFloat : OIIO::TypeHalf);
+    for (const ImageLayer* layer : layers)
+      for (std::size_t c = 0; c < layer->channelCount(); ++c)
+        spec.channelformats.push_back(exrLayerNeedsFloat(layer->name) ? OIIO::TypeFloat : OIIO::TypeHalf);
   }
-  // Every layer's channels interleaved into one pixel, layer after layer, already in the file's per-channel
-  // types, so OpenImageIO writes them as they are instead of converting mixed formats itself.
-  const std::vector<std::uint8_t> interleaved = interleaveNative(result, spec);
   const auto indexOf = [&](const std::string& name) {
     const auto found = std::find(channelNames.begin(), channelNames.end(), name);
     return found == channelNames.end() ? -1 : int(found - channelNames.begin());
@@ -198,14 +216,19 @@ void writeExr(const RenderResult& result, const std::filesystem::path& path, con
   // OpenImageIO stamps the current time into the header (capDate) unless DateTime is given: left empty, the
   // same frame gives the same file on every node and every run, so farm output can be checked byte for byte.
   spec.attribute("DateTime", "");
-  writeThroughTemporaryFile(path, "openexr", spec, OIIO::TypeUnknown, interleaved.data());
+  writeThroughTemporaryFile(path, "openexr", spec, [&](OIIO::ImageOutput& output) {
+    return writeInterleavedRows(output, layers, spec);
+  });
 }
 
 void writePng(const RenderResult& result, const std::filesystem::path& path) {
   const auto composite = std::find_if(result.layers.begin(), result.layers.end(),
                                       [](const ImageLayer& layer) { return layer.name == "composite"; });
   if (composite == result.layers.end()) fail(path, "cannot write a PNG: the result has no composite layer");
-  checkLayerSizes(result, path);
+  std::vector<const ImageLayer*> everyLayer;
+  for (const ImageLayer& layer : result.layers)
+    everyLayer.push_back(&layer);
+  checkLayerSizes(result, everyLayer, path);
   const int red = channelIndex(*composite, "R");
   const int green = channelIndex(*composite, "G");
   const int blue = channelIndex(*composite, "B");
@@ -234,7 +257,9 @@ void writePng(const RenderResult& result, const std::filesystem::path& path) {
   spec.attribute("oiio:UnassociatedAlpha", 1);
   spec.attribute("oiio:ColorSpace", "sRGB");
   spec.attribute("DateTime", "");  // As in writeExr: no time stamp, identical frames are identical files.
-  writeThroughTemporaryFile(path, "png", spec, OIIO::TypeUInt8, encoded.data());
+  writeThroughTemporaryFile(path, "png", spec, [&](OIIO::ImageOutput& output) {
+    return output.write_image(OIIO::TypeUInt8, encoded.data());
+  });
 }
 
 }  // namespace spindrift
