@@ -3,6 +3,7 @@
 import os
 import shutil
 import sys
+import traceback
 
 import bpy
 import numpy as np
@@ -22,6 +23,32 @@ def check(condition, message):
     if not condition:
         raise AssertionError(message)
     print(f"ok: {message}", flush=True)
+
+
+def exit_on_failure():
+    """Ends Blender with exit code 1 after printing the exception being handled: a failed check must fail the
+    test even where Blender would only log it (timers, handlers)."""
+    traceback.print_exc()
+    sys.stdout.flush()
+    sys.stderr.flush()
+    os._exit(1)
+
+
+def run(main):
+    """Runs a test's main and ends Blender with its exit code: 0 when it returned, 1 when it raised."""
+    try:
+        main()
+    except Exception:  # noqa: BLE001 - any failure ends the test with exit code 1
+        exit_on_failure()
+    os._exit(0)
+
+
+def run_in_interface(step):
+    """Installs the add-on, opens the fixture scene named first on the command line and calls `step` from a
+    timer, so the interface draws between its calls (`step` returns the seconds until the next one)."""
+    install_addon()
+    open_fixture_scene(arguments()[0])
+    bpy.app.timers.register(step, first_interval=1.0)
 
 
 def install_addon():

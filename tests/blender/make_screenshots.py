@@ -10,13 +10,13 @@ Run (from the repository root, after scripts/build-addon and a ctest run that ba
 import os
 import sys
 import time
-import traceback
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 
 import bpy  # noqa: E402
 
-from blender_test_common import arguments, image_pixels, install_addon, open_fixture_scene, preview_ready  # noqa: E402,E501
+from blender_test_common import (arguments, exit_on_failure, image_pixels, preview_ready,  # noqa: E402
+                                 run_in_interface)
 
 FRAME = 5
 state = {"step": 0, "started": time.time()}
@@ -149,17 +149,9 @@ def step():
                 bpy.ops.node.view_all()
             shoot(editor, "blender_node_group.png", crop_to_content=False)
             os._exit(0)
-    except Exception:  # noqa: BLE001
-        traceback.print_exc()
-        sys.stdout.flush()
-        os._exit(1)
+    except Exception:  # noqa: BLE001 - any failure ends the run with exit code 1
+        exit_on_failure()
     return None
 
 
-def main():
-    install_addon()
-    open_fixture_scene(arguments()[0])
-    bpy.app.timers.register(step, first_interval=1.0)
-
-
-main()
+run_in_interface(step)

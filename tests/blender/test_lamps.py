@@ -9,7 +9,6 @@ Run: run_blender.py --zip ZIP test_lamps.py -- FIXTURE_DIR
 import math
 import os
 import sys
-import traceback
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 
@@ -17,7 +16,7 @@ import bpy  # noqa: E402
 import numpy as np  # noqa: E402
 
 from blender_test_common import (arguments, check, install_addon, open_fixture_scene, read_exr_layers,  # noqa: E402
-                                 spindrift_module)
+                                 run, spindrift_module)
 
 
 def add_lamp(kind, name, location, rotation=(0.0, 0.0, 0.0), energy=100.0, hide_render=False):
@@ -91,10 +90,4 @@ def main():
     print("test_lamps: passed", flush=True)
 
 
-try:
-    main()
-except Exception:  # noqa: BLE001 - any failure ends the test with exit code 1
-    traceback.print_exc()
-    sys.stdout.flush()
-    os._exit(1)
-os._exit(0)
+run(main)

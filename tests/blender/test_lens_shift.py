@@ -7,7 +7,6 @@ Run: run_blender.py --zip ZIP test_lens_shift.py -- FIXTURE_DIR
 
 import os
 import sys
-import traceback
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 
@@ -17,7 +16,7 @@ from bpy_extras.object_utils import world_to_camera_view  # noqa: E402
 from mathutils import Vector  # noqa: E402
 
 from blender_test_common import (arguments, check, install_addon, open_fixture_scene, read_exr_layers,  # noqa: E402
-                                 scratch, spindrift_module)
+                                 run, scratch, spindrift_module)
 
 WIDTH, HEIGHT = 160, 120
 # Shifts are in units of the larger image side: 0.1 x 160 = 16 px, -0.05 x 160 = -8 px, whole pixels, so the
@@ -92,10 +91,4 @@ def main():
     print("test_lens_shift: passed", flush=True)
 
 
-try:
-    main()
-except Exception:  # noqa: BLE001 - any failure ends the test with exit code 1
-    traceback.print_exc()
-    sys.stdout.flush()
-    os._exit(1)
-os._exit(0)
+run(main)

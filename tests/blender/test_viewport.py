@@ -10,7 +10,6 @@ import json
 import os
 import sys
 import time
-import traceback
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 
@@ -21,8 +20,8 @@ from bpy_extras.view3d_utils import (location_3d_to_region_2d, region_2d_to_orig
                                      region_2d_to_vector_3d)
 from mathutils import Vector  # noqa: E402
 
-from blender_test_common import (arguments, check, image_pixels, install_addon, largest_view3d,  # noqa: E402
-                                 open_fixture_scene, preview_ready, scratch)
+from blender_test_common import (arguments, check, exit_on_failure, image_pixels, largest_view3d,  # noqa: E402
+                                 preview_ready, run_in_interface, scratch)
 
 FRAME = 5
 TIMEOUT_S = 240
@@ -233,17 +232,8 @@ def step():
             print("test_viewport: passed", flush=True)
             os._exit(0)
     except Exception:  # noqa: BLE001 - any failure ends the test with exit code 1
-        traceback.print_exc()
-        sys.stdout.flush()
-        sys.stderr.flush()
-        os._exit(1)
+        exit_on_failure()
     return None
 
 
-def main():
-    install_addon()
-    open_fixture_scene(arguments()[0])
-    bpy.app.timers.register(step, first_interval=1.0)
-
-
-main()
+run_in_interface(step)
