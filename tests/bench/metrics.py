@@ -22,6 +22,14 @@ def liquid_mask(depth):
     return np.isfinite(depth) & (depth < EMPTY_DEPTH)
 
 
+def visible_depth(depth, solid_depth):
+    """`depth` where it lies in front of the scene's solids (`solid_depth`: the background render's depth
+    pass), EMPTY elsewhere. Liquid behind an opaque solid (the pool behind the drop example's stone rim) is in
+    no user's render, and Spindrift hides it as Cycles does; Mantaflow's mesh rendered alone still has it, so
+    every metric compares the visible liquid of both."""
+    return np.where(depth < solid_depth, depth, np.float32(1e10))
+
+
 def silhouette_iou(test_mask, reference_mask):
     """Intersection over union of two coverage masks; 1.0 when both are empty."""
     union = np.count_nonzero(test_mask | reference_mask)

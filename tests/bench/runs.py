@@ -128,12 +128,14 @@ def frame_errors(test_exr, camera_directory, radius, names):
                                    ["Depth.Z", "Normal.X", "Normal.Y", "Normal.Z"])
     reference_rgb = metrics.read_channels(os.path.join(camera_directory, "reference.exr"),
                                           ["Combined.R", "Combined.G", "Combined.B"])
-    reference_mask = metrics.liquid_mask(passes[..., 0])
+    solids = metrics.read_channels(os.path.join(camera_directory, "background.exr"), ["Depth.Z"])[..., 0]
+    reference_depth = metrics.visible_depth(passes[..., 0], solids)
+    reference_mask = metrics.liquid_mask(reference_depth)
     result = {}
     if "depth" in names:
         test = metrics.read_channels(test_exr, [names["depth"], *names["normal"]])
-        result.update(metrics.geometry_metrics(test[..., 0], test[..., 1:4], passes[..., 0], passes[..., 1:4],
-                                               radius))
+        result.update(metrics.geometry_metrics(metrics.visible_depth(test[..., 0], solids), test[..., 1:4],
+                                               reference_depth, passes[..., 1:4], radius))
     test_rgb = names["composite_array"] if "composite_array" in names else \
         metrics.read_channels(test_exr, names["composite"])
     result["mae"], result["ssim"] = metrics.image_errors(test_rgb, reference_rgb, reference_mask)

@@ -109,3 +109,12 @@ def test_geometry_metrics_of_a_perfect_match():
     assert result["depth_median_r"] == 0.0
     assert result["silhouette_bias_r"] == 0.0
     assert result["normal_p95_deg"] == pytest.approx(0.0, abs=1e-6)
+
+
+def test_visible_depth_leaves_out_liquid_behind_solids():
+    depth = np.array([[1.0, 2.0, 1e10]], np.float32)
+    solids = np.array([[1.5, 1.5, 3.0]], np.float32)
+    visible = metrics.visible_depth(depth, solids)
+    assert visible[0, 0] == 1.0
+    assert not metrics.liquid_mask(visible)[0, 1]  # behind the solid
+    assert not metrics.liquid_mask(visible)[0, 2]  # no liquid at all
