@@ -169,8 +169,10 @@ TEST(GLRaymarch, AdaptiveSteppingFindsTheFineSurfaceInAQuarterOfTheUniformSteps)
   scene.parameters.liquid.raymarch_stepping = "adaptive";
   const RenderResult adaptive = render(scene, positions);
   liquid_test::renderer().setIntermediateLayers(false);
-  for (const RenderResult* result : {&fine, &uniform, &adaptive})
+  for (const RenderResult* result : {&fine, &uniform, &adaptive}) {
     liquid_test::expectAllChannelsFinite(*result);
+    ASSERT_NE(result->layer("raymarch_sample_depth"), nullptr);
+  }
 
   const MarchComparison baseline = compareMarches(uniform, fine);
   const MarchComparison marched = compareMarches(adaptive, fine);
@@ -225,10 +227,11 @@ TEST(GLRaymarch, LoneParticleIsASphereOfItsRadius) {
   const RenderResult result = render(scene, {glm::vec3(0.0f)});
   liquid_test::renderer().setIntermediateLayers(false);
   liquid_test::expectAllChannelsFinite(result);
-  for (const char* layer : {"raymarch_steps", "raymarch_ray_spacing", "raymarch_entry_depth"})
+  for (const char* layer :
+       {"raymarch_steps", "raymarch_ray_spacing", "raymarch_entry_depth", "raymarch_sample_depth"})
     EXPECT_NE(result.layer(layer), nullptr) << layer;
   // The pixel centres around the image centre look straight at the particle: depth 1 - r, within the
-  // bisection's resolution (step / 2^6) plus the iso-value's rounding.
+  // refinement's resolution (a secant through a bracket of step / 2^3) plus the iso-value's rounding.
   double worst = 0.0;
   for (int row = kHeight / 2 - 1; row <= kHeight / 2; ++row)
     for (int column = kWidth / 2 - 1; column <= kWidth / 2; ++column)
