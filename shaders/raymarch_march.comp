@@ -4,7 +4,8 @@
 // jumps to the aggregates' depth D_agg after maxSkipSteps steps, and stops where the density reaches the
 // iso-value. In a marked cell each density sample also bounds the density along the ray ahead of it (the
 // paper's future work, "step lengths from the density of the previous step"): the ray skips the stretch the
-// bound proves empty and takes one `stepLength` beyond it, and a bracketed crossing is refined by bisection.
+// bound proves empty and samples one `stepLength` beyond it; a bracketed crossing is refined by bisection and a
+// secant.
 // The normal blends the screen-space normal of the smoothed D_all with the kernel gradient (equations 11-16).
 // With `adaptive` false the ray takes uniform steps of `stepLength`, never jumps and stops at the first sample
 // at or above the iso-value (Xiao et al. 2017, the baseline the paper compares against).
@@ -54,7 +55,6 @@ vec2 boxSpan(vec3 origin, vec3 inverseDirection, vec3 low, vec3 high) {
 float rayParameter(float eyeDepth, float lengthPerDepth) {
   return hasSurface(eyeDepth) ? eyeDepth * lengthPerDepth : -1.0;
 }
-
 
 uint particlesVisited = 0u;
 
@@ -224,10 +224,10 @@ void main() {
     safe = 0.0;
     t = max(t - smoothingRadius, grid.x);
   }
-  // Between tOutside and t the surface may lie; below tOutside the ray is known to be outside. outsideDensity
-  // is the density at tOutside where it was sampled (-1 where a skip or a bound put it there).
+  // Between tOutside and t the surface may lie; before tOutside the ray is known to be outside. outsideDensity
+  // is the density at tOutside where it was sampled (-1 where a skip, a bound or the jump put it there).
   float tOutside = t + safe;
-  float outsideDensity = safe > 0.0 ? -1.0 : density;
+  float outsideDensity = safe > 0.0 || density >= iso ? -1.0 : density;  // still inside after the retreats
   t = tOutside + stepLength;
   bool jumped = !adaptive;
   bool hit = false;
