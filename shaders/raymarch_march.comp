@@ -1,10 +1,14 @@
 #version 450 core
 // Adaptive ray marching (Wu et al., algorithm 1): each ray the tile casts (raymarch_tiles.comp) enters at
-// D_all, steps through the binary density grid M (a zero texel skips its 2x2x2 block, a zero bit its cell, a
-// marked cell is sampled every `stepLength`), jumps to the aggregates' depth D_agg after maxSkipSteps steps,
-// and stops where the density reaches the iso-value, refined by bisection. The normal blends the screen-space
-// normal of the smoothed D_all with the kernel gradient (equations 11-16). With `adaptive` false the ray takes
-// uniform steps and never jumps (Xiao et al. 2017, the baseline the paper compares against).
+// D_all, steps through the binary density grid M (a zero texel skips its 2x2x2 block, a zero bit its cell),
+// jumps to the aggregates' depth D_agg after maxSkipSteps steps, and stops where the density reaches the
+// iso-value. In a marked cell each density sample also bounds the density along the ray ahead of it (the
+// paper's future work, "step lengths from the density of the previous step"): the ray skips the stretch the
+// bound proves empty and samples one `stepLength` beyond it; a bracketed crossing is refined by bisection and a
+// secant.
+// The normal blends the screen-space normal of the smoothed D_all with the kernel gradient (equations 11-16).
+// With `adaptive` false the ray takes uniform steps of `stepLength`, never jumps and stops at the first sample
+// at or above the iso-value (Xiao et al. 2017, the baseline the paper compares against).
 layout(local_size_x = 8, local_size_y = 8) in;
 #include "lib/frame.glsl"
 #include "lib/depth_layer.glsl"
@@ -21,7 +25,8 @@ layout(binding = 7) uniform usampler3D densityMask;
 layout(binding = 0, r32f) uniform writeonly image2D sampleDepth;
 layout(binding = 1, rgba16f) uniform writeonly image2D sampleNormal;  // world normal; w: 0 miss, 1 splash, 2 aggregate
 layout(binding = 2, r32f) uniform writeonly image2D sampleSteps;
-layout(std430, binding = 8) buffer MarchCounters { uint marchCounters[4]; };  // rays, steps, densities, hits
+// rays, steps, densities, hits, refinement densities, particles visited by the densities (low, high word)
+layout(std430, binding = 8) buffer MarchCounters { uint marchCounters[7]; };
 
 uniform bool adaptive;
 uniform float iso;
@@ -35,8 +40,10 @@ uniform float sizeWeight;     // B of equation 13, per pixel
 uniform int tileSize;
 uniform bool hasSplash;
 uniform bool hasAggregate;
-const int kBisections = 6;
+const int kBisections = 3;  // adaptive stepping: a bracket of one stepLength refined to 1/8 (then a secant)
 const int kEntryRetreats = 4;
+const int kMaxBoundSteps = 32;  // how many step lengths ahead one density sample bounds
+const int kReachCells = 2;      // how many cells beyond its own one density sample bounds
 
 // The ray parameters where the ray enters and leaves a box (entry > exit: it misses).
 vec2 boxSpan(vec3 origin, vec3 inverseDirection, vec3 low, vec3 high) {
@@ -47,6 +54,126 @@ vec2 boxSpan(vec3 origin, vec3 inverseDirection, vec3 low, vec3 high) {
 
 float rayParameter(float eyeDepth, float lengthPerDepth) {
   return hasSurface(eyeDepth) ? eyeDepth * lengthPerDepth : -1.0;
+}
+
+uint particlesVisited = 0u;
+
+// The density at the ray's point `t` (as densityAt) and how far the ray may go from there without meeting the
+// iso-surface: the largest k * stepLength, k < kMaxBoundSteps, such that the density stays below `iso` all
+// along [t, t + k stepLength]. Each particle's kernel falls off with distance, so along a segment it adds at
+// most its kernel at the segment's nearest point; the sum of those is an upper bound of the density anywhere
+// on the segment. The particles within h of a segment are those of the 3x3x3 cells around each cell the
+// segment crosses: the point's cell's 27, and for each of the next kReachCells cells along the ray the 3x3
+// layer that its block adds beyond the previous ones (a step along an axis adds the block's face on that
+// side). Segments end where the ray leaves the last of those cells.
+float densityAndReach(vec3 origin, vec3 inverseDirection, vec3 direction, float t, out vec3 gradient,
+                      out float safe) {
+  vec3 position = origin + t * direction;
+  ivec3 centre = cellOf(position);
+  // The next cells along the ray (3D DDA) and the layer each adds: its cell one step further along the axis
+  // the ray crossed, spread over the other two axes.
+  ivec3 signs = ivec3(greaterThanEqual(direction, vec3(0.0))) * 2 - 1;
+  vec3 cellLow = gridOrigin + vec3(centre) * cellSize;
+  vec3 exits = (cellLow + vec3(greaterThanEqual(direction, vec3(0.0))) * cellSize - origin) * inverseDirection;
+  vec3 crossing = cellSize * abs(inverseDirection);
+  ivec3 cell = centre;
+  ivec3 layerBase[kReachCells];
+  int layerAxis[kReachCells];
+  for (int n = 0; n < kReachCells; ++n) {
+    int axis = exits.x <= exits.y ? (exits.x <= exits.z ? 0 : 2) : (exits.y <= exits.z ? 1 : 2);
+    cell[axis] += signs[axis];
+    exits[axis] += crossing[axis];
+    layerBase[n] = cell;
+    layerBase[n][axis] += signs[axis];
+    layerAxis[n] = axis;
+  }
+  float reach = min(min(exits.x, exits.y), exits.z) - t;
+  int count = clamp(int(reach / stepLength), 0, kMaxBoundSteps - 1);
+
+  gradient = vec3(0.0);
+  float density = 0.0;
+  float bound[kMaxBoundSteps];
+  for (int k = 0; k < kMaxBoundSteps; ++k)
+    bound[k] = 0.0;
+  float squaredRadius = smoothingRadius * smoothingRadius;
+  float inverseSquaredRadius = 1.0 / squaredRadius;
+  for (int m = 0; m < 27 + 9 * kReachCells; ++m) {
+    ivec3 visit;
+    if (m < 27) {
+      visit = centre + ivec3(m % 3, (m / 3) % 3, m / 9) - 1;
+    } else {
+      int n = (m - 27) / 9, spread = (m - 27) % 9;
+      int axis = layerAxis[n];
+      visit = layerBase[n];
+      visit[(axis + 1) % 3] += spread % 3 - 1;
+      visit[(axis + 2) % 3] += spread / 3 - 1;
+    }
+    if (!insideGrid(visit)) continue;
+    int index = cellIndex(visit);
+    uint begin = cellStart[index];
+    uint end = begin + cellCount[index];
+    particlesVisited += end - begin;
+    for (uint j = begin; j < end; ++j) {
+      vec3 offset = sortedParticles[j].xyz - position;
+      float squaredDistance = dot(offset, offset);
+      if (squaredDistance < squaredRadius) {
+        float falloff = 1.0 - squaredDistance * inverseSquaredRadius;
+        density += falloff * falloff * falloff;
+        gradient += 6.0 * falloff * falloff * inverseSquaredRadius * offset;
+      }
+      float along = dot(offset, direction);
+      float squaredAside = max(squaredDistance - along * along, 0.0);
+      if (along <= 0.0) {  // nearest to the point on every segment
+        if (squaredDistance < squaredRadius) {
+          float falloff = 1.0 - squaredDistance * inverseSquaredRadius;
+          bound[0] += falloff * falloff * falloff;
+        }
+        continue;
+      }
+      if (squaredAside >= squaredRadius) continue;
+      // bound[k] collects the particle's most on the segment of k steps less its most on k - 1 steps; it adds
+      // nothing before the segment comes within h of it.
+      int first = max(int(ceil((along - sqrt(squaredRadius - squaredAside)) / stepLength)), 0);
+      float previous = 0.0;
+      for (int k = first; k <= count; ++k) {
+        float ahead = max(along - float(k) * stepLength, 0.0);
+        float falloff = max(1.0 - (squaredAside + ahead * ahead) * inverseSquaredRadius, 0.0);
+        float most = falloff * falloff * falloff;
+        bound[k] += most - previous;
+        previous = most;
+        if (ahead == 0.0) break;
+      }
+    }
+  }
+  // bound[k] holds increments: their running sum is the bound on k steps.
+  float sum = 0.0;
+  int k = 0;
+  for (; k <= count; ++k) {
+    sum += bound[k];
+    if (sum >= iso) break;
+  }
+  safe = float(max(k - 1, 0)) * stepLength;
+  return density;
+}
+
+// densityAt, its particles counted.
+float countedDensity(vec3 position, out vec3 gradient) {
+  ivec3 centre = cellOf(position);
+  for (int dz = -1; dz <= 1; ++dz)
+    for (int dy = -1; dy <= 1; ++dy)
+      for (int dx = -1; dx <= 1; ++dx) {
+        ivec3 cell = centre + ivec3(dx, dy, dz);
+        if (insideGrid(cell)) particlesVisited += cellCount[cellIndex(cell)];
+      }
+  return densityAt(position, gradient);
+}
+
+// A sample of the march: the density and, with adaptive steps, how far ahead the ray is known to stay outside.
+float sampleDensity(vec3 origin, vec3 inverseDirection, vec3 direction, float t, out vec3 gradient,
+                    out float safe) {
+  safe = 0.0;
+  return adaptive ? densityAndReach(origin, inverseDirection, direction, t, gradient, safe)
+                  : countedDensity(origin + t * direction, gradient);
 }
 
 void writeSample(ivec2 pixel, float depth, vec4 normalAndClass, float steps) {
@@ -85,16 +212,23 @@ void main() {
 
   // Where many particles crowd together their iso-surface can lie more than h - r in front of D_all: back up
   // by h until the ray starts outside (each try counts as a step).
-  int steps = 0, densities = 0;
-  vec3 gradient;
+  int steps = 0, densities = 0, refinements = 0;
+  vec3 gradient, insideGradient = vec3(0.0);
+  float safe = 0.0;
+  float density = 0.0;
   for (int k = 0; k < kEntryRetreats && t > grid.x; ++k) {
     ++steps;
     ++densities;
-    if (densityAt(origin + t * direction, gradient) < iso) break;
+    density = sampleDensity(origin, inverseDirection, direction, t, gradient, safe);
+    if (density < iso) break;
+    safe = 0.0;
     t = max(t - smoothingRadius, grid.x);
   }
-  float tOutside = t;  // the last parameter known to lie outside the surface
-  t += stepLength;
+  // Between tOutside and t the surface may lie; before tOutside the ray is known to be outside. outsideDensity
+  // is the density at tOutside where it was sampled (-1 where a skip, a bound or the jump put it there).
+  float tOutside = t + safe;
+  float outsideDensity = safe > 0.0 || density >= iso ? -1.0 : density;  // still inside after the retreats
+  t = tOutside + stepLength;
   bool jumped = !adaptive;
   bool hit = false;
   float epsilon = 1e-4 * cellSize;
@@ -105,6 +239,7 @@ void main() {
       if (tAggregate > t) {
         t = tAggregate;
         tOutside = t;
+        outsideDensity = -1.0;
       }
     }
     vec3 position = origin + t * direction;
@@ -124,30 +259,49 @@ void main() {
       if (high != low) {
         t = max(t, boxSpan(origin, inverseDirection, low, high).y) + epsilon;
         tOutside = t;
+        outsideDensity = -1.0;
         continue;
       }
     }
     ++densities;
-    if (densityAt(position, gradient) >= iso) {
+    density = sampleDensity(origin, inverseDirection, direction, t, gradient, safe);
+    if (density >= iso) {
       hit = true;
+      insideGradient = gradient;
       break;
     }
-    tOutside = t;
-    t += stepLength;
+    // The bound proves [t, t + safe] outside: the next sample is one step beyond it.
+    tOutside = t + safe;
+    outsideDensity = safe > 0.0 ? -1.0 : density;
+    t = tOutside + stepLength;
   }
-  if (hit && t > tOutside) {
-    float inside = t;
+  if (hit && adaptive && t > tOutside) {
+    // Bisection, then the secant through the bracket's ends where both densities are known.
+    float inside = t, insideDensity = density;
     for (int k = 0; k < kBisections; ++k) {
       float middle = 0.5 * (tOutside + inside);
       ++densities;
-      if (densityAt(origin + middle * direction, gradient) >= iso) inside = middle;
-      else tOutside = middle;
+      ++refinements;
+      float value = countedDensity(origin + middle * direction, gradient);
+      if (value >= iso) {
+        inside = middle;
+        insideDensity = value;
+        insideGradient = gradient;
+      } else {
+        tOutside = middle;
+        outsideDensity = value;
+      }
     }
-    t = inside;
+    t = outsideDensity >= 0.0 && insideDensity > outsideDensity
+            ? mix(tOutside, inside, (iso - outsideDensity) / (insideDensity - outsideDensity))
+            : 0.5 * (tOutside + inside);
   }
   atomicAdd(marchCounters[0], 1u);
   atomicAdd(marchCounters[1], uint(steps));
   atomicAdd(marchCounters[2], uint(densities));
+  atomicAdd(marchCounters[4], uint(refinements));
+  if (atomicAdd(marchCounters[5], particlesVisited) + particlesVisited < particlesVisited)
+    atomicAdd(marchCounters[6], 1u);  // the low word wrapped
   if (!hit) {
     writeSample(pixel, kNoSurfaceDepth, vec4(0.0), float(steps));
     return;
@@ -155,7 +309,7 @@ void main() {
   atomicAdd(marchCounters[3], 1u);
   vec3 surface = origin + t * direction;
   float depth = t / lengthPerDepth;
-  densityAt(surface, gradient);
+  gradient = insideGradient;  // the kernel gradient at the last sample found inside, within 1/8 step of t
   // Equations 12-16: trust the object-space normal where the surface lies far behind the entry (the screen
   // normal describes the entry) and where particles are large on screen (the filter cannot flatten them).
   vec4 screen = texelFetch(screenNormal, pixel, 0);

@@ -84,7 +84,9 @@ def render(scene, name, settings, repeat):
 def heat_map(steps, title, path, vmax):
     figure, axis = plt.subplots(figsize=(6.4, 3.9), dpi=100)
     shown = np.ma.masked_where(steps <= 0, steps)
-    image = axis.imshow(shown, cmap="inferno", vmin=0, vmax=vmax, interpolation="nearest")
+    # Logarithmic: most rays take a few steps, rays that cross to a body behind take hundreds.
+    image = axis.imshow(shown, cmap="inferno", norm=matplotlib.colors.LogNorm(vmin=1, vmax=vmax),
+                        interpolation="nearest")
     axis.set_facecolor("black")
     axis.set_title(title, fontsize=10)
     axis.set_xticks([])
@@ -143,7 +145,8 @@ def main():
     for name, label in (("raymarch_uniform_full", "uniform"), ("raymarch_adaptive_full", "adaptive")):
         frame = stats[name][-1]["raymarch"]
         heat_map(layers[name]["raymarch_steps"]["Y"],
-                 f"{label} steps, one ray per pixel: {frame['average_steps_per_ray']:.2f} steps per ray on average",
+                 f"{label} steps, one ray per pixel: {frame['average_steps_per_ray']:.2f} steps, "
+                 f"{frame['density_evaluations_per_ray']:.2f} densities per ray",
                  IMAGES / f"raymarch_steps_{label}.png", vmax)
     frame = stats["raymarch"][-1]["raymarch"]
     tiles = frame["tiles"]

@@ -77,6 +77,7 @@ MarchedFronts RaymarchSurface::run(const RaymarchPreparation& preparation,
   ScopedPassTimer timed(timer, "raymarch_upsample");
   lastEntryDepth_ = &entry->allDepth;
   lastSteps_ = &samples->steps;
+  lastSampleDepth_ = &samples->depth;
   lastLevels_ = &tiles->levels;
   lastTileSize_ = tiles->tileSize;
   lastStats_ = RaymarchFrameStats{};
@@ -98,6 +99,9 @@ RaymarchFrameStats RaymarchSurface::statistics() const {
   stats.totalSteps = counters.steps;
   stats.averageStepsPerRay = counters.rays ? double(counters.steps) / counters.rays : 0.0;
   stats.densityEvaluationsPerRay = counters.rays ? double(counters.densities) / counters.rays : 0.0;
+  stats.refinementEvaluationsPerRay = counters.rays ? double(counters.refinements) / counters.rays : 0.0;
+  const double particles = double(counters.particlesHigh) * 4294967296.0 + double(counters.particlesLow);
+  stats.particlesVisitedPerRay = counters.rays ? particles / counters.rays : 0.0;
   for (int i = 0; i < 4; ++i)
     stats.tiles[i] = histogram[i];
   return stats;
@@ -107,6 +111,7 @@ std::vector<ImageLayer> RaymarchSurface::intermediateLayers() const {
   std::vector<ImageLayer> layers;
   if (!lastSteps_) return layers;
   layers.push_back(readLayer(*lastEntryDepth_, "raymarch_entry_depth", {"Z"}));
+  layers.push_back(readLayer(*lastSampleDepth_, "raymarch_sample_depth", {"Z"}));
   layers.push_back(readLayer(*lastSteps_, "raymarch_steps", {"Y"}));
   // The tile texture is bottom row first (GL's window coordinates); layers are top row first.
   const Texture2D& levels = *lastLevels_;

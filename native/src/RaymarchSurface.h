@@ -30,8 +30,9 @@ class RaymarchSurface {
                     const LiquidParameters& parameters, PassTimer& timer, int width, int height);
   /// The counters and tile histogram of the last run (waits for the GPU).
   RaymarchFrameStats statistics() const;
-  /// raymarch_entry_depth.Z, raymarch_steps.Y and raymarch_ray_spacing.Y (1, 2 or 4 pixels; 0 without liquid)
-  /// of the last run, for --intermediate.
+  /// raymarch_entry_depth.Z, raymarch_sample_depth.Z (each cast ray's surface, 1e10 where it found none or
+  /// none was cast), raymarch_steps.Y and raymarch_ray_spacing.Y (1, 2 or 4 pixels; 0 without liquid) of the
+  /// last run, for --intermediate.
   std::vector<ImageLayer> intermediateLayers() const;
   /// The density grid of the last run unpacked to a byte per cell (for the tests).
   std::vector<std::uint8_t> densityMaskCells() const { return mask_.readCells(); }
@@ -52,6 +53,7 @@ class RaymarchSurface {
   std::optional<DepthLayer> emptyLayer_;
   const Texture2D* lastEntryDepth_ = nullptr;
   const Texture2D* lastSteps_ = nullptr;
+  const Texture2D* lastSampleDepth_ = nullptr;
   const Texture2D* lastLevels_ = nullptr;
   int lastTileSize_ = 16;
   RaymarchFrameStats lastStats_;

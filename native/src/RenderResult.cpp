@@ -24,6 +24,8 @@ nlohmann::json FrameStats::toJson() const {
                     {"total_steps", raymarch.totalSteps},
                     {"average_steps_per_ray", raymarch.averageStepsPerRay},
                     {"density_evaluations_per_ray", raymarch.densityEvaluationsPerRay},
+                    {"refinement_evaluations_per_ray", raymarch.refinementEvaluationsPerRay},
+                    {"particles_visited_per_ray", raymarch.particlesVisitedPerRay},
                     {"tiles",
                      {{"full", raymarch.tiles[0]},
                       {"half", raymarch.tiles[1]},

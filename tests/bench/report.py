@@ -116,13 +116,17 @@ def raymarch_table(data):
         tiles = stats["tiles"]
         marching = sum(row["timing"]["passes"].get(name, {}).get("gpu_ms") or 0.0
                        for name in row["timing"]["passes"] if name.startswith("raymarch"))
+        # Results older than the kernel-bound steps have no refinement or particle counters.
+        optional = [number(stats[key]) if key in stats else "–"
+                    for key in ("refinement_evaluations_per_ray", "particles_visited_per_ray")]
         rows.append([row["label"], stats["stepping"], number(stats["average_steps_per_ray"]),
-                     number(stats["density_evaluations_per_ray"]), f"{stats['rays_cast']:,}", f"{stats['hits']:,}",
-                     f"{tiles['full']} / {tiles['half']} / {tiles['quarter']} / {tiles['empty']}",
+                     number(stats["density_evaluations_per_ray"]), *optional, f"{stats['rays_cast']:,}",
+                     f"{stats['hits']:,}", f"{tiles['full']} / {tiles['half']} / {tiles['quarter']} / {tiles['empty']}",
                      number(marching, 4)])
     if not rows:
         return ""
-    return table(["setting", "stepping", "steps per ray", "density evaluations per ray", "rays cast", "hits",
+    return table(["setting", "stepping", "steps per ray", "density evaluations per ray",
+                  "of them refinement", "particles read per ray", "rays cast", "hits",
                   "tiles full / half / quarter / empty", "raymarch passes GPU ms"], rows)
 
 

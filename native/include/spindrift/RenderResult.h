@@ -68,7 +68,9 @@ struct RaymarchFrameStats {
   std::size_t hits = 0;        ///< Rays that found the iso-surface.
   std::size_t totalSteps = 0;  ///< Marching steps of all rays: skips and density samples.
   double averageStepsPerRay = 0.0;
-  double densityEvaluationsPerRay = 0.0;  ///< Bisection included.
+  double densityEvaluationsPerRay = 0.0;     ///< Bisection included.
+  double refinementEvaluationsPerRay = 0.0;  ///< The bisection's density evaluations alone.
+  double particlesVisitedPerRay = 0.0;  ///< Particles read by the density evaluations (neighbour search).
   /// Screen tiles cast at full, half and quarter resolution, and tiles without liquid.
   std::size_t tiles[4] = {0, 0, 0, 0};
 };

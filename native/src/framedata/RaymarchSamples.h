@@ -20,6 +20,9 @@ struct RaymarchCounters {
   std::uint32_t steps = 0;  ///< Loop iterations: skips through empty cells, density samples, entry checks.
   std::uint32_t densities = 0;  ///< Density evaluations, bisection included.
   std::uint32_t hits = 0;
+  std::uint32_t refinements = 0;  ///< Of the density evaluations, those of the bisection.
+  /// Particles read by all density evaluations (the neighbour searches' work), low and high 32 bits.
+  std::uint32_t particlesLow = 0, particlesHigh = 0;
 };
 
 }  // namespace spindrift
