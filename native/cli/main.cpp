@@ -129,8 +129,6 @@ int runRender(const RenderOptions& options) {
       progress.frameSkipped(frame);
       continue;
     }
-    for (const std::filesystem::path& output : outputs)
-      cli::removeStaleTemporaries(output);
     const auto start = std::chrono::steady_clock::now();
     std::shared_ptr<const RenderResult> result;
     try {
@@ -147,6 +145,10 @@ int runRender(const RenderOptions& options) {
     }
     if (!finishPendingWrite()) return cli::kExitError;
     if (cli::StopSignals::received()) break;  // The frame in flight is dropped before any of it is written.
+    // Only now, with the previous frame's write finished: a frame listed twice (or two frames sharing a path)
+    // would otherwise delete the temporary the write in flight is about to rename.
+    for (const std::filesystem::path& output : outputs)
+      cli::removeStaleTemporaries(output);
     allStats.push_back(statsJson(*result, scene));
     pendingFrame = frame;
     pendingWrite = std::async(std::launch::async, [&options, &scene, result, frame] {

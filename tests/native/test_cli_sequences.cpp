@@ -93,6 +93,22 @@ TEST(CLISequences, SkipExistingRendersOnlyWhatIsMissingAndRemovesStaleTemporarie
   EXPECT_EQ(readBytes(out / "f_0002.exr"), frame1) << "the same particles give the same bytes";
 }
 
+TEST(CLISequences, AFrameListedTwiceIsWrittenTwiceWithoutRacingItsOwnWrite) {
+  // Each frame's files are written while the next renders. The stale-temporary cleanup of the next frame ran
+  // before it rendered and could delete the temporary of the write in flight when both frames share a path
+  // ("cannot replace the file", seen once in six two-frame runs of a 480x270 frame; it needs the writer to
+  // have opened its temporary first, so this test catches the race only when it happens; the cleanup now
+  // runs after the previous write has finished, where it cannot).
+  TempDirectory directory;
+  const std::filesystem::path scene = writeSequenceScene(directory, {2});
+  const std::filesystem::path out = directory.path() / "out";
+  const CommandResult result =
+      runCli("render " + scene.string() + " --frames 2,2,2,2,2,2 -q -o " + (out / "f_####.exr").string() +
+             " --png " + (out / "f_####.png").string());
+  ASSERT_EQ(result.exitCode, 0) << result.stderrText;
+  EXPECT_EQ(filesIn(out), (std::vector<std::string>{"f_0002.exr", "f_0002.png"}));
+}
+
 TEST(CLISequences, MissingCacheFrameNamesTheFrameAndStopsTheSequence) {
   TempDirectory directory;
   const std::filesystem::path scene = writeSequenceScene(directory, {1, 3});
