@@ -212,8 +212,10 @@ HiddenHalves hiddenHalves(const EllipsoidInstance& ellipsoid, std::int32_t self,
       double outerLow, outerHigh;
       if (!interval(b, c, outer, outerLow, outerHigh)) continue;
       // Rounded outwards by a hundredth of a voxel: more voxels checked, never fewer.
-      const int from = std::max(first.x, int(std::ceil(outerLow - 0.01)));
-      const int to = std::min(last.x, int(std::floor(outerHigh + 0.01)));
+      // Clamped before the conversion: a degenerate quadric gives infinities, which no int holds (a NaN
+      // keeps the whole row, which only checks more voxels).
+      const int from = int(std::max<double>(first.x, std::ceil(outerLow - 0.01)));
+      const int to = int(std::min<double>(last.x, std::floor(outerHigh + 0.01)));
       double innerLow = 1.0, innerHigh = 0.0;  // Empty unless the row passes through the core.
       if (inner > 0.0 && interval(b, c, inner, innerLow, innerHigh)) {
         innerLow += 0.01;
