@@ -26,15 +26,20 @@ namespace {
 constexpr float kSpacing = 0.1f;
 constexpr float kRadius = 0.11f;
 
-// A block of 16 x 16 x 10 particles, each moved by up to 0.3 spacings (as FLIP particles sit), seeded.
-Particles jitteredBlock() {
-  std::mt19937 random(7);
+// A lattice block between `low` and `high`, each particle moved by up to 0.3 spacings (as FLIP particles
+// sit), seeded.
+Particles jitteredBlock(const glm::vec3& low, const glm::vec3& high, unsigned seed) {
+  std::mt19937 random(seed);
   std::uniform_real_distribution<float> jitter(-0.3f * kSpacing, 0.3f * kSpacing);
-  std::vector<glm::vec3> positions =
-      liquid_test::block({0.05f, 0.05f, 0.05f}, {1.55f, 1.55f, 0.95f}, kSpacing);
+  std::vector<glm::vec3> positions = liquid_test::block(low, high, kSpacing);
   for (glm::vec3& position : positions)
     position += glm::vec3(jitter(random), jitter(random), jitter(random));
   return liquid_test::particlesOf(positions, kRadius);
+}
+
+// 16 x 16 x 10 particles.
+Particles jitteredBlock() {
+  return jitteredBlock({0.05f, 0.05f, 0.05f}, {1.55f, 1.55f, 0.95f}, 7);
 }
 
 Camera obliqueCamera() {
@@ -206,15 +211,9 @@ TEST(HiddenInterior, EachLayerSeesFromTheCameraWhatAllEllipsoidsGive) {
 TEST(HiddenInterior, AFlatSlabSeenFromAboveDrawsItsTopIntoTheFrontLayerAndItsBottomIntoTheBack) {
   // 24 x 24 x 6 particles seen from straight above: the top face's particles are drawn into the front layer
   // only and the bottom face's into the back layer only; a split the wrong way round fails here.
-  std::mt19937 random(5);
-  std::uniform_real_distribution<float> jitter(-0.3f * kSpacing, 0.3f * kSpacing);
-  std::vector<glm::vec3> positions =
-      liquid_test::block({0.05f, 0.05f, 0.05f}, {2.35f, 2.35f, 0.55f}, kSpacing);
-  for (glm::vec3& position : positions)
-    position += glm::vec3(jitter(random), jitter(random), jitter(random));
+  const Particles slab = jitteredBlock({0.05f, 0.05f, 0.05f}, {2.35f, 2.35f, 0.55f}, 5);
   const Camera above = Camera::lookAt(128, 128, 40.0f, {1.2f, 1.2f, 6.0f}, {1.2f, 1.2f, 0.3f}, {0, 1, 0});
-  const std::vector<EllipsoidInstance> all =
-      prepareLiquid(liquid_test::particlesOf(positions, kRadius), above, grownParticles()).aggregates;
+  const std::vector<EllipsoidInstance> all = prepareLiquid(slab, above, grownParticles()).aggregates;
   std::vector<EllipsoidInstance> kept = all;
   const HiddenInteriorResult result = dropHiddenInterior(kept, above, nullptr);
   EXPECT_GT(result.split.frontOnly, kept.size() / 10) << "of " << kept.size();
