@@ -1,7 +1,7 @@
 """Blender data to what the native renderer takes: cache sources, particle arrays, triangles, the camera.
 
 Every function reads Blender's data on the main thread (or the render job's thread inside a render handler),
-never on the preview's worker thread. Problems with the user's data are appended to `issues` as one-line
+never on another thread. Problems with the user's data are appended to `issues` as one-line
 messages naming the object, not raised, so one bad object never stops the others from rendering.
 """
 

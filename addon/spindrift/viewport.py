@@ -1,19 +1,22 @@
 """The live preview in the 3D viewport.
 
-Main thread (the draw callback, POST_PIXEL): when the view, the frame or the scene changed and the worker is
-idle, collect the frame's inputs and hand them to the worker; then draw the latest finished image
-(premultiplied, with the gpu module). The scene's solids hide the liquid through the native occluder depth
-prepass, which draws their triangles on the renderer's own thread: the viewport's depth buffer is never read,
-because reading it waits for llvmpipe to finish drawing the viewport (150-300 ms per handed frame, measured in
-docs/blender.md). The triangles are extracted once per depsgraph change and frame, not per view. Worker thread: calls the native renderer (which releases
-the GIL while it renders on its own GL thread), turns the liquid and foam layers into one premultiplied sRGB
-image and posts it. A timer on the main thread notices new images and redraws the viewports.
+Main thread (the draw callback, POST_PIXEL): when the view, the frame or the scene changed and no frame for
+that region is waiting or rendering, collect the frame's inputs and queue them; then draw the latest finished
+image (premultiplied, with the gpu module). The scene's solids hide the liquid through the native occluder
+depth prepass, which draws their triangles on the renderer's own thread: the viewport's depth buffer is never
+read, because reading it waits for llvmpipe to finish drawing the viewport (150-300 ms per handed frame,
+measured in docs/blender.md). The triangles are extracted once per depsgraph change and frame, not per view.
+
+Rendering: `Renderer.submit` renders the frame on a native thread and composes the display image (foam over
+liquid, premultiplied display sRGB) there too; a timer on the main thread collects it with `Renderer.poll` and
+redraws the viewports. No Python runs off the main thread: an earlier Python worker thread crashed Blender
+about one run in ten (its main thread made Python strings without holding the GIL while the worker held it;
+docs/blender.md).
 
 What the preview refracts: the world colour, not the scene's colour: reading the scene's colour needs
 `GPUOffScreen.draw_view3d`, which costs ~0.7 s of main-thread time per redraw on llvmpipe (docs/blender.md).
 """
 
-import threading
 import time
 
 import bpy
@@ -42,105 +45,94 @@ class Image:
         self.texture = None
 
 
-class Worker:
-    """One thread, one pending job per viewport region: a newer job replaces one not yet started."""
+class Previews:
+    """The regions' preview frames, rendered one at a time by the shared Renderer on its native thread.
+
+    One queued job per viewport region (a newer one replaces one not yet started). Everything here runs on the
+    main thread: the draw callback queues, the timer collects (`collect`), and each collection starts the
+    next queued frame. A region's latest result is an Image, or the error's text."""
 
     def __init__(self):
-        self._condition = threading.Condition()
-        self._pending = {}
-        self._busy = set()
+        self._queued = {}
+        self._rendering = None  # (region_key, job, start time) of the frame on the native thread.
         self._finished = {}
-        self._stop = False
-        self._fresh = False
-        self._thread = threading.Thread(target=self._run, name="spindrift-preview", daemon=True)
-        self._thread.start()
 
     def submit(self, region_key, job):
-        with self._condition:
-            self._pending[region_key] = job
-            self._condition.notify()
+        self._queued[region_key] = job
+        self._start_next()
 
     def idle(self, region_key):
-        with self._condition:
-            return region_key not in self._pending and region_key not in self._busy
+        return region_key not in self._queued and (self._rendering is None or self._rendering[0] != region_key)
 
     def latest(self, region_key):
-        with self._condition:
-            return self._finished.get(region_key)
+        return self._finished.get(region_key)
 
-    def take_fresh(self):
-        with self._condition:
-            fresh, self._fresh = self._fresh, False
-            return fresh
+    def fail(self, region_key, message):
+        self._finished[region_key] = message
+
+    def collect(self):
+        """Takes the frame that finished, if one did, and starts the next; True when a region has news."""
+        if self._rendering is None:
+            return self._start_next()
+        region_key, job, started = self._rendering
+        try:
+            renderer = native.renderer()
+            if renderer.busy:
+                return False
+            result = renderer.poll()
+            if result is None:  # Nothing in flight: the renderer was closed and made again. Render it anew.
+                self._queued.setdefault(region_key, job)
+                self._rendering = None
+                return self._start_next()
+            pixels = np.frombuffer(result["display"], dtype=np.float32)
+            self._finished[region_key] = Image(job, pixels, result["width"], result["height"],
+                                               time.perf_counter() - started, result.get("stats", {}))
+        except Exception as error:  # noqa: BLE001 - shown in the panel; the viewport keeps working
+            self._finished[region_key] = str(error) or type(error).__name__
+        self._rendering = None
+        self._start_next()
+        return True
 
     def stop(self):
-        with self._condition:
-            self._stop = True
-            self._condition.notify()
-        self._thread.join(timeout=30)
+        """Waits for the frame on the native thread (the shared Renderer takes one at a time) and drops it."""
+        self._queued.clear()
+        if self._rendering is None:
+            return
+        self._rendering = None
+        try:
+            renderer = native.renderer()
+            while renderer.busy:
+                time.sleep(0.005)
+            renderer.poll()
+        except Exception:  # noqa: BLE001 - the frame is dropped either way
+            pass
 
-    def _run(self):
-        while True:
-            with self._condition:
-                while not self._pending and not self._stop:
-                    self._condition.wait()
-                if self._stop:
-                    return
-                region_key, job = self._pending.popitem()
-                self._busy.add(region_key)
-            result = self._render(job)
-            with self._condition:
-                self._busy.discard(region_key)
-                self._finished[region_key] = result
-                self._fresh = True
-
-    @staticmethod
-    def _render(job):
-        started = time.perf_counter()
+    def _start_next(self):
+        """Submits a queued frame when none is rendering; True when that failed at once (the region has news)."""
+        if self._rendering is not None or not self._queued:
+            return False
+        region_key, job = self._queued.popitem()
         try:
             inputs = job.inputs
-            result = native.renderer().render(inputs.scene_text, inputs.document["frame"],
-                                              layers=["liquid", "foam"], **inputs.kwargs)
-            pixels = premultiplied_display(result)
-            return Image(job, pixels, result["width"], result["height"], time.perf_counter() - started,
-                         result.get("stats", {}))
+            native.renderer().submit(inputs.scene_text, inputs.document["frame"], layers=[], display=True,
+                                     **inputs.kwargs)
         except Exception as error:  # noqa: BLE001 - shown in the panel; the viewport keeps working
-            return str(error) or type(error).__name__
-
-
-def _layer(result, name):
-    channels, data = result["layers"][name]
-    pixels = np.frombuffer(data, dtype=np.float32).reshape(result["height"], result["width"], len(channels))
-    if len(channels) != 4:
-        raise ValueError(f"layer {name} has channels {channels}, expected RGBA")
-    return pixels
-
-
-def premultiplied_display(result):
-    """Foam over liquid, premultiplied, in display sRGB (the overlay buffer shows values as they are), rows
-    bottom first as a GL texture wants them."""
-    liquid = _layer(result, "liquid")
-    foam = _layer(result, "foam")
-    over = foam + (1.0 - foam[..., 3:4]) * liquid
-    alpha = np.clip(over[..., 3:4], 0.0, 1.0)
-    with np.errstate(divide="ignore", invalid="ignore"):
-        straight = np.where(alpha > 1e-6, over[..., :3] / alpha, 0.0)
-    straight = np.clip(np.nan_to_num(straight), 0.0, 1.0)
-    srgb = np.where(straight <= 0.0031308, straight * 12.92, 1.055 * np.power(straight, 1 / 2.4) - 0.055)
-    out = np.concatenate([srgb * alpha, alpha], axis=2)[::-1]
-    return np.ascontiguousarray(out, dtype=np.float32)
+            self._finished[region_key] = str(error) or type(error).__name__
+            return True
+        self._rendering = (region_key, job, time.perf_counter())
+        return False
 
 
 # --- State shared by the callbacks -----------------------------------------------------------------------------
 
-_state = {"worker": None, "draw_handler": None, "timer": False, "version": 0, "submitted": {}, "status": {},
+_state = {"previews": None, "draw_handler": None, "timer": False, "version": 0, "submitted": {}, "status": {},
           "redraw_ms": [], "occluders": {}}
 
 
 def settings_changed():
     _state["version"] += 1
     scene = bpy.context.scene
-    if _state["worker"] is not None and scene is not None and scene.spindrift.preview:
+    if _state["previews"] is not None and scene is not None and scene.spindrift.preview:
         hide_own_drawing(scene)
     _tag_redraw()
 
@@ -155,7 +147,7 @@ def status(region_key=None):
 
 def redraw_times_ms():
     """The draw callback's recent main-thread times: dicts of total_ms, and occluders_ms, job_ms (a new
-    frame handed to the worker), texture (a new image uploaded), draw_ms where they happened."""
+    frame queued), texture (a new image uploaded), draw_ms where they happened."""
     return list(_state["redraw_ms"])
 
 
@@ -170,11 +162,11 @@ def _tag_redraw():
 
 
 def _poll():
-    worker = _state["worker"]
-    if worker is None:
+    previews = _state["previews"]
+    if previews is None:
         _state["timer"] = False
         return None
-    if worker.take_fresh():
+    if previews.collect():
         _tag_redraw()
     return TIMER_INTERVAL
 
@@ -232,25 +224,26 @@ def draw():
     started = time.perf_counter()
     context = bpy.context
     region, region_data = context.region, context.region_data
-    worker = _state["worker"]
-    if worker is None or region is None or region_data is None or not context.scene.spindrift.preview:
+    previews = _state["previews"]
+    if previews is None or region is None or region_data is None or not context.scene.spindrift.preview:
         return
     region_key = region.as_pointer()
     phases = {}
+    previews.collect()  # A frame that finished since the timer last looked is drawn now, not 50 ms later.
     try:
         key = _view_key(context, region, region_data)
-        if _state["submitted"].get(region_key) != key and worker.idle(region_key):
+        if _state["submitted"].get(region_key) != key and previews.idle(region_key):
             _state["submitted"][region_key] = key
             job = build_job(context, region, region_data, key, phases)
             for issue in job.inputs.issues:
                 reports.warn(f"viewport: {issue}")
-            worker.submit(region_key, job)
+            previews.submit(region_key, job)
     except BadInput as error:
         _state["status"][region_key] = (str(error), None)
     except Exception as error:  # noqa: BLE001 - a draw callback must never raise into Blender's drawing
         _state["status"][region_key] = (f"{type(error).__name__}: {error}", None)
 
-    image = worker.latest(region_key)
+    image = previews.latest(region_key)
     if isinstance(image, str):
         _state["status"][region_key] = (image, None)
     elif image is not None:
@@ -258,7 +251,7 @@ def draw():
         try:
             _draw_image(image, phases)
         except Exception as error:  # noqa: BLE001 - never raise into Blender's drawing
-            _state["worker"]._finished[region_key] = f"{type(error).__name__}: {error}"
+            previews.fail(region_key, f"{type(error).__name__}: {error}")
             return
         phases["draw_ms"] = (time.perf_counter() - drawn) * 1000
         _state["status"][region_key] = (f"{image.width}x{image.height}", image.seconds * 1000)
@@ -323,8 +316,8 @@ def enable(on):
         for scene in bpy.data.scenes:
             if scene.spindrift.preview:
                 hide_own_drawing(scene)
-        if _state["worker"] is None:
-            _state["worker"] = Worker()
+        if _state["previews"] is None:
+            _state["previews"] = Previews()
         if _state["draw_handler"] is None:
             _state["draw_handler"] = bpy.types.SpaceView3D.draw_handler_add(draw, (), "WINDOW", "POST_PIXEL")
         if not _state["timer"]:
@@ -340,9 +333,9 @@ def shutdown():
     if _state["draw_handler"] is not None:
         bpy.types.SpaceView3D.draw_handler_remove(_state["draw_handler"], "WINDOW")
         _state["draw_handler"] = None
-    if _state["worker"] is not None:
-        _state["worker"].stop()
-        _state["worker"] = None
+    if _state["previews"] is not None:
+        _state["previews"].stop()
+        _state["previews"] = None
     if _state["timer"] and bpy.app.timers.is_registered(_poll):
         bpy.app.timers.unregister(_poll)
     _state["timer"] = False

@@ -108,11 +108,11 @@ def largest_view3d():
 
 def preview_ready(region):
     """Whether the viewport preview has finished the frame last handed for `region`; raises when it
-    failed (the worker's result is then the error's text)."""
+    failed (the region's result is then the error's text)."""
     from spindrift import viewport
 
-    worker = viewport._state["worker"]
-    image = worker.latest(region.as_pointer()) if worker else None
+    previews = viewport._state["previews"]
+    image = previews.latest(region.as_pointer()) if previews else None
     if isinstance(image, str):
         raise AssertionError(f"the preview failed: {image}")
     return image is not None and image.key == viewport._state["submitted"].get(region.as_pointer())

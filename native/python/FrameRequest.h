@@ -1,0 +1,50 @@
+#pragma once
+
+// One frame as Renderer.render and Renderer.submit take it: read from the Python arguments with the GIL
+// (every array copied), rendered without it, and turned back into the dict the caller gets.
+
+#include <Python.h>
+
+#include <filesystem>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "ResultCrop.h"
+#include "spindrift/FrameInputs.h"
+#include "spindrift/Output.h"
+#include "spindrift/RenderResult.h"
+#include "spindrift/Renderer.h"
+#include "spindrift/Scene.h"
+
+namespace spindrift::python {
+
+struct FrameRequest {
+  Scene scene;
+  int frame = 0;
+  FrameInputs inputs;
+  std::optional<std::vector<std::string>> layers;     ///< Returned; nullopt: all.
+  std::optional<std::vector<std::string>> exrLayers;  ///< Written; nullopt: all.
+  std::optional<std::filesystem::path> exrPath;
+  ExrOptions exrOptions;
+  std::optional<CropWindow> crop;
+  bool display = false;  ///< Also return the viewport's display image (DisplayImage.h).
+};
+
+struct FrameOutcome {
+  RenderResult result;
+  double exrWriteMilliseconds = -1.0;  ///< Reported in stats as exr_write_ms when a file was written.
+  std::vector<float> display;          ///< Empty unless the request asked for it.
+};
+
+/// Reads render()'s arguments (docs/python-module.md). Throws ArgumentError or PythonErrorSet.
+FrameRequest readFrameRequest(PyObject* args, PyObject* kwargs);
+
+/// Renders the request on `renderer` (and writes its EXR). Touches no Python object: runs without the GIL.
+FrameOutcome renderRequest(Renderer& renderer, const FrameRequest& request);
+
+/// The dict render() returns: {"width", "height", "stats", "layers"} and, when asked, "display". Needs the
+/// GIL.
+PyObject* outcomeToPython(const FrameOutcome& outcome, const FrameRequest& request);
+
+}  // namespace spindrift::python
