@@ -69,9 +69,11 @@ nlohmann::json statsJson(const RenderResult& result, const Scene& scene) {
       sources.push_back({{"path", source.path.string()},
                          {"radius", source.radius},
                          {"radius_origin", source.radiusOrigin},
-                         {"mantaflow_flat_offset", source.meshFlatOffset}});
+                         {"mantaflow_flat_offset", source.meshFlatOffset},
+                         {"mantaflow_mesh_kernel_radius", source.meshKernelRadius}});
   stats["liquid_sources"] = sources;
   stats["liquid_surface_offset_radii"] = scene.parameters.liquid.surface_offset;
+  stats["liquid_mesh_kernel_radius_radii"] = scene.parameters.liquid.mesh_kernel_radius;
   return stats;
 }
 

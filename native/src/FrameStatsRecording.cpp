@@ -7,6 +7,7 @@ void recordPreparation(const LiquidPreparation& liquid, const FoamPreparation& f
   stats.liquid.aggregateParticles = liquid.aggregates.size();
   stats.liquid.isotropicInterior = liquid.isotropicInterior;
   stats.liquid.culled = liquid.culled;
+  stats.liquid.splashesAbsorbed = liquid.splashesAbsorbed;
   stats.liquid.neighbourMilliseconds = liquid.neighbourMilliseconds;
   stats.liquid.anisotropyMilliseconds = liquid.anisotropyMilliseconds;
   stats.foam.sprayParticles = foam.spray;

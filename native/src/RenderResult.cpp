@@ -49,6 +49,7 @@ nlohmann::json FrameStats::toJson() const {
         {"aggregate_particles", liquid.aggregateParticles},
         {"isotropic_interior", liquid.isotropicInterior},
         {"culled", liquid.culled},
+        {"splashes_absorbed", liquid.splashesAbsorbed},
         {"hidden_interior_dropped", liquid.hiddenInteriorDropped},
         {"hidden_interior_front_layer_only", liquid.hiddenInteriorFrontLayerOnly},
         {"hidden_interior_back_layer_only", liquid.hiddenInteriorBackLayerOnly},

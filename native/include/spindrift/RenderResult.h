@@ -37,6 +37,7 @@ struct LiquidFrameStats {
   std::size_t aggregateParticles = 0;  ///< Drawn as ellipsoids.
   std::size_t isotropicInterior = 0;   ///< Aggregates deep inside the body, drawn without anisotropy.
   std::size_t culled = 0;              ///< Outside the view frustum.
+  std::size_t splashesAbsorbed = 0;    ///< Splashes below Mantaflow's surface: not drawn.
   /// Aggregates left out because they lie inside the union of the others (liquid.drop_hidden_interior).
   std::size_t hiddenInteriorDropped = 0;         ///< Aggregates hidden from both depth layers: not drawn.
   std::size_t hiddenInteriorFrontLayerOnly = 0;  ///< Their far half hidden: drawn into the front layer only.

@@ -40,6 +40,9 @@ struct ParticleSource {
   /// For a source with a Mantaflow `domain`: how far Mantaflow's liquid mesh stands off the particles' flat
   /// surface, world units (0 otherwise); it sets liquid.surface_offset (docs/mantaflow-caches.md).
   float meshFlatOffset = 0.0f;
+  /// For a source with a Mantaflow `domain`: Mantaflow's mesh kernel radius r_m, world units (0 otherwise);
+  /// it sets liquid.mesh_kernel_radius.
+  float meshKernelRadius = 0.0f;
   /// For a source with a Mantaflow `domain` whose cache records it: the box its liquid is clipped to.
   std::optional<DomainBox> domainBox;
   glm::mat4 worldFromFile{1.0f};

@@ -8,6 +8,8 @@
 #include <tbb/parallel_for.h>
 #include <glm/geometric.hpp>
 
+#include "prep/MantaflowSurface.h"
+
 namespace spindrift {
 namespace {
 
@@ -116,6 +118,51 @@ float anisotropicKernelSum(const ParticleCloud& cloud, std::uint32_t particle, c
   return sum;
 }
 
+// Whether particle i's outward side (away from its neighbours' weighted mean) faces the eye, or no eye is
+// set.
+bool facesEye(const ParticleCloud& cloud, std::size_t i, const NeighbourMoments& moments,
+              const AnisotropySettings& settings) {
+  if (!settings.eye) return true;
+  const glm::vec3 toEye = *settings.eye - glm::vec3(cloud.x[i], cloud.y[i], cloud.z[i]);
+  // Silhouette particles face sideways and the 2.5 r neighbourhood's mean tilts either way: only a clearly
+  // averted side (more than 120 degrees from the eye) is skipped.
+  const float along = -glm::dot(moments.weightedOffset, toEye);
+  return along >= -0.5f * glm::length(moments.weightedOffset) * glm::length(toEye);
+}
+
+// The offset (in radii) that makes particle i's ellipsoid reach Mantaflow's surface along the particle's
+// outward direction: the support of the grown ellipsoid along that direction, from its centre, is the
+// distance to the surface; solved for the offset s from sum_k (e_k + s)^2 c_k = T^2 with c_k the squared
+// cosines to the axes (sum 1). Clamped to [0, surfaceOffset]: never more than the flat derivation grants.
+float offsetToMantaflowSurface(const NeighbourGrid& grid, std::size_t i, const ParticleShape& shape,
+                               const glm::vec3& centre, const AnisotropySettings& settings,
+                               std::vector<IndexRange>& scratch) {
+  const ParticleCloud& cloud = grid.particles();
+  const float radius = cloud.radius[i];
+  const float kernelRadius = settings.meshKernelRadius * radius;
+  glm::vec3 out;
+  // The offset is at most surfaceOffset, so the surface is searched no farther than the ellipsoid grown by it
+  // reaches (plus the smoothing's shift of its centre).
+  const float longest = std::max({shape.semiAxes.x, shape.semiAxes.y, shape.semiAxes.z});
+  const float farthest = longest + settings.surfaceOffset * radius +
+                         glm::length(centre - glm::vec3(cloud.x[i], cloud.y[i], cloud.z[i]));
+  const float reach = mantaflowSurfaceDistance(grid, i, kernelRadius, farthest, 0, scratch, out);
+  if (!(reach > 0.0f)) return 0.0f;
+  const glm::vec3 particle(cloud.x[i], cloud.y[i], cloud.z[i]);
+  const float target = (reach - glm::dot(centre - particle, out)) / radius;
+  if (!(target > 0.0f)) return 0.0f;
+  float e = 0.0f, e2 = 0.0f;
+  for (int k = 0; k < 3; ++k) {
+    const float c = glm::dot(shape.axes[k], out) * glm::dot(shape.axes[k], out);
+    const float semi = shape.semiAxes[k] / radius;
+    e += semi * c;
+    e2 += semi * semi * c;
+  }
+  const float discriminant = e * e - e2 + target * target;
+  const float offset = discriminant > 0.0f ? -e + std::sqrt(discriminant) : 0.0f;
+  return std::clamp(offset, 0.0f, settings.surfaceOffset);
+}
+
 }  // namespace
 
 AnisotropySettings AnisotropySettings::fromParameters(const LiquidParameters& parameters) {
@@ -127,6 +174,7 @@ AnisotropySettings AnisotropySettings::fromParameters(const LiquidParameters& pa
   settings.smoothing = parameters.anisotropy_smoothing;
   settings.maxEllipsoidScale = parameters.max_ellipsoid_scale;
   settings.surfaceOffset = parameters.surface_offset;
+  settings.meshKernelRadius = parameters.mesh_kernel_radius;
   settings.needDensity = parameters.layers != "merged";
   return settings;
 }
@@ -208,6 +256,7 @@ ParticleShapes shapeParticles(const NeighbourGrid& grid, const AnisotropySetting
       tbb::blocked_range<std::size_t>(0, grid.cellCount(), 8),
       [&](const tbb::blocked_range<std::size_t>& cells) {
         IndexRange ranges[9];
+        std::vector<IndexRange> scratch;
         for (std::size_t cell = cells.begin(); cell != cells.end(); ++cell) {
           const IndexRange members = grid.cellParticles(cell);
           int rangeCount = -1;  // Looked up on the first visible particle of the cell.
@@ -223,8 +272,11 @@ ParticleShapes shapeParticles(const NeighbourGrid& grid, const AnisotropySetting
             shapes.kinds[i] = shape.kind;
             // The surface offset grows every axis by the same length, so the drawn surface moves out by about
             // that much everywhere (exactly so along the axes) while the shape computed at r stays as it is.
-            shapes.instances[i] =
-                ellipsoidInstance(centre, shape.axes, shape.semiAxes + settings.surfaceOffset * radius);
+            float offset = settings.surfaceOffset;
+            if (settings.meshKernelRadius > 0.0f && shape.kind == ShapeKind::Anisotropic &&
+                facesEye(cloud, i, moments, settings))
+              offset = offsetToMantaflowSurface(grid, i, shape, centre, settings, scratch);
+            shapes.instances[i] = ellipsoidInstance(centre, shape.axes, shape.semiAxes + offset * radius);
             if (!settings.needDensity) continue;
             // Unit-free density: the kernel's normalisation over its support volume, times r^3.
             if (shape.kind == ShapeKind::Anisotropic) {

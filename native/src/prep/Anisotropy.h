@@ -1,6 +1,7 @@
 #pragma once
 
 #include <cstdint>
+#include <optional>
 #include <vector>
 
 #include <glm/vec3.hpp>
@@ -20,7 +21,13 @@ struct AnisotropySettings {
   float smoothing = 0.0f;        ///< lambda.
   float maxEllipsoidScale = 1.2f;
   float surfaceOffset = 0.0f;  ///< Every drawn semi-axis is grown by this, in particle radii.
-  bool needDensity = true;     ///< False when every particle is an aggregate (liquid.layers = merged).
+  /// Mantaflow's mesh kernel radius r_m in particle radii; above 0, an anisotropic particle's offset is its
+  /// own: what makes its ellipsoid reach Mantaflow's surface (mantaflowBlobRadius), at most surfaceOffset.
+  float meshKernelRadius = 0.0f;
+  /// The camera's position: particles whose neighbourhood faces away from it shape only the back layers and
+  /// keep surfaceOffset (the per-particle search costs two sums over 2 r_m each). Unset: every particle.
+  std::optional<glm::vec3> eye;
+  bool needDensity = true;  ///< False when every particle is an aggregate (liquid.layers = merged).
 
   static AnisotropySettings fromParameters(const LiquidParameters& parameters);
 };

@@ -11,6 +11,7 @@
 #include <glm/matrix.hpp>
 
 #include "prep/LiquidStages.h"
+#include "prep/MantaflowSurface.h"
 #include "prep/ViewFrustum.h"
 
 namespace spindrift {
@@ -27,6 +28,10 @@ enum CandidateRole : std::uint8_t { kNotCandidate = 0, kNeighbourOnly = 1, kVisi
 // Particles are packed in blocks so that splashes and aggregates can be written in parallel, each block at an
 // offset found by a prefix sum of the blocks' counts.
 constexpr std::size_t kPackBlockSize = 16384;
+
+// How far a splash's blob may reach, in Mantaflow kernel radii: a lone drop's is one; a few neighbours on one
+// side stretch it a little; more than this is a body, whose surface the aggregates draw.
+constexpr float kMaxBlobPerKernel = 1.25f;
 
 }  // namespace
 
@@ -103,6 +108,31 @@ void classifyAndPack(const NeighbourGrid& grid, const ParticleShapes& shapes,
     return split && shapes.kinds[i] != ShapeKind::Interior && shapes.densities[i] < splashBelow;
   };
 
+  // With Mantaflow's kernel radius known, each splash is as large as Mantaflow's surface around it; a splash
+  // whose blob is empty (the body's surface passes below it) is not drawn.
+  const float kernelRadii = parameters.mesh_kernel_radius;
+  std::vector<float> splashRadii;
+  if (split && kernelRadii > 0.0f) {
+    splashRadii.assign(cloud.size(), 0.0f);
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, cloud.size(), 256),
+                      [&](const tbb::blocked_range<std::size_t>& block) {
+                        std::vector<IndexRange> scratch;
+                        glm::vec3 out;
+                        for (std::size_t i = block.begin(); i != block.end(); ++i) {
+                          if (shapes.kinds[i] == ShapeKind::Hidden || !isSplash(i)) continue;
+                          const float kernelRadius = kernelRadii * cloud.radius[i];
+                          splashRadii[i] = mantaflowSurfaceDistance(
+                              grid, i, kernelRadius, kMaxBlobPerKernel * kernelRadius, 3, scratch, out);
+                        }
+                      });
+  }
+  const auto splashRadius = [&](std::size_t i) {
+    return splashRadii.empty() ? (1.0f + parameters.surface_offset) * cloud.radius[i] : splashRadii[i];
+  };
+  const auto absorbed = [&](std::size_t i) {
+    return !splashRadii.empty() && isSplash(i) && !(splashRadii[i] > 0.0f);
+  };
+
   const std::size_t blockCount = (cloud.size() + kPackBlockSize - 1) / kPackBlockSize;
   std::vector<std::size_t> splashOffsets(blockCount + 1, 0), aggregateOffsets(blockCount + 1, 0);
   const auto blockRange = [&](std::size_t block) {
@@ -111,7 +141,7 @@ void classifyAndPack(const NeighbourGrid& grid, const ParticleShapes& shapes,
   tbb::parallel_for(std::size_t(0), blockCount, [&](std::size_t block) {
     const auto [begin, end] = blockRange(block);
     for (std::size_t i = begin; i < end; ++i) {
-      if (shapes.kinds[i] == ShapeKind::Hidden) continue;
+      if (shapes.kinds[i] == ShapeKind::Hidden || absorbed(i)) continue;
       ++(isSplash(i) ? splashOffsets : aggregateOffsets)[block + 1];
     }
   });
@@ -127,11 +157,10 @@ void classifyAndPack(const NeighbourGrid& grid, const ParticleShapes& shapes,
     const auto [begin, end] = blockRange(block);
     std::size_t nextSplash = splashOffsets[block], nextAggregate = aggregateOffsets[block];
     for (std::size_t i = begin; i < end; ++i) {
-      if (shapes.kinds[i] == ShapeKind::Hidden) continue;
+      if (shapes.kinds[i] == ShapeKind::Hidden || absorbed(i)) continue;
       if (isSplash(i)) {
         preparation.splashes[nextSplash++] =
-            sphereInstance(glm::vec3(cloud.x[i], cloud.y[i], cloud.z[i]),
-                           (1.0f + parameters.surface_offset) * cloud.radius[i]);
+            sphereInstance(glm::vec3(cloud.x[i], cloud.y[i], cloud.z[i]), splashRadius(i));
       } else {
         preparation.aggregates[nextAggregate++] = shapes.instances[i];
         interiorPerBlock[block] += shapes.kinds[i] == ShapeKind::Interior;
@@ -141,6 +170,9 @@ void classifyAndPack(const NeighbourGrid& grid, const ParticleShapes& shapes,
   preparation.isotropicInterior = 0;
   for (std::size_t interior : interiorPerBlock)
     preparation.isotropicInterior += interior;
+  preparation.splashesAbsorbed = 0;
+  for (std::size_t i = 0; i < cloud.size() && !splashRadii.empty(); ++i)
+    preparation.splashesAbsorbed += shapes.kinds[i] != ShapeKind::Hidden && absorbed(i);
 }
 
 bool aggregatesContain(const std::vector<EllipsoidInstance>& aggregates, const glm::vec3& point,
@@ -172,7 +204,9 @@ LiquidPreparation prepareLiquid(const Particles& particles, const Camera& camera
   const NeighbourGrid grid(std::move(candidates.cloud), candidates.cellSize);
   const Clock::time_point gridBuilt = Clock::now();
 
-  const ParticleShapes shapes = shapeParticles(grid, AnisotropySettings::fromParameters(parameters));
+  AnisotropySettings settings = AnisotropySettings::fromParameters(parameters);
+  settings.eye = camera.position();
+  const ParticleShapes shapes = shapeParticles(grid, settings);
   classifyAndPack(grid, shapes, parameters, preparation);
   const Clock::time_point end = Clock::now();
 

@@ -31,11 +31,13 @@ struct LayerSplit {
 /// The liquid particles of one frame, ready to draw: splashes as spheres, the aggregated body as
 /// anisotropic ellipsoids (Yu and Turk 2013), as the liquid paper's section 4.1 and 4.2 describe.
 struct LiquidPreparation {
-  std::vector<EllipsoidInstance> splashes;    ///< Spheres of the particle's radius.
+  std::vector<EllipsoidInstance> splashes;  ///< Spheres (radius: liquid.mesh_kernel_radius, surface_offset).
   std::vector<EllipsoidInstance> aggregates;  ///< Ellipsoids whose longest axis is at most 1.2 r.
   LayerSplit aggregateLayers;                 ///< Which aggregates each depth layer draws.
   std::size_t culled = 0;                     ///< Outside the view frustum (they still count as neighbours).
   std::size_t isotropicInterior = 0;  ///< Aggregates deep inside the body, drawn as spheres without PCA.
+  /// Splashes not drawn because Mantaflow's surface passes below them (liquid.mesh_kernel_radius > 0).
+  std::size_t splashesAbsorbed = 0;
   double neighbourMilliseconds = 0.0;
   double anisotropyMilliseconds = 0.0;
   double totalMilliseconds = 0.0;

@@ -114,6 +114,7 @@ void applyDomain(const JsonFields& fields, ParticleSource& source) {
   }
   const LiquidSurfaceFromDomain surface = liquidSurfaceFromDomain(settings, cellSize);
   source.meshFlatOffset = surface.flatOffset;
+  source.meshKernelRadius = surface.meshKernelRadius;
   if (!fields.has("radius")) {
     source.radius = surface.radius;
     source.radiusOrigin = surface.origin;
@@ -236,21 +237,35 @@ Light readLight(const JsonFields& fields) {
 }
 
 // Sources derived from Mantaflow domains set liquid.surface_offset, in radii, so the drawn surface stands
-// where Mantaflow's flat surface stands: its offset minus what Spindrift's own flat surface already reaches.
-void applyDerivedSurfaceOffset(const JsonFields& root, Scene& scene) {
-  float derived = -1.0f;
+// where Mantaflow's flat surface stands: its offset minus what Spindrift's own flat surface already reaches;
+// and liquid.mesh_kernel_radius, Mantaflow's r_m in radii, which sizes the splashes. Either is left alone
+// where the scene's "liquid" group gives it.
+void applyDerivedMeshSettings(const JsonFields& root, Scene& scene) {
+  const bool hasLiquidGroup = root.has("liquid") && root.raw("liquid").is_object();
+  const auto given = [&](const char* key) { return hasLiquidGroup && root.raw("liquid").contains(key); };
+  float derivedOffset = -1.0f, derivedKernel = -1.0f;
   for (std::size_t i = 0; i < scene.particles.size(); ++i) {
     const ParticleSource& source = scene.particles[i];
     if (source.meshFlatOffset <= 0.0f) continue;
     const float offset = std::max(0.0f, source.meshFlatOffset / source.radius - kSpindriftFlatOffsetRadii);
-    if (derived >= 0.0f && std::abs(offset - derived) > 1e-3f * std::max(1.0f, derived))
+    const float kernel = source.meshKernelRadius / source.radius;
+    const auto differs = [](float a, float b) {
+      return b >= 0.0f && std::abs(a - b) > 1e-3f * std::max(1.0f, b);
+    };
+    if ((!given("surface_offset") && differs(offset, derivedOffset)) ||
+        (!given("mesh_kernel_radius") && differs(kernel, derivedKernel)))
       root.fail("particles[" + std::to_string(i) + "].domain",
-                "its surface offset (" + std::to_string(offset) +
-                    " radii) differs from another liquid source's (" + std::to_string(derived) +
-                    "); set liquid.surface_offset");
-    derived = offset;
+                "its surface offset (" + std::to_string(offset) + " radii) or mesh kernel radius (" +
+                    std::to_string(kernel) +
+                    " radii) differs from another liquid source's; set liquid.surface_offset and "
+                    "liquid.mesh_kernel_radius");
+    derivedOffset = offset;
+    derivedKernel = kernel;
   }
-  if (derived >= 0.0f) scene.parameters.liquid.surface_offset = std::min(derived, 100.0f);
+  if (derivedOffset >= 0.0f && !given("surface_offset"))
+    scene.parameters.liquid.surface_offset = std::min(derivedOffset, 100.0f);
+  if (derivedKernel >= 0.0f && !given("mesh_kernel_radius"))
+    scene.parameters.liquid.mesh_kernel_radius = std::min(derivedKernel, 100.0f);
 }
 
 }  // namespace
@@ -300,9 +315,7 @@ Scene parseScene(const std::string& jsonText, const std::filesystem::path& scene
   }
   for (const char* group : {"liquid", "foam", "light"})
     if (root.has(group)) setParameterGroup(scene.parameters, group, root.raw(group), fileLabel);
-  const bool offsetGiven =
-      root.has("liquid") && root.raw("liquid").is_object() && root.raw("liquid").contains("surface_offset");
-  if (!offsetGiven) applyDerivedSurfaceOffset(root, scene);
+  applyDerivedMeshSettings(root, scene);
   return scene;
 }
 
