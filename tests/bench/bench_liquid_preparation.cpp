@@ -95,7 +95,7 @@ void benchmark(std::size_t count) {
   ParticleShapes shapes;
   const StageTime shape = medianTime([&] { shapes = shapeParticles(*grid, settings); });
   LiquidPreparation packed;
-  const StageTime classify = medianTime([&] { classifyAndPack(*grid, shapes, parameters, packed); });
+  const StageTime classify = medianTime([&] { classifyAndPack(*grid, shapes, parameters, nullptr, packed); });
   LiquidPreparation total;
   const StageTime all = medianTime([&] { total = prepareLiquid(particles, camera, parameters); });
 

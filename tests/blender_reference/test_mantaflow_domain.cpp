@@ -121,6 +121,8 @@ TEST(MantaflowDomain, DefaultDomainDerivesTheRadiusOfItsCells) {
     EXPECT_NEAR(liquidSurfaceFromDomain({}, hand.cellSize).meshKernelRadius, kernel, 1e-5f * kernel);
     EXPECT_NEAR(scene.parameters.liquid.surface_offset,
                 source.meshFlatOffset / source.radius - kSpindriftFlatOffsetRadii, 1e-4f);
+    // Mantaflow's kernel radius in Spindrift's radii sizes the splashes: 2.01 sqrt(3) / 4 cells over 0.55.
+    EXPECT_NEAR(scene.parameters.liquid.mesh_kernel_radius, kernel / source.radius, 1e-4f);
     EXPECT_GT(scene.parameters.liquid.surface_offset, 0.0f);
   }
 }

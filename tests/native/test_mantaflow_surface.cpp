@@ -1,6 +1,8 @@
 // The numbers behind a Mantaflow `domain` (docs/mantaflow-caches.md, "The liquid mesh"): how far Mantaflow's
 // averaged particle level set stands above a flat body, against the continuum limit integrated here; and how
-// far Spindrift's own ellipsoids stand above the same body, with and without liquid.surface_offset.
+// far Spindrift's own ellipsoids stand above the same body, with and without liquid.surface_offset; and the
+// per-particle surface (MantaflowLevelSet, liquid.mesh_kernel_radius) against a brute-force sum over every
+// particle, a lone drop and a drop resting on a body.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -9,6 +11,7 @@
 #include <glm/geometric.hpp>
 
 #include "prep/LiquidPreparation.h"
+#include "prep/MantaflowSurface.h"
 #include "scene/MantaflowDomain.h"
 #include "spindrift/Camera.h"
 #include "spindrift/Parameters.h"
@@ -77,7 +80,7 @@ float topAboveCentre(const EllipsoidInstance& instance) {
   return std::sqrt(support);
 }
 
-float flatSurfaceAboveTopLayer(float surfaceOffset) {
+float flatSurfaceAboveTopLayer(float surfaceOffset, float meshKernelRadius = 0.0f) {
   // A slab of particles half a cell apart (cell 1), jittered as Mantaflow seeds them, radius 0.55; the
   // surface over its middle is the highest top of the instances there.
   const float spacing = 0.5f, radius = 0.55f;
@@ -94,6 +97,7 @@ float flatSurfaceAboveTopLayer(float surfaceOffset) {
                          radius, ParticleKind::Liquid, 0.0f, {});
   LiquidParameters parameters;
   parameters.surface_offset = surfaceOffset;
+  parameters.mesh_kernel_radius = meshKernelRadius;
   const Camera camera = Camera::lookAt(64, 64, 60.0f, {0, 0, 20}, {0, 0, 0}, {0, 1, 0});
   const LiquidPreparation preparation = prepareLiquid(particles, camera, parameters);
   float top = -1e30f;
@@ -111,6 +115,155 @@ TEST(MantaflowSurface, SpindriftsFlatSurfaceStandsWhereTheDerivationAssumes) {
   EXPECT_NEAR(plain, kSpindriftFlatOffsetRadii, 0.15f);
   // Growing every axis by s radii moves the flat surface out by s radii.
   EXPECT_NEAR(flatSurfaceAboveTopLayer(1.5f) - plain, 1.5f, 0.05f);
+}
+
+// The examples' domain (mesh_scale 1, mesh_particle_radius 2, particle_number 2) in cells: r_m = 1.741, the
+// particles half a cell apart, Spindrift's r = 0.55.
+constexpr float kKernelCells = 0.5f * 1.7320508f * 2.01f;
+constexpr float kSpacing = 0.5f, kRadius = 0.55f;
+
+TEST(MantaflowSurface, PerParticleOffsetsPutAFlatBodyWhereTheUniformOffsetDoes) {
+  // On a flat body every particle's own offset is the flat derivation's: the surface stands at Mantaflow's
+  // flat offset, as with the uniform offset alone.
+  const float flat = mantaflowFlatOffset(kKernelCells, kSpacing) / kRadius;
+  const float uniform = flat - kSpindriftFlatOffsetRadii;
+  EXPECT_NEAR(flatSurfaceAboveTopLayer(uniform, kKernelCells / kRadius), flat, 0.25f);
+  EXPECT_NEAR(flatSurfaceAboveTopLayer(uniform, kKernelCells / kRadius), flatSurfaceAboveTopLayer(uniform),
+              0.25f);
+}
+
+// A jittered block of particles kSpacing apart: x, y in [-n, n] spacings, `layers` layers below z = 0.
+ParticleCloud block(int n, int layers, unsigned seed) {
+  ParticleCloud cloud;
+  unsigned state = seed;
+  const auto jitter = [&] {
+    state = state * 1664525u + 1013904223u;
+    return (float(state >> 8) / float(1u << 24) - 0.5f) * 0.3f * kSpacing;
+  };
+  for (int k = 0; k < layers; ++k)
+    for (int j = -n; j <= n; ++j)
+      for (int i = -n; i <= n; ++i) {
+        cloud.x.push_back(i * kSpacing + jitter());
+        cloud.y.push_back(j * kSpacing + jitter());
+        cloud.z.push_back(-(k + 0.5f) * kSpacing + jitter());
+      }
+  cloud.radius.assign(cloud.x.size(), kRadius);
+  cloud.visible.assign(cloud.x.size(), 1);
+  return cloud;
+}
+
+void addParticle(ParticleCloud& cloud, const glm::vec3& position) {
+  cloud.x.push_back(position.x);
+  cloud.y.push_back(position.y);
+  cloud.z.push_back(position.z);
+  cloud.radius.push_back(kRadius);
+  cloud.visible.push_back(1);
+}
+
+// φ at `at` summed over every particle (no lumping): the reference the lumped grid is held to.
+float exactLevelSet(const ParticleCloud& cloud, const glm::vec3& at, float kernel) {
+  const float support = 2.0f * kernel;
+  double sum = 0.0, sx = 0.0, sy = 0.0, sz = 0.0;
+  for (std::size_t j = 0; j < cloud.size(); ++j) {
+    const glm::vec3 d = glm::vec3(cloud.x[j], cloud.y[j], cloud.z[j]) - at;
+    const double w = std::max(0.0, 1.0 - double(glm::dot(d, d)) / (support * support));
+    sum += w;
+    sx += w * d.x;
+    sy += w * d.y;
+    sz += w * d.z;
+  }
+  if (sum <= 0.0) return kernel;
+  return float(std::sqrt(sx * sx + sy * sy + sz * sz) / sum) - kernel;
+}
+
+TEST(MantaflowSurface, ALoneDropReachesOneKernelRadiusAllRound) {
+  ParticleCloud cloud;
+  addParticle(cloud, {3.0f, -2.0f, 7.0f});
+  const MantaflowLevelSet levelSet(cloud, kKernelCells);
+  glm::vec3 out;
+  EXPECT_NEAR(levelSet.surfaceDistance({3.0f, -2.0f, 7.0f}, 2.0f * kKernelCells, 3, out), kKernelCells,
+              1e-3f);
+  EXPECT_NEAR(glm::length(out), 1.0f, 1e-5f);
+}
+
+TEST(MantaflowSurface, DropsNearABodyReachItsSurfaceOrAreSwallowedAndLoneDropsAreRound) {
+  ParticleCloud cloud = block(12, 6, 7u);
+  const glm::vec3 resting(0.1f, -0.2f, 0.5f), hovering(-0.3f, 0.4f, 1.6f), far(0.0f, 0.0f, 6.0f);
+  for (const glm::vec3& drop : {resting, hovering, far})
+    addParticle(cloud, drop);
+  const MantaflowLevelSet levelSet(cloud, kKernelCells);
+  const float flatSurface =
+      mantaflowFlatOffset(kKernelCells, kSpacing) - 0.5f * kSpacing;  // z of the surface
+  glm::vec3 out;
+  // Below Mantaflow's flat surface (1.27 cells above the top layer, z = 1.02): its blob reaches up to it.
+  EXPECT_NEAR(levelSet.surfaceDistance(resting, 1.25f * kKernelCells, 3, out), flatSurface - resting.z, 0.1f);
+  EXPECT_GT(out.z, 0.9f) << "out of the body, away from it";
+  // Just above it: the body pulls x̄ more than r_m away, Mantaflow draws no bump, nor does Spindrift.
+  EXPECT_GT(exactLevelSet(cloud, hovering, kKernelCells), 0.0f) << "the reference swallows it too";
+  EXPECT_EQ(levelSet.surfaceDistance(hovering, 1.25f * kKernelCells, 3, out), 0.0f);
+  // 3.4 kernel radii up: a lone drop, its blob pulled a little towards the body.
+  const float reach = levelSet.surfaceDistance(far, 1.25f * kKernelCells, 3, out);
+  EXPECT_GT(reach, 0.8f * kKernelCells);
+  EXPECT_LE(reach, 1.25f * kKernelCells);
+}
+
+TEST(MantaflowSurface, LumpedSurfaceDistancesMatchTheExactSum) {
+  // A block with a ridge and stray drops: for particles of the upper layers and the drops, the distance to
+  // φ = 0 along the same direction, from the lumped grid and by bisecting the exact sum.
+  ParticleCloud cloud = block(10, 5, 99u);
+  for (int i = -10; i <= 10; ++i)
+    addParticle(cloud, {i * kSpacing, 0.1f * i, 0.5f});
+  addParticle(cloud, {2.0f, 2.0f, 2.2f});
+  addParticle(cloud, {-3.0f, 1.0f, 3.5f});
+  const MantaflowLevelSet levelSet(cloud, kKernelCells);
+  const float maxRadius = 1.25f * kKernelCells;
+  int compared = 0, agreed = 0;
+  float largest = 0.0f;
+  for (std::size_t i = 0; i < cloud.size(); i += 7) {
+    const glm::vec3 particle(cloud.x[i], cloud.y[i], cloud.z[i]);
+    if (particle.z < -1.0f || std::abs(particle.x) > 3.5f || std::abs(particle.y) > 3.5f) continue;
+    glm::vec3 out;
+    const float lumped = levelSet.surfaceDistance(particle, maxRadius, 3, out);
+    const float atParticle = exactLevelSet(cloud, particle, kKernelCells);
+    ++compared;
+    if ((lumped == 0.0f) == (atParticle >= 0.0f)) ++agreed;
+    if (lumped == 0.0f || atParticle >= 0.0f) continue;
+    float inside = 0.0f, outside = maxRadius;
+    if (exactLevelSet(cloud, particle + maxRadius * out, kKernelCells) <= 0.0f) inside = outside;
+    for (int step = 0; step < 30 && inside < outside; ++step) {
+      const float middle = 0.5f * (inside + outside);
+      (exactLevelSet(cloud, particle + middle * out, kKernelCells) <= 0.0f ? inside : outside) = middle;
+    }
+    largest = std::max(largest, std::abs(lumped - 0.5f * (inside + outside)));
+  }
+  EXPECT_GT(compared, 40);
+  EXPECT_GE(agreed, compared - 2) << "absorbed by one and not the other";
+  // A tenth of a kernel radius is 0.17 cells, 0.32 r: below the 0.5 r edge-bias target.
+  EXPECT_LT(largest, 0.1f * kKernelCells);
+}
+
+TEST(MantaflowSurface, SplashesTakeTheSizeOfTheirBlobOrDisappear) {
+  // A flat body, a drop hovering just above it and a lone drop far above, through prepareLiquid: both are
+  // splashes (few neighbours); Mantaflow's surface swallows the hovering one; the lone one is drawn with
+  // radius r_m.
+  Particles particles;
+  const ParticleCloud body = block(12, 6, 5u);
+  for (std::size_t i = 0; i < body.size(); ++i)
+    particles.append({body.x[i], body.y[i], body.z[i]}, kRadius, ParticleKind::Liquid, 0.0f, {});
+  particles.append({0.1f, -0.2f, 1.6f}, kRadius, ParticleKind::Liquid, 0.0f, {});
+  particles.append({0.0f, 0.0f, 9.0f}, kRadius, ParticleKind::Liquid, 0.0f, {});
+  LiquidParameters parameters;
+  parameters.surface_offset = 1.9f;
+  const Camera camera = Camera::lookAt(64, 64, 60.0f, {0, -20, 20}, {0, 0, 0}, {0, 0, 1});
+  const LiquidPreparation uniform = prepareLiquid(particles, camera, parameters);
+  parameters.mesh_kernel_radius = kKernelCells / kRadius;
+  const LiquidPreparation sized = prepareLiquid(particles, camera, parameters);
+  ASSERT_EQ(uniform.splashes.size(), 2u);
+  EXPECT_EQ(sized.splashes.size(), 1u);
+  EXPECT_EQ(sized.splashesAbsorbed, 1u);
+  ASSERT_EQ(sized.splashes.size(), 1u);
+  EXPECT_NEAR(sized.splashes[0].centreAndBoundingRadius.z, 9.0f, 1e-5f);
+  EXPECT_NEAR(sized.splashes[0].centreAndBoundingRadius.w, kKernelCells, 0.01f);
 }
 
 }  // namespace

@@ -135,20 +135,17 @@ bool facesEye(const ParticleCloud& cloud, std::size_t i, const NeighbourMoments&
 // distance to the surface; solved for the offset s from sum_k (e_k + s)^2 c_k = T^2 with c_k the squared
 // cosines to the axes (sum 1). Clamped to [0, surfaceOffset]: never more than the flat derivation grants.
 float offsetToMantaflowSurface(const NeighbourGrid& grid, std::size_t i, const ParticleShape& shape,
-                               const glm::vec3& centre, const AnisotropySettings& settings,
-                               std::vector<IndexRange>& scratch) {
+                               const glm::vec3& centre, const AnisotropySettings& settings) {
   const ParticleCloud& cloud = grid.particles();
   const float radius = cloud.radius[i];
-  const float kernelRadius = settings.meshKernelRadius * radius;
+  const glm::vec3 particle(cloud.x[i], cloud.y[i], cloud.z[i]);
   glm::vec3 out;
   // The offset is at most surfaceOffset, so the surface is searched no farther than the ellipsoid grown by it
   // reaches (plus the smoothing's shift of its centre).
   const float longest = std::max({shape.semiAxes.x, shape.semiAxes.y, shape.semiAxes.z});
-  const float farthest = longest + settings.surfaceOffset * radius +
-                         glm::length(centre - glm::vec3(cloud.x[i], cloud.y[i], cloud.z[i]));
-  const float reach = mantaflowSurfaceDistance(grid, i, kernelRadius, farthest, 0, scratch, out);
+  const float farthest = longest + settings.surfaceOffset * radius + glm::length(centre - particle);
+  const float reach = settings.meshSurface->surfaceDistance(particle, farthest, 0, out);
   if (!(reach > 0.0f)) return 0.0f;
-  const glm::vec3 particle(cloud.x[i], cloud.y[i], cloud.z[i]);
   const float target = (reach - glm::dot(centre - particle, out)) / radius;
   if (!(target > 0.0f)) return 0.0f;
   float e = 0.0f, e2 = 0.0f;
@@ -174,7 +171,6 @@ AnisotropySettings AnisotropySettings::fromParameters(const LiquidParameters& pa
   settings.smoothing = parameters.anisotropy_smoothing;
   settings.maxEllipsoidScale = parameters.max_ellipsoid_scale;
   settings.surfaceOffset = parameters.surface_offset;
-  settings.meshKernelRadius = parameters.mesh_kernel_radius;
   settings.needDensity = parameters.layers != "merged";
   return settings;
 }
@@ -256,7 +252,6 @@ ParticleShapes shapeParticles(const NeighbourGrid& grid, const AnisotropySetting
       tbb::blocked_range<std::size_t>(0, grid.cellCount(), 8),
       [&](const tbb::blocked_range<std::size_t>& cells) {
         IndexRange ranges[9];
-        std::vector<IndexRange> scratch;
         for (std::size_t cell = cells.begin(); cell != cells.end(); ++cell) {
           const IndexRange members = grid.cellParticles(cell);
           int rangeCount = -1;  // Looked up on the first visible particle of the cell.
@@ -273,9 +268,9 @@ ParticleShapes shapeParticles(const NeighbourGrid& grid, const AnisotropySetting
             // The surface offset grows every axis by the same length, so the drawn surface moves out by about
             // that much everywhere (exactly so along the axes) while the shape computed at r stays as it is.
             float offset = settings.surfaceOffset;
-            if (settings.meshKernelRadius > 0.0f && shape.kind == ShapeKind::Anisotropic &&
+            if (settings.meshSurface && shape.kind == ShapeKind::Anisotropic &&
                 facesEye(cloud, i, moments, settings))
-              offset = offsetToMantaflowSurface(grid, i, shape, centre, settings, scratch);
+              offset = offsetToMantaflowSurface(grid, i, shape, centre, settings);
             shapes.instances[i] = ellipsoidInstance(centre, shape.axes, shape.semiAxes + offset * radius);
             if (!settings.needDensity) continue;
             // Unit-free density: the kernel's normalisation over its support volume, times r^3.

@@ -7,6 +7,7 @@
 #include <glm/vec3.hpp>
 
 #include "prep/LiquidPreparation.h"
+#include "prep/MantaflowSurface.h"
 #include "prep/NeighbourGrid.h"
 #include "spindrift/Parameters.h"
 
@@ -21,9 +22,9 @@ struct AnisotropySettings {
   float smoothing = 0.0f;        ///< lambda.
   float maxEllipsoidScale = 1.2f;
   float surfaceOffset = 0.0f;  ///< Every drawn semi-axis is grown by this, in particle radii.
-  /// Mantaflow's mesh kernel radius r_m in particle radii; above 0, an anisotropic particle's offset is its
-  /// own: what makes its ellipsoid reach Mantaflow's surface (mantaflowBlobRadius), at most surfaceOffset.
-  float meshKernelRadius = 0.0f;
+  /// Mantaflow's surface over these particles (liquid.mesh_kernel_radius > 0): an anisotropic particle's
+  /// offset is then its own, what makes its ellipsoid reach that surface, at most surfaceOffset.
+  const MantaflowLevelSet* meshSurface = nullptr;
   /// The camera's position: particles whose neighbourhood faces away from it shape only the back layers and
   /// keep surfaceOffset (the per-particle search costs two sums over 2 r_m each). Unset: every particle.
   std::optional<glm::vec3> eye;

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <optional>
 
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
@@ -100,7 +101,8 @@ float restDensity(const ParticleShapes& shapes) {
 }
 
 void classifyAndPack(const NeighbourGrid& grid, const ParticleShapes& shapes,
-                     const LiquidParameters& parameters, LiquidPreparation& preparation) {
+                     const LiquidParameters& parameters, const MantaflowLevelSet* meshSurface,
+                     LiquidPreparation& preparation) {
   const ParticleCloud& cloud = grid.particles();
   const bool split = parameters.layers != "merged";
   const float splashBelow = split ? parameters.splash_density_threshold * restDensity(shapes) : 0.0f;
@@ -108,21 +110,19 @@ void classifyAndPack(const NeighbourGrid& grid, const ParticleShapes& shapes,
     return split && shapes.kinds[i] != ShapeKind::Interior && shapes.densities[i] < splashBelow;
   };
 
-  // With Mantaflow's kernel radius known, each splash is as large as Mantaflow's surface around it; a splash
-  // whose blob is empty (the body's surface passes below it) is not drawn.
-  const float kernelRadii = parameters.mesh_kernel_radius;
+  // With Mantaflow's surface known, each splash is as large as that surface around it; a splash whose blob is
+  // empty (the body's surface passes near it) is not drawn.
   std::vector<float> splashRadii;
-  if (split && kernelRadii > 0.0f) {
+  if (split && meshSurface) {
     splashRadii.assign(cloud.size(), 0.0f);
+    const float maxRadius = kMaxBlobPerKernel * meshSurface->kernelRadius();
     tbb::parallel_for(tbb::blocked_range<std::size_t>(0, cloud.size(), 256),
                       [&](const tbb::blocked_range<std::size_t>& block) {
-                        std::vector<IndexRange> scratch;
                         glm::vec3 out;
                         for (std::size_t i = block.begin(); i != block.end(); ++i) {
                           if (shapes.kinds[i] == ShapeKind::Hidden || !isSplash(i)) continue;
-                          const float kernelRadius = kernelRadii * cloud.radius[i];
-                          splashRadii[i] = mantaflowSurfaceDistance(
-                              grid, i, kernelRadius, kMaxBlobPerKernel * kernelRadius, 3, scratch, out);
+                          const glm::vec3 particle(cloud.x[i], cloud.y[i], cloud.z[i]);
+                          splashRadii[i] = meshSurface->surfaceDistance(particle, maxRadius, 3, out);
                         }
                       });
   }
@@ -204,10 +204,18 @@ LiquidPreparation prepareLiquid(const Particles& particles, const Camera& camera
   const NeighbourGrid grid(std::move(candidates.cloud), candidates.cellSize);
   const Clock::time_point gridBuilt = Clock::now();
 
+  // Mantaflow's surface (liquid.mesh_kernel_radius, in radii of the largest particle: a Mantaflow liquid's
+  // particles all have one radius) sizes each splash and each surface particle's offset.
+  std::optional<MantaflowLevelSet> meshSurface;
+  if (parameters.mesh_kernel_radius > 0.0f && grid.particles().size() > 0)
+    meshSurface.emplace(grid.particles(),
+                        parameters.mesh_kernel_radius * *std::max_element(grid.particles().radius.begin(),
+                                                                          grid.particles().radius.end()));
   AnisotropySettings settings = AnisotropySettings::fromParameters(parameters);
   settings.eye = camera.position();
+  settings.meshSurface = meshSurface ? &*meshSurface : nullptr;
   const ParticleShapes shapes = shapeParticles(grid, settings);
-  classifyAndPack(grid, shapes, parameters, preparation);
+  classifyAndPack(grid, shapes, parameters, settings.meshSurface, preparation);
   const Clock::time_point end = Clock::now();
 
   preparation.neighbourMilliseconds = millisecondsBetween(start, gridBuilt);

@@ -4,6 +4,7 @@
 
 #include "prep/Anisotropy.h"
 #include "prep/LiquidPreparation.h"
+#include "prep/MantaflowSurface.h"
 #include "prep/NeighbourGrid.h"
 
 // The stages of prepareLiquid, exposed for the benchmark and the tests: select → grid → shape → classify.
@@ -27,7 +28,10 @@ constexpr std::size_t kMinInteriorForRestDensity = 64;
 
 /// Splits the shaped particles into splashes (density below liquid.splash_density_threshold times the rest
 /// density; spheres of radius r at the particle) and aggregates, filling those fields of `preparation`.
+/// With `meshSurface` (Mantaflow's surface, or null), each splash is a sphere as large as that surface
+/// reaches around it, and splashes it passes below are not drawn (LiquidPreparation::splashesAbsorbed).
 void classifyAndPack(const NeighbourGrid& grid, const ParticleShapes& shapes,
-                     const LiquidParameters& parameters, LiquidPreparation& preparation);
+                     const LiquidParameters& parameters, const MantaflowLevelSet* meshSurface,
+                     LiquidPreparation& preparation);
 
 }  // namespace spindrift

@@ -5,61 +5,128 @@
 
 #include <glm/geometric.hpp>
 
+#include "spindrift/Error.h"
+
 namespace spindrift {
 namespace {
 
-// x̄(at) − at, Mantaflow's weighted mean of the particles within `support` (2 r_m) of `at`, with weights
-// max(0, 1 − d²/support²), relative to `at`; `found` is false when no particle lies within reach.
-glm::vec3 offsetToMean(const NeighbourGrid& grid, const glm::vec3& at, float support,
-                       std::vector<IndexRange>& ranges, bool& found) {
-  const ParticleCloud& cloud = grid.particles();
-  grid.rangesWithin(at.x, at.y, at.z, support, ranges);
-  const float inverseSupportSquared = 1.0f / (support * support);
-  float sum = 0.0f, sx = 0.0f, sy = 0.0f, sz = 0.0f;
-  const float* xs = cloud.x.data();
-  const float* ys = cloud.y.data();
-  const float* zs = cloud.z.data();
-  for (const IndexRange& range : ranges) {
-    const int end = int(range.end);
-#pragma omp simd reduction(+ : sum, sx, sy, sz)
-    for (int j = int(range.begin); j < end; ++j) {
-      const float dx = xs[j] - at.x, dy = ys[j] - at.y, dz = zs[j] - at.z;
-      const float weight = std::max(0.0f, 1.0f - (dx * dx + dy * dy + dz * dz) * inverseSupportSquared);
-      sum += weight;
-      sx += weight * dx;
-      sy += weight * dy;
-      sz += weight * dz;
-    }
-  }
-  found = sum > 0.0f;
-  return found ? glm::vec3(sx, sy, sz) / sum : glm::vec3(0.0f);
-}
+// The dense grid's size limit (4 floats a cell: 256 MiB); a wider scene gets coarser cells, which only lumps
+// more particles together.
+constexpr double kMaxCells = double(1 << 24);
 
 }  // namespace
 
-float mantaflowSurfaceDistance(const NeighbourGrid& grid, std::size_t i, float kernelRadius, float maxRadius,
-                               int refinements, std::vector<IndexRange>& ranges, glm::vec3& out) {
-  const ParticleCloud& cloud = grid.particles();
-  const float support = 2.0f * kernelRadius;
-  const glm::vec3 particle(cloud.x[i], cloud.y[i], cloud.z[i]);
-  bool found = false;
-  const glm::vec3 towardsMean = offsetToMean(grid, particle, support, ranges, found);
+MantaflowLevelSet::MantaflowLevelSet(const ParticleCloud& cloud, float kernelRadius)
+    : kernelRadius_(kernelRadius), cellSize_(0.5f * kernelRadius) {
+  if (!(kernelRadius > 0.0f) || !std::isfinite(kernelRadius))
+    throw Error("Mantaflow level set: invalid radius");
+  if (cloud.size() == 0) return;
+  glm::vec3 lower(cloud.x[0], cloud.y[0], cloud.z[0]), upper = lower;
+  for (std::size_t i = 0; i < cloud.size(); ++i) {
+    const glm::vec3 p(cloud.x[i], cloud.y[i], cloud.z[i]);
+    lower = glm::min(lower, p);
+    upper = glm::max(upper, p);
+  }
+  origin_ = lower;
+  for (;;) {
+    double product = 1.0;
+    for (int axis = 0; axis < 3; ++axis) {
+      cells_[axis] = int(std::floor((upper[axis] - lower[axis]) / cellSize_)) + 1;
+      product *= double(cells_[axis]);
+    }
+    if (product <= kMaxCells) break;
+    cellSize_ *= 2.0f;
+  }
+  const std::size_t total = std::size_t(cells_[0]) * std::size_t(cells_[1]) * std::size_t(cells_[2]);
+  count_.assign(total, 0.0f);
+  centroidX_.assign(total, 0.0f);
+  centroidY_.assign(total, 0.0f);
+  centroidZ_.assign(total, 0.0f);
+  for (std::size_t i = 0; i < cloud.size(); ++i) {
+    int index[3];
+    const float position[3] = {cloud.x[i], cloud.y[i], cloud.z[i]};
+    for (int axis = 0; axis < 3; ++axis)
+      index[axis] = std::clamp(int((position[axis] - origin_[axis]) / cellSize_), 0, cells_[axis] - 1);
+    const std::size_t cell =
+        (std::size_t(index[0]) * std::size_t(cells_[1]) + std::size_t(index[1])) * std::size_t(cells_[2]) +
+        std::size_t(index[2]);
+    count_[cell] += 1.0f;
+    centroidX_[cell] += position[0];
+    centroidY_[cell] += position[1];
+    centroidZ_[cell] += position[2];
+  }
+  for (std::size_t cell = 0; cell < total; ++cell) {
+    if (count_[cell] == 0.0f) continue;
+    centroidX_[cell] /= count_[cell];
+    centroidY_[cell] /= count_[cell];
+    centroidZ_[cell] /= count_[cell];
+  }
+}
+
+bool MantaflowLevelSet::offsetToMean(const glm::vec3& at, glm::vec3& offset) const {
+  const float support = 2.0f * kernelRadius_;
+  const float inverseSupportSquared = 1.0f / (support * support);
+  const float inverseCell = 1.0f / cellSize_;
+  // A centroid lies in its cell, so the cells the support ball touches hold every centroid within it; per
+  // column only the run of cells the ball's chord spans is read.
+  const auto cellOf = [&](float value, int axis) {
+    return std::clamp(int(std::floor((value - origin_[axis]) * inverseCell)), 0, cells_[axis] - 1);
+  };
+  const auto gap = [&](int cell, int axis) {
+    const float low = origin_[axis] + float(cell) * cellSize_;
+    return std::max({0.0f, low - at[axis], at[axis] - (low + cellSize_)});
+  };
+  float sum = 0.0f, sx = 0.0f, sy = 0.0f, sz = 0.0f;
+  const int x0 = cellOf(at.x - support, 0), x1 = cellOf(at.x + support, 0);
+  const int y0 = cellOf(at.y - support, 1), y1 = cellOf(at.y + support, 1);
+  for (int ix = x0; ix <= x1; ++ix) {
+    const float gapX = gap(ix, 0);
+    for (int iy = y0; iy <= y1; ++iy) {
+      const float gapY = gap(iy, 1);
+      const float chordSquared = support * support - gapX * gapX - gapY * gapY;
+      if (chordSquared < 0.0f) continue;
+      const float chord = std::sqrt(chordSquared);
+      const int z0 = cellOf(at.z - chord, 2), z1 = cellOf(at.z + chord, 2);
+      const std::size_t column =
+          (std::size_t(ix) * std::size_t(cells_[1]) + std::size_t(iy)) * std::size_t(cells_[2]);
+      const float* counts = count_.data() + column;
+      const float* xs = centroidX_.data() + column;
+      const float* ys = centroidY_.data() + column;
+      const float* zs = centroidZ_.data() + column;
+#pragma omp simd reduction(+ : sum, sx, sy, sz)
+      for (int iz = z0; iz <= z1; ++iz) {
+        const float dx = xs[iz] - at.x, dy = ys[iz] - at.y, dz = zs[iz] - at.z;
+        const float weight =
+            counts[iz] * std::max(0.0f, 1.0f - (dx * dx + dy * dy + dz * dz) * inverseSupportSquared);
+        sum += weight;
+        sx += weight * dx;
+        sy += weight * dy;
+        sz += weight * dz;
+      }
+    }
+  }
+  offset = sum > 0.0f ? glm::vec3(sx, sy, sz) / sum : glm::vec3(0.0f);
+  return sum > 0.0f;
+}
+
+float MantaflowLevelSet::surfaceDistance(const glm::vec3& particle, float maxRadius, int refinements,
+                                         glm::vec3& out) const {
+  glm::vec3 towardsMean;
+  offsetToMean(particle, towardsMean);
   // Out of the body, away from where the neighbours pull; a lone particle's blob is round, any way will do.
   const float pull = glm::length(towardsMean);
-  out = pull > 1e-6f * kernelRadius ? -towardsMean / pull : glm::vec3(0.0f, 0.0f, 1.0f);
-  float inside = 0.0f, insideValue = pull - kernelRadius;
+  out = pull > 1e-6f * kernelRadius_ ? -towardsMean / pull : glm::vec3(0.0f, 0.0f, 1.0f);
+  float inside = 0.0f, insideValue = pull - kernelRadius_;
   if (insideValue >= 0.0f) return 0.0f;
-  const auto levelSet = [&](float t) {
-    const glm::vec3 at = particle + t * out;
-    const glm::vec3 offset = offsetToMean(grid, at, support, ranges, found);
-    return found ? glm::length(offset) - kernelRadius : kernelRadius;
-  };
-  // φ grows by about one per unit along `out` (x̄ moves little): first guess t = −φ(0), then secant steps
-  // through the last two points. Over a body one refinement lands within a few hundredths of a radius of the
-  // bisected zero (MantaflowSurface tests); a lone particle needs none, as φ is then exactly linear.
   // x̄ follows x outwards (it never moves against it), so φ grows by at most one per unit: the zero lies at
   // least −φ(0) out, and a particle that deep needs no second sum.
   if (-insideValue >= maxRadius) return maxRadius;
+  const auto levelSet = [&](float t) {
+    glm::vec3 offset;
+    return offsetToMean(particle + t * out, offset) ? glm::length(offset) - kernelRadius_ : kernelRadius_;
+  };
+  // φ grows by about one per unit along `out` (x̄ moves little): first guess t = −φ(0), then secant steps
+  // through the last two points. A lone particle needs none, as φ is then exactly linear.
   float t = -insideValue;
   for (int step = 0; step <= refinements; ++step) {
     const float value = levelSet(t);

@@ -144,8 +144,8 @@ int NeighbourGrid::neighbourRanges(std::size_t cell, IndexRange ranges[9]) const
   return found;
 }
 
-void NeighbourGrid::rangesWithin(float x, float y, float z, float radius,
-                                 std::vector<IndexRange>& ranges) const {
+void NeighbourGrid::cellRangesWithin(float x, float y, float z, float radius,
+                                     std::vector<IndexRange>& ranges) const {
   ranges.clear();
   if (cellKeys_.empty()) return;
   const float position[3] = {x, y, z};
@@ -181,9 +181,15 @@ void NeighbourGrid::rangesWithin(float x, float y, float z, float radius,
       const auto last =
           std::upper_bound(first, cellKeys_.end(), column * cellsZ_ + cellOfZ(position[2] + chord));
       if (first == last) continue;
-      ranges.push_back({cellBegin_[std::size_t(first - cellKeys_.begin())],
-                        cellBegin_[std::size_t(last - cellKeys_.begin())]});
+      ranges.push_back({std::uint32_t(first - cellKeys_.begin()), std::uint32_t(last - cellKeys_.begin())});
     }
+}
+
+void NeighbourGrid::rangesWithin(float x, float y, float z, float radius,
+                                 std::vector<IndexRange>& ranges) const {
+  cellRangesWithin(x, y, z, radius, ranges);
+  for (IndexRange& range : ranges)
+    range = {cellBegin_[range.begin], cellBegin_[range.end]};
 }
 
 }  // namespace spindrift

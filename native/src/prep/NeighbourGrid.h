@@ -42,6 +42,8 @@ class NeighbourGrid {
   /// within `radius` of (x, y, z): one range per column of cells along z. The ranges may also hold particles
   /// farther away; callers test the distance.
   void rangesWithin(float x, float y, float z, float radius, std::vector<IndexRange>& ranges) const;
+  /// The same as ranges of cell indices (into cellParticles), for callers that keep something per cell.
+  void cellRangesWithin(float x, float y, float z, float radius, std::vector<IndexRange>& cells) const;
 
  private:
   ParticleCloud particles_;
