@@ -31,8 +31,8 @@ TIMER_INTERVAL = 0.05
 
 
 class Job:
-    def __init__(self, key, inputs, offset, scale):
-        self.key, self.inputs, self.offset, self.scale = key, inputs, offset, scale
+    def __init__(self, key, inputs, size, offset, scale):
+        self.key, self.inputs, self.size, self.offset, self.scale = key, inputs, size, offset, scale
 
 
 class Image:
@@ -56,6 +56,7 @@ class Previews:
         self._queued = {}
         self._rendering = None  # (region_key, job, start time) of the frame on the native thread.
         self._finished = {}
+        self._buffers = {}  # (width, height) -> two display arrays, filled in turn (see _display_buffer).
 
     def submit(self, region_key, job):
         self._queued[region_key] = job
@@ -79,12 +80,12 @@ class Previews:
             renderer = native.renderer()
             if renderer.busy:
                 return False
-            result = renderer.poll()
+            result = renderer.poll(display_into=self._display_buffer(job.size))
             if result is None:  # Nothing in flight: the renderer was closed and made again. Render it anew.
                 self._queued.setdefault(region_key, job)
                 self._rendering = None
                 return self._start_next()
-            pixels = np.frombuffer(result["display"], dtype=np.float32)
+            pixels = result["display"]
             self._finished[region_key] = Image(job, pixels, result["width"], result["height"],
                                                time.perf_counter() - started, result.get("stats", {}))
         except Exception as error:  # noqa: BLE001 - shown in the panel; the viewport keeps working
@@ -92,6 +93,16 @@ class Previews:
         self._rendering = None
         self._start_next()
         return True
+
+    def _display_buffer(self, size):
+        """The display array the next frame of this size is written into. The module fills it in place: a fresh
+        4 MB array per frame cost 15-30 ms of page faults on the main thread (docs/blender.md). Two alternate,
+        so the image still waiting to be uploaded is never overwritten by the next."""
+        pair = self._buffers.get(size)
+        if pair is None:
+            pair = self._buffers[size] = [np.zeros(size[0] * size[1] * 4, np.float32) for _ in range(2)]
+        pair.reverse()
+        return pair[0]
 
     def stop(self):
         """Waits for the frame on the native thread (the shared Renderer takes one at a time) and drops it."""
@@ -147,7 +158,8 @@ def status(region_key=None):
 
 def redraw_times_ms():
     """The draw callback's recent main-thread times: dicts of total_ms, and occluders_ms, job_ms (a new
-    frame queued), texture (a new image uploaded), draw_ms where they happened."""
+    frame queued), collect_ms (a finished frame taken and the next one started), texture (a new image
+    uploaded), upload_ms, draw_ms where they happened."""
     return list(_state["redraw_ms"])
 
 
@@ -208,8 +220,8 @@ def build_job(context, region, region_data, key, phases):
         if triangles is not None:
             inputs.kwargs["occluders"] = triangles
     phases["occluders_ms"] = (time.perf_counter() - occluders_started) * 1000
-    job = Job(key, inputs, (-round(left) * region.width / width, -round(bottom) * region.height / height),
-              region.width / width)
+    job = Job(key, inputs, (width, height),
+              (-round(left) * region.width / width, -round(bottom) * region.height / height), region.width / width)
     phases["job_ms"] = (time.perf_counter() - started) * 1000
     return job
 
@@ -229,7 +241,9 @@ def draw():
         return
     region_key = region.as_pointer()
     phases = {}
-    previews.collect()  # A frame that finished since the timer last looked is drawn now, not 50 ms later.
+    collected = time.perf_counter()
+    if previews.collect():  # A frame that finished since the timer last looked is drawn now, not 50 ms later.
+        phases["collect_ms"] = (time.perf_counter() - collected) * 1000
     try:
         key = _view_key(context, region, region_data)
         if _state["submitted"].get(region_key) != key and previews.idle(region_key):

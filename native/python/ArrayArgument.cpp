@@ -60,7 +60,7 @@ std::string shapeText(const std::vector<Py_ssize_t>& shape) {
 }
 
 ArrayArgument::ArrayArgument(PyObject* object, std::string name, const std::vector<ElementType>& accepted,
-                             const std::vector<Py_ssize_t>& shape)
+                             const std::vector<Py_ssize_t>& shape, Access access)
     : name_(std::move(name)) {
   const std::string expected =
       "a C-contiguous " + acceptedNames(accepted) + " array of shape " + shapeText(shape);
@@ -73,10 +73,11 @@ ArrayArgument::ArrayArgument(PyObject* object, std::string name, const std::vect
                         name_ + ": expected " + expected + ", got " + (text ? text : "an object"));
   }
   Py_buffer& view = buffer_.view;
-  if (PyObject_GetBuffer(object, &view, PyBUF_RECORDS_RO) != 0) {
-    PyErr_Clear();  // e.g. a buffer without strides: report it as the argument's fault.
-    throw ArgumentError(PyExc_ValueError,
-                        name_ + ": expected " + expected + ", and its buffer cannot be read");
+  const bool writable = access == Access::Write;
+  if (PyObject_GetBuffer(object, &view, writable ? PyBUF_RECORDS : PyBUF_RECORDS_RO) != 0) {
+    PyErr_Clear();  // e.g. a buffer without strides, or a read-only one: report it as the argument's fault.
+    throw ArgumentError(PyExc_ValueError, name_ + ": expected " + expected + ", and its buffer cannot be " +
+                                              (writable ? "written" : "read"));
   }
   buffer_.held = true;
   bool typeAccepted = false;

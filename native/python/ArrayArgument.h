@@ -36,12 +36,16 @@ class ArrayArgument {
  public:
   /// `shape` gives the expected length of every axis (kAnyLength for free ones); `accepted` the element
   /// types.
+  /// With Access::Write the buffer must also be writable (an output the module fills).
+  enum class Access { Read, Write };
   ArrayArgument(PyObject* object, std::string name, const std::vector<ElementType>& accepted,
-                const std::vector<Py_ssize_t>& shape);
+                const std::vector<Py_ssize_t>& shape, Access access = Access::Read);
   ArrayArgument(const ArrayArgument&) = delete;
   ArrayArgument& operator=(const ArrayArgument&) = delete;
 
   const void* data() const { return buffer_.view.buf; }
+  /// Only for an Access::Write argument.
+  void* writableData() const { return buffer_.view.buf; }
   /// The number of elements (the product of the shape).
   Py_ssize_t count() const { return buffer_.view.len / buffer_.view.itemsize; }
   const ElementType& type() const { return type_; }

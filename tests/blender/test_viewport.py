@@ -167,6 +167,7 @@ def measure_redraws():
         redraw_ms_moving_mean=mean(moving, "total_ms"), redraw_ms_moving_max=float(max(r["total_ms"] for r in moving)),
         redraw_ms_submitting_mean=mean(submitting, "total_ms"), occluders_ms_mean=mean(submitting, "occluders_ms"),
         job_ms_mean=mean(submitting, "job_ms"), draw_ms_mean=mean(moving + still, "draw_ms"),
+        collect_ms_mean=mean(moving + still, "collect_ms"), upload_ms_mean=mean(moving + still, "upload_ms"),
         redraw_ms_still_mean=mean(still, "total_ms"), preview_frame_ms=frame_times[-1:] or None,
         region=list(state["region_size"]), load=os.getloadavg()[0], records=moving + still)
 

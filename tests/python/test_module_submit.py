@@ -136,3 +136,29 @@ def test_closing_or_dropping_a_renderer_with_a_frame_in_flight_waits_for_it(spin
     dropped = spindrift.Renderer()
     dropped.submit(scene_json(), 1, particles=arrays, layers=["liquid"])
     del dropped  # Deallocation joins the native thread before the renderer goes.
+
+
+def test_display_into_fills_the_callers_array_in_place(renderer):
+    arrays = liquid_and_foam()
+    renderer.submit(scene_json(), 1, particles=arrays, layers=[], display=True)
+    fresh = np.frombuffer(wait_for(renderer)["display"], np.float32)
+    target = np.full(WIDTH * HEIGHT * 4, -1.0, np.float32)
+    renderer.submit(scene_json(), 1, particles=arrays, layers=[], display=True)
+    deadline = time.monotonic() + POLL_TIMEOUT_S
+    while renderer.busy and time.monotonic() < deadline:
+        time.sleep(0.005)
+    result = renderer.poll(display_into=target)
+    assert result["display"] is target
+    np.testing.assert_array_equal(target, fresh)
+    renderer.submit(scene_json(), 1, particles=arrays, layers=[], display=True)
+    while renderer.busy:
+        time.sleep(0.005)
+    with pytest.raises(ValueError, match="display_into"):
+        renderer.poll(display_into=np.zeros(7, np.float32))
+    read_only = np.zeros(WIDTH * HEIGHT * 4, np.float32)
+    read_only.flags.writeable = False
+    renderer.submit(scene_json(), 1, particles=arrays, layers=[], display=True)
+    while renderer.busy:
+        time.sleep(0.005)
+    with pytest.raises(ValueError, match="written"):
+        renderer.poll(display_into=read_only)
