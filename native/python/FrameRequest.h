@@ -44,8 +44,8 @@ FrameRequest readFrameRequest(PyObject* args, PyObject* kwargs);
 FrameOutcome renderRequest(Renderer& renderer, const FrameRequest& request);
 
 /// The dict render() returns: {"width", "height", "stats", "layers"} and, when asked, "display": a new bytes
-/// object, or `displayInto` (a writable float32 buffer of height * width * 4 values, filled) when given. Needs
-/// the GIL.
+/// object, or `displayInto` (a writable float32 buffer of height * width * 4 values, filled) when given.
+/// Needs the GIL.
 PyObject* outcomeToPython(const FrameOutcome& outcome, const FrameRequest& request,
                           PyObject* displayInto = nullptr);
 
