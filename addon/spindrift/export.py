@@ -74,9 +74,12 @@ def domain_sources(obj, frame, issues):
         issues.append(str(error))
         return []
     props = obj.spindrift
-    sources = scene_json.mantaflow_sources(directory, world_from_file,
-                                           liquid_radius=props.liquid_radius_cells * dx,
-                                           foam_radius=props.foam_radius_cells * dx)
+    # The domain's mesh settings go along, so the liquid stands where Blender's liquid mesh stands; the radius
+    # is derived from them too unless the user set one (docs/blender.md).
+    sources = scene_json.mantaflow_sources(
+        directory, world_from_file,
+        liquid_radius=None if props.liquid_radius_from_domain else props.liquid_radius_cells * dx,
+        foam_radius=props.foam_radius_cells * dx, domain=scene_json.domain_description(settings))
     kept = []
     for source in sources:
         path = scene_json.frame_path(source["path"], frame)

@@ -48,10 +48,16 @@ class SpindriftObjectSettings(PropertyGroup):
                           description="Radius of each vertex or point (a 'radius' attribute overrides it)")
     size_scale: FloatProperty(name="Size Scale", default=1.0, min=1e-6, soft_max=10.0, update=_redraw_viewports,
                               description="A particle system's particle radius is its size times this factor")
+    liquid_radius_from_domain: BoolProperty(
+        name="Radius from Domain", default=True, update=_redraw_viewports,
+        description="Derive the liquid particles' radius from the domain's settings (1.1 particle spacings), as "
+                    "Spindrift always derives the surface offset that puts the liquid where Blender's liquid "
+                    "mesh stands")
     liquid_radius_cells: FloatProperty(
         name="Liquid Radius", default=0.55, min=0.05, max=4.0, update=_redraw_viewports,
-        description="Radius of a Mantaflow liquid particle in grid cells (Mantaflow seeds two particles per "
-                    "cell and axis, half a cell apart; 0.55 closes the surface)")
+        description="With Radius from Domain off: the radius of a Mantaflow liquid particle in grid cells "
+                    "(Mantaflow seeds two particles per cell and axis, half a cell apart; 0.55 closes the "
+                    "surface)")
     foam_radius_cells: FloatProperty(
         name="Foam Radius", default=0.6, min=0.01, max=4.0, update=_redraw_viewports,
         description="Radius of spray, foam and bubble particles in grid cells")

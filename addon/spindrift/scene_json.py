@@ -69,12 +69,35 @@ def frame_path(pattern, frame):
     return pattern[:start] + str(frame).zfill(end - start) + pattern[end:]
 
 
-def mantaflow_sources(cache_directory, world_from_file, liquid_radius, foam_radius):
+# The Mantaflow domain settings that place its liquid mesh (docs/mantaflow-caches.md); the scene file's
+# "domain" object takes them under Blender's own names.
+MESH_SETTINGS = ("particle_radius", "mesh_particle_radius", "mesh_scale", "mesh_smoothen_pos", "mesh_smoothen_neg",
+                 "mesh_concave_upper", "mesh_concave_lower", "particle_number", "mesh_generator")
+
+
+def domain_description(settings):
+    """The scene file's "domain" object from a FluidDomainSettings (or anything with those attributes)."""
+    description = {}
+    for name in MESH_SETTINGS:
+        value = getattr(settings, name)
+        description[name] = value if isinstance(value, str) else (
+            int(value) if isinstance(value, int) and not isinstance(value, bool) else float(value))
+    return description
+
+
+def mantaflow_sources(cache_directory, world_from_file, liquid_radius, foam_radius, domain=None):
+    """The liquid and foam sources of a Mantaflow cache. With `domain` (domain_description) the liquid source
+    names the domain's mesh settings, so the renderer derives its surface offset, and its radius too when
+    `liquid_radius` is None; a given radius wins."""
     paths = mantaflow_cache_paths(cache_directory)
     matrix = row_major(world_from_file)
+    liquid = {"path": paths["liquid"], "grid": "particles", "role": "liquid", "world_from_file": matrix}
+    if liquid_radius is not None:
+        liquid["radius"] = float(liquid_radius)
+    if domain is not None:
+        liquid["domain"] = dict(domain)
     return [
-        {"path": paths["liquid"], "grid": "particles", "role": "liquid", "radius": float(liquid_radius),
-         "world_from_file": matrix},
+        liquid,
         {"path": paths["secondary"], "grid": "particles_secondary", "role": "foam", "radius": float(foam_radius),
          "world_from_file": matrix},
     ]

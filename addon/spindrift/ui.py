@@ -43,7 +43,10 @@ class SPINDRIFT_PT_object(bpy.types.Panel):
             layout.label(text="Source: Mantaflow liquid domain (OpenVDB cache)", icon="MOD_FLUIDSIM")
             if domain.cache_data_format != "OPENVDB":
                 layout.label(text="Set the cache's volume format to OpenVDB and bake", icon="ERROR")
-            layout.prop(props, "liquid_radius_cells")
+            layout.prop(props, "liquid_radius_from_domain")
+            row = layout.row()
+            row.active = not props.liquid_radius_from_domain
+            row.prop(props, "liquid_radius_cells")
             layout.prop(props, "foam_radius_cells")
         elif obj.particle_systems:
             layout.label(text=f"Source: {len(obj.particle_systems)} particle system(s)", icon="PARTICLES")

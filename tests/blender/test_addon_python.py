@@ -174,6 +174,26 @@ def test_cache_paths_and_frame_numbers():
     assert scene_json.frame_path("a_##.exr", 123) == "a_123.exr"
 
 
+class DomainSettings:
+    """The FluidDomainSettings attributes the scene file takes, at Blender 3.4's defaults but one."""
+    particle_radius, mesh_particle_radius, mesh_scale = 1.0, 2.0, 1
+    mesh_smoothen_pos, mesh_smoothen_neg, mesh_concave_upper, mesh_concave_lower = 1, 1, 3.5, 0.4
+    particle_number, mesh_generator = 2, "IMPROVED"
+
+
+def test_domain_settings_go_with_the_liquid_source_and_a_radius_only_when_given():
+    domain = scene_json.domain_description(DomainSettings())
+    assert domain == {"particle_radius": 1.0, "mesh_particle_radius": 2.0, "mesh_scale": 1, "mesh_smoothen_pos": 1,
+                      "mesh_smoothen_neg": 1, "mesh_concave_upper": 3.5, "mesh_concave_lower": 0.4,
+                      "particle_number": 2, "mesh_generator": "IMPROVED"}
+    identity = [[1.0 if i == j else 0.0 for j in range(4)] for i in range(4)]
+    derived, foam = scene_json.mantaflow_sources("/c", identity, None, 0.3, domain=domain)
+    assert "radius" not in derived and derived["domain"] == domain and foam["radius"] == 0.3
+    assert "domain" not in foam
+    given, _ = scene_json.mantaflow_sources("/c", identity, 0.05, 0.3, domain=domain)
+    assert given["radius"] == 0.05 and given["domain"] == domain
+
+
 # --- Cameras and depth -----------------------------------------------------------------------------------------
 
 def perspective(fov_y, aspect, near, far, shift=(0.0, 0.0)):
