@@ -55,9 +55,10 @@ def configurations(quick):
     points += [variant("none", smoothing="none")]
     points += [variant(f"max_refractions {n}", max_refractions=n) for n in (1, 2)]
     points += [variant("layers merged", layers="merged"), variant("plane_fit, foam off", foam=False)]
-    # Each smoothing method without the surface offset the Mantaflow domain derives: the particles drawn at
-    # their radius alone, as every method was before the offset (docs/mantaflow-caches.md).
-    points += [variant(f"{label}, no offset", surface_offset=0.0, **changes) for label, changes in
+    # Each smoothing method without the surface the Mantaflow domain derives (offset and splash sizes): the
+    # particles drawn at their radius alone, as every method was before issue 9 (docs/mantaflow-caches.md).
+    points += [variant(f"{label}, no offset", surface_offset=0.0, mesh_kernel_radius=0.0, **changes)
+               for label, changes in
                (("plane_fit i3 w9", {}), ("bilateral i1", {"smoothing": "bilateral", "smoothing_iterations": 1}),
                 ("narrow_range i1", {"smoothing": "narrow_range", "smoothing_iterations": 1}),
                 ("curvature_flow s20", {"smoothing": "curvature_flow", "curvature_flow_steps": 20}),
