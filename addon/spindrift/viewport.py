@@ -56,7 +56,7 @@ class Previews:
         self._queued = {}
         self._rendering = None  # (region_key, job, start time) of the frame on the native thread.
         self._finished = {}
-        self._buffers = {}  # (width, height) -> two display arrays, filled in turn (see _display_buffer).
+        self._buffers = {}  # (region_key, width, height) -> two display arrays, used in turn (_display_buffer).
 
     def submit(self, region_key, job):
         self._queued[region_key] = job
@@ -80,7 +80,7 @@ class Previews:
             renderer = native.renderer()
             if renderer.busy:
                 return False
-            result = renderer.poll(display_into=self._display_buffer(job.size))
+            result = renderer.poll()
             if result is None:  # Nothing in flight: the renderer was closed and made again. Render it anew.
                 self._queued.setdefault(region_key, job)
                 self._rendering = None
@@ -94,13 +94,14 @@ class Previews:
         self._start_next()
         return True
 
-    def _display_buffer(self, size):
-        """The display array the next frame of this size is written into. The module fills it in place: a fresh
-        4 MB array per frame cost 15-30 ms of page faults on the main thread (docs/blender.md). Two alternate,
-        so the image still waiting to be uploaded is never overwritten by the next."""
-        pair = self._buffers.get(size)
+    def _display_buffer(self, region_key, size):
+        """The array the region's next frame is written into, by the rendering thread: a fresh 4 MB array per
+        frame cost the main thread 15-30 ms of page faults when the module made it (docs/blender.md). Two per
+        region alternate, so the region's image still waiting to be uploaded is never written over."""
+        key = (region_key, *size)
+        pair = self._buffers.get(key)
         if pair is None:
-            pair = self._buffers[size] = [np.zeros(size[0] * size[1] * 4, np.float32) for _ in range(2)]
+            pair = self._buffers[key] = [np.zeros(size[0] * size[1] * 4, np.float32) for _ in range(2)]
         pair.reverse()
         return pair[0]
 
@@ -126,7 +127,7 @@ class Previews:
         try:
             inputs = job.inputs
             native.renderer().submit(inputs.scene_text, inputs.document["frame"], layers=[], display=True,
-                                     **inputs.kwargs)
+                                     display_into=self._display_buffer(region_key, job.size), **inputs.kwargs)
         except Exception as error:  # noqa: BLE001 - shown in the panel; the viewport keeps working
             self._finished[region_key] = str(error) or type(error).__name__
             return True

@@ -102,9 +102,10 @@ Reference uninitialisedBytes(std::size_t size, char*& target) {
 }  // namespace
 
 FrameRequest readFrameRequest(PyObject* args, PyObject* kwargs) {
-  static const char* keywords[] = {"scene_json",     "frame",           "base_dir", "particles", "occluders",
-                                   "liquid_mesh",    "background",      "exr_path", "layers",    "exr_layers",
-                                   "exr_half_color", "exr_compression", "crop",     "display",   nullptr};
+  static const char* keywords[] = {"scene_json", "frame",       "base_dir",       "particles",
+                                   "occluders",  "liquid_mesh", "background",     "exr_path",
+                                   "layers",     "exr_layers",  "exr_half_color", "exr_compression",
+                                   "crop",       "display",     "display_into",   nullptr};
   const char* sceneJson = nullptr;
   int frame = 0;
   const char* baseDir = "";
@@ -112,11 +113,12 @@ FrameRequest readFrameRequest(PyObject* args, PyObject* kwargs) {
   const char* exrPath = nullptr;
   PyObject *layers = Py_None, *exrLayers = Py_None, *crop = Py_None;
   int exrHalfColor = 0, display = 0;
+  PyObject* displayInto = Py_None;
   const char* exrCompression = "zip";
-  if (!PyArg_ParseTupleAndKeywords(args, kwargs, "si|$sOOOOzOOpsOp", const_cast<char**>(keywords), &sceneJson,
-                                   &frame, &baseDir, &particles, &occluders, &liquidMesh, &background,
-                                   &exrPath, &layers, &exrLayers, &exrHalfColor, &exrCompression, &crop,
-                                   &display))
+  if (!PyArg_ParseTupleAndKeywords(args, kwargs, "si|$sOOOOzOOpsOpO", const_cast<char**>(keywords),
+                                   &sceneJson, &frame, &baseDir, &particles, &occluders, &liquidMesh,
+                                   &background, &exrPath, &layers, &exrLayers, &exrHalfColor, &exrCompression,
+                                   &crop, &display, &displayInto))
     throw PythonErrorSet{};
   FrameRequest request;
   // Relative paths in the scene are anchored at base_dir; messages name the scene "<base_dir>/scene_json".
@@ -148,6 +150,17 @@ FrameRequest readFrameRequest(PyObject* args, PyObject* kwargs) {
       ExrOptions{exrHalfColor != 0, exrCompression, request.exrLayers.value_or(std::vector<std::string>{})};
   request.crop = readCropWindow(crop, request.scene.camera);
   request.display = display != 0;
+  if (displayInto != Py_None) {
+    if (!request.display) throw ArgumentError(PyExc_ValueError, "display_into: needs display=True");
+    const Camera& camera = request.scene.camera;
+    const Py_ssize_t pixels = request.crop ? Py_ssize_t(request.crop->width) * request.crop->height
+                                           : Py_ssize_t(camera.width) * camera.height;
+    request.displayTarget =
+        std::make_unique<ArrayArgument>(displayInto, "display_into", std::vector<ElementType>{kFloat32},
+                                        std::vector<Py_ssize_t>{4 * pixels}, ArrayArgument::Access::Write);
+    Py_INCREF(displayInto);
+    request.displayObject = Reference(displayInto);
+  }
   return request;
 }
 
@@ -157,7 +170,16 @@ FrameOutcome renderRequest(Renderer& renderer, const FrameRequest& request) {
   renderer.setLayers(layersToRender(request));
   outcome.result = renderer.renderFrame(request.scene, request.frame, request.inputs);
   if (request.crop) cropResult(outcome.result, *request.crop);
-  if (request.display) outcome.display = displayImage(outcome.result);
+  if (request.display) {
+    outcome.display = displayImage(outcome.result);
+    if (request.displayTarget) {
+      // Written here, on the rendering thread, so that faulting in the caller's fresh pages costs its thread
+      // nothing (15-30 ms per 640x400 frame on this project's virtual machine; docs/blender.md).
+      std::memcpy(request.displayTarget->writableData(), outcome.display.data(),
+                  outcome.display.size() * sizeof(float));
+      outcome.display.clear();
+    }
+  }
   if (!request.exrPath) return outcome;
   const auto writeStart = std::chrono::steady_clock::now();
   writeExr(outcome.result, *request.exrPath, request.exrOptions);
@@ -166,7 +188,7 @@ FrameOutcome renderRequest(Renderer& renderer, const FrameRequest& request) {
   return outcome;
 }
 
-PyObject* outcomeToPython(const FrameOutcome& outcome, const FrameRequest& request, PyObject* displayInto) {
+PyObject* outcomeToPython(const FrameOutcome& outcome, const FrameRequest& request) {
   const RenderResult& result = outcome.result;
   std::set<std::string> available;
   for (const ImageLayer& layer : result.layers)
@@ -197,15 +219,10 @@ PyObject* outcomeToPython(const FrameOutcome& outcome, const FrameRequest& reque
     setItem(layers.get(), layer.name.c_str(), std::move(entry));
   }
   Reference dictionary(check(PyDict_New()));
-  std::optional<ArrayArgument> into;  // Held until the copies are done.
-  if (request.display && displayInto && displayInto != Py_None) {
-    // A buffer the caller reuses frame after frame: no fresh pages to fault in, which on a virtual machine
-    // cost the viewport's main thread 15-30 ms per 640x400 frame (docs/blender.md).
-    into.emplace(displayInto, "display_into", std::vector<ElementType>{kFloat32},
-                 std::vector<Py_ssize_t>{Py_ssize_t(outcome.display.size())}, ArrayArgument::Access::Write);
-    copies.emplace_back(static_cast<char*>(into->writableData()), &outcome.display);
-    Py_INCREF(displayInto);
-    setItem(dictionary.get(), "display", Reference(displayInto));
+  if (request.display && request.displayTarget) {
+    PyObject* target = request.displayObject.get();
+    Py_INCREF(target);
+    setItem(dictionary.get(), "display", Reference(target));
   } else if (request.display) {
     char* target = nullptr;
     Reference display = uninitialisedBytes(outcome.display.size() * sizeof(float), target);

@@ -6,10 +6,13 @@
 #include <Python.h>
 
 #include <filesystem>
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
 
+#include "ArrayArgument.h"
+#include "PythonErrors.h"
 #include "ResultCrop.h"
 #include "spindrift/FrameInputs.h"
 #include "spindrift/Output.h"
@@ -29,6 +32,10 @@ struct FrameRequest {
   ExrOptions exrOptions;
   std::optional<CropWindow> crop;
   bool display = false;  ///< Also return the viewport's display image (DisplayImage.h).
+  /// `display_into`: the caller's float32 array the display image is written into by the rendering thread,
+  /// held (buffer and reference) until the request goes, which must happen with the GIL.
+  std::unique_ptr<ArrayArgument> displayTarget;
+  Reference displayObject;
 };
 
 struct FrameOutcome {
@@ -44,9 +51,7 @@ FrameRequest readFrameRequest(PyObject* args, PyObject* kwargs);
 FrameOutcome renderRequest(Renderer& renderer, const FrameRequest& request);
 
 /// The dict render() returns: {"width", "height", "stats", "layers"} and, when asked, "display": a new bytes
-/// object, or `displayInto` (a writable float32 buffer of height * width * 4 values, filled) when given.
-/// Needs the GIL.
-PyObject* outcomeToPython(const FrameOutcome& outcome, const FrameRequest& request,
-                          PyObject* displayInto = nullptr);
+/// object, or the request's `display_into` array, already filled. Needs the GIL.
+PyObject* outcomeToPython(const FrameOutcome& outcome, const FrameRequest& request);
 
 }  // namespace spindrift::python

@@ -44,6 +44,14 @@ class Reference {
   explicit Reference(PyObject* object) : object_(object) {}
   ~Reference() { Py_XDECREF(object_); }
   Reference(Reference&& other) noexcept : object_(other.release()) {}
+  /// Needs the GIL (it releases what it held).
+  Reference& operator=(Reference&& other) noexcept {
+    if (this != &other) {
+      Py_XDECREF(object_);
+      object_ = other.release();
+    }
+    return *this;
+  }
   Reference(const Reference&) = delete;
   Reference& operator=(const Reference&) = delete;
   PyObject* get() const { return object_; }

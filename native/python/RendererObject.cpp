@@ -194,17 +194,13 @@ PyObject* rendererSubmit(PyObject* object, PyObject* args, PyObject* kwargs) {
   }
 }
 
-PyObject* rendererPoll(PyObject* object, PyObject* args, PyObject* kwargs) {
+PyObject* rendererPoll(PyObject* object, PyObject*) {
   auto* self = reinterpret_cast<RendererObject*>(object);
-  static const char* keywords[] = {"display_into", nullptr};
-  PyObject* displayInto = Py_None;
-  if (!PyArg_ParseTupleAndKeywords(args, kwargs, "|$O", const_cast<char**>(keywords), &displayInto))
-    return nullptr;
   try {
     if (!self->inFlight || !self->inFlight->finished.load(std::memory_order_acquire)) Py_RETURN_NONE;
     const std::unique_ptr<InFlightFrame> frame = joinInFlight(self);
     if (frame->failure) std::rethrow_exception(frame->failure);
-    return outcomeToPython(frame->outcome, frame->request, displayInto);
+    return outcomeToPython(frame->outcome, frame->request);
   } catch (...) {
     return raiseCurrentException();
   }
@@ -242,21 +238,16 @@ PyMethodDef rendererMethods[] = {
      METH_VARARGS | METH_KEYWORDS,
      "render(scene_json, frame, *, base_dir='', particles=None, occluders=None, liquid_mesh=None, "
      "background=None, exr_path=None, layers=None, exr_layers=None, exr_half_color=False, "
-     "exr_compression='zip', crop=None, display=False) -> dict\n\nRenders one frame; see "
+     "exr_compression='zip', crop=None, display=False, display_into=None) -> dict\n\nRenders one frame; see "
      "docs/python-module.md."},
     {"submit", reinterpret_cast<PyCFunction>(reinterpret_cast<void (*)()>(rendererSubmit)),
      METH_VARARGS | METH_KEYWORDS,
      "submit(scene_json, frame, **render's keywords) -> None\n\nStarts rendering one frame on a native "
      "thread "
      "and returns at once; poll() collects it. No Python runs while it renders."},
-    {"poll", reinterpret_cast<PyCFunction>(reinterpret_cast<void (*)()>(rendererPoll)),
-     METH_VARARGS | METH_KEYWORDS,
-     "poll(*, display_into=None) -> dict | None\n\nThe submitted frame's result (as render() returns it) "
-     "once "
-     "it has finished, else None; raises the frame's error instead when it failed. A result is returned "
-     "once. "
-     "display_into: a writable float32 array of height * width * 4 values to fill with the display image "
-     "instead of a new bytes object."},
+    {"poll", rendererPoll, METH_NOARGS,
+     "poll() -> dict | None\n\nThe submitted frame's result (as render() returns it) once it has finished, "
+     "else None; raises the frame's error instead when it failed. A result is returned once."},
     {"close", rendererClose, METH_NOARGS, "Releases the native renderer (its GL thread and context) now."},
     {"__enter__", rendererEnter, METH_NOARGS, nullptr},
     {"__exit__", rendererExit, METH_VARARGS, nullptr},

@@ -138,27 +138,27 @@ def test_closing_or_dropping_a_renderer_with_a_frame_in_flight_waits_for_it(spin
     del dropped  # Deallocation joins the native thread before the renderer goes.
 
 
-def test_display_into_fills_the_callers_array_in_place(renderer):
+def test_display_into_is_written_by_the_rendering_thread(renderer):
     arrays = liquid_and_foam()
     renderer.submit(scene_json(), 1, particles=arrays, layers=[], display=True)
     fresh = np.frombuffer(wait_for(renderer)["display"], np.float32)
     target = np.full(WIDTH * HEIGHT * 4, -1.0, np.float32)
-    renderer.submit(scene_json(), 1, particles=arrays, layers=[], display=True)
-    deadline = time.monotonic() + POLL_TIMEOUT_S
-    while renderer.busy and time.monotonic() < deadline:
-        time.sleep(0.005)
-    result = renderer.poll(display_into=target)
+    renderer.submit(scene_json(), 1, particles=arrays, layers=[], display=True, display_into=target)
+    result = wait_for(renderer)
     assert result["display"] is target
     np.testing.assert_array_equal(target, fresh)
-    renderer.submit(scene_json(), 1, particles=arrays, layers=[], display=True)
-    while renderer.busy:
-        time.sleep(0.005)
+    # Checked at submit, before anything renders: the size, writability, and that there is a display.
     with pytest.raises(ValueError, match="display_into"):
-        renderer.poll(display_into=np.zeros(7, np.float32))
+        renderer.submit(scene_json(), 1, particles=arrays, display=True, display_into=np.zeros(7, np.float32))
     read_only = np.zeros(WIDTH * HEIGHT * 4, np.float32)
     read_only.flags.writeable = False
-    renderer.submit(scene_json(), 1, particles=arrays, layers=[], display=True)
-    while renderer.busy:
-        time.sleep(0.005)
     with pytest.raises(ValueError, match="written"):
-        renderer.poll(display_into=read_only)
+        renderer.submit(scene_json(), 1, particles=arrays, display=True, display_into=read_only)
+    with pytest.raises(ValueError, match="display=True"):
+        renderer.submit(scene_json(), 1, particles=arrays, display_into=target)
+    assert renderer.poll() is None and not renderer.busy, "nothing was started"
+    # render() takes it too, and a crop sizes it.
+    cropped = np.zeros(10 * 8 * 4, np.float32)
+    result = renderer.render(scene_json(), 1, particles=arrays, layers=[], display=True, display_into=cropped,
+                             crop=(WIDTH // 2 - 5, HEIGHT // 2 - 4, 10, 8))
+    assert result["display"] is cropped and cropped.any()
