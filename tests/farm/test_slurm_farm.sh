@@ -39,14 +39,21 @@ grep -q "^frame $first_of_chunk skipped" "$killed_log" || fail "the rerun did no
 expected="$(for f in $(seq 1 $frames); do printf 'f_%04d.exr\n' "$f"; done)"
 actual="$(ls -A "$work/farm")"
 [ "$actual" = "$expected" ] || fail "the farm's output directory holds: $(echo $actual)"
+# A frame's "done" line is printed when the next frame waits for its write, so the killed renderer may have
+# finished a frame's files without saying so; the rerun then skips it. Such a frame was still written once.
+silent=0
 for f in $(seq 1 $frames); do
   name="$(printf 'f_%04d.exr' "$f")"
   cmp -s "$work/farm/$name" "$work/reference/$name" || fail "$name differs from the local render"
   # grep -c exits 1 when it counts nothing: under `set -e -o pipefail` that would end the test without a word.
   renders="$(cat "$work"/logs/*.log | grep -c "^frame $f done" || true)"
+  if [ "$renders" -eq 0 ] && grep -q "^frame $f skipped" "$killed_log"; then
+    silent=$((silent + 1))
+    continue
+  fi
   [ "$renders" -eq 1 ] || fail "frame $f was written $renders times"
 done
 interrupted="$(grep -c "^frame .* done" "$killed_log" || true)"
-[ "$interrupted" -eq "$chunk" ] || fail "the killed task wrote $interrupted frames in all"
+[ "$((interrupted + silent))" -eq "$chunk" ] || fail "the killed task wrote $interrupted frames in all (+$silent unannounced)"
 log "PASS: $frames frames, each written once, bit-identical to the local render; one task killed and" \
     "requeued; $((SECONDS - start)) s"
