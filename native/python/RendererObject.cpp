@@ -243,8 +243,7 @@ PyMethodDef rendererMethods[] = {
     {"submit", reinterpret_cast<PyCFunction>(reinterpret_cast<void (*)()>(rendererSubmit)),
      METH_VARARGS | METH_KEYWORDS,
      "submit(scene_json, frame, **render's keywords) -> None\n\nStarts rendering one frame on a native "
-     "thread "
-     "and returns at once; poll() collects it. No Python runs while it renders."},
+     "thread and returns at once; poll() collects it. No Python runs while it renders."},
     {"poll", rendererPoll, METH_NOARGS,
      "poll() -> dict | None\n\nThe submitted frame's result (as render() returns it) once it has finished, "
      "else None; raises the frame's error instead when it failed. A result is returned once."},

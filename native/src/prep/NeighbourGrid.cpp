@@ -79,11 +79,8 @@ NeighbourGrid::NeighbourGrid(ParticleCloud particles, float minimumCellSize) : c
     if (product < 0x1p62) break;
     cellSize_ *= 2.0f;
   }
-  cellsX_ = cells[0];
   cellsY_ = cells[1];
   cellsZ_ = cells[2];
-  for (int axis = 0; axis < 3; ++axis)
-    origin_[axis] = lower[axis];
 
   std::vector<std::uint64_t> keys(count);
   const float inverseCellSize = 1.0f / cellSize_;
@@ -142,54 +139,6 @@ int NeighbourGrid::neighbourRanges(std::size_t cell, IndexRange ranges[9]) const
     }
   }
   return found;
-}
-
-void NeighbourGrid::cellRangesWithin(float x, float y, float z, float radius,
-                                     std::vector<IndexRange>& ranges) const {
-  ranges.clear();
-  if (cellKeys_.empty()) return;
-  const float position[3] = {x, y, z};
-  const std::uint64_t cellCounts[3] = {cellsX_, cellsY_, cellsZ_};
-  std::uint64_t low[3], high[3];
-  for (int axis = 0; axis < 3; ++axis) {
-    // Cell indices are offset by the margin cell; clamped to the grid so that no column wraps around.
-    const auto cellOf = [&](float value) {
-      const double index = std::floor(double(value - origin_[axis]) / cellSize_) + 1.0;
-      return std::uint64_t(std::clamp(index, 0.0, double(cellCounts[axis] - 1)));
-    };
-    low[axis] = cellOf(position[axis] - radius);
-    high[axis] = cellOf(position[axis] + radius);
-  }
-  // Only the columns the sphere meets, and in each only the cells its chord along z spans.
-  const auto gap = [&](std::uint64_t cell, int axis) {
-    const float cellLow = origin_[axis] + (float(cell) - 1.0f) * cellSize_;
-    return std::max({0.0f, cellLow - position[axis], position[axis] - (cellLow + cellSize_)});
-  };
-  for (std::uint64_t ix = low[0]; ix <= high[0]; ++ix)
-    for (std::uint64_t iy = low[1]; iy <= high[1]; ++iy) {
-      const float gapX = gap(ix, 0), gapY = gap(iy, 1);
-      const float chordSquared = radius * radius - gapX * gapX - gapY * gapY;
-      if (chordSquared < 0.0f) continue;
-      const float chord = std::sqrt(chordSquared);
-      const auto cellOfZ = [&](float value) {
-        const double index = std::floor(double(value - origin_[2]) / cellSize_) + 1.0;
-        return std::uint64_t(std::clamp(index, 0.0, double(cellsZ_ - 1)));
-      };
-      const std::uint64_t column = ix * cellsY_ + iy;
-      const auto first = std::lower_bound(cellKeys_.begin(), cellKeys_.end(),
-                                          column * cellsZ_ + cellOfZ(position[2] - chord));
-      const auto last =
-          std::upper_bound(first, cellKeys_.end(), column * cellsZ_ + cellOfZ(position[2] + chord));
-      if (first == last) continue;
-      ranges.push_back({std::uint32_t(first - cellKeys_.begin()), std::uint32_t(last - cellKeys_.begin())});
-    }
-}
-
-void NeighbourGrid::rangesWithin(float x, float y, float z, float radius,
-                                 std::vector<IndexRange>& ranges) const {
-  cellRangesWithin(x, y, z, radius, ranges);
-  for (IndexRange& range : ranges)
-    range = {cellBegin_[range.begin], cellBegin_[range.end]};
 }
 
 }  // namespace spindrift

@@ -38,20 +38,12 @@ class NeighbourGrid {
   /// The non-empty particle ranges of the 3x3 columns of three cells centred on `cell`; returns how many
   /// (at most 9) were written to `ranges`.
   int neighbourRanges(std::size_t cell, IndexRange ranges[9]) const;
-  /// Appends to `ranges` (cleared first) the non-empty particle ranges of every cell that can hold a particle
-  /// within `radius` of (x, y, z): one range per column of cells along z. The ranges may also hold particles
-  /// farther away; callers test the distance.
-  void rangesWithin(float x, float y, float z, float radius, std::vector<IndexRange>& ranges) const;
-  /// The same as ranges of cell indices (into cellParticles), for callers that keep something per cell.
-  void cellRangesWithin(float x, float y, float z, float radius, std::vector<IndexRange>& cells) const;
 
  private:
   ParticleCloud particles_;
   float cellSize_;
-  float origin_[3] = {0.0f, 0.0f, 0.0f};  // The lower corner of cell 1 along each axis (cell 0 is margin).
   // Cells are numbered key = (ix * cellsY + iy) * cellsZ + iz, with a margin of one empty cell on every side
   // of the bounding box so that the neighbours of an occupied cell never wrap around.
-  std::uint64_t cellsX_ = 1;
   std::uint64_t cellsY_ = 1;
   std::uint64_t cellsZ_ = 1;
   std::vector<std::uint64_t> cellKeys_;   // Occupied cells, ascending.
