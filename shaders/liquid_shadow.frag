@@ -5,7 +5,9 @@
 // through the liquid is splatted by the caustic pass and the shadow is the light that does not meet the
 // liquid (0 behind it); without, the shadow keeps the light that crosses the liquid straight, with Fresnel at
 // both surfaces and Beer-Lambert over the path. Four texels are blended bilinearly, so the edge is soft over
-// one texel. Output, added up over the lights: (weight x shadow, weight).
+// one texel. Output, added up over the lights: (weight x shadow, weight), and the diffuse direct light the
+// light gives the point without the liquid (in the units of Cycles' DiffDir pass), so the lit background can
+// tell the lamps' share of the direct light from the sky's.
 #include "lib/frame.glsl"
 #include "lib/optics.glsl"
 #include "lib/light_view.glsl"
@@ -22,6 +24,7 @@ uniform vec3 absorptionPerUnitLength;
 uniform float submergedTolerance;  // sky mode: how far below the liquid's drawn bottom a point still lies in it
 
 layout(location = 0) out vec4 outShadow;
+layout(location = 1) out vec4 outLampDiffuse;  // light mode: irradiance x cos / pi x colour, added up
 
 const float kHemisphericalFresnel = 0.066;  // water's Fresnel reflectance averaged over a cosine-weighted sky
 const float kDiffusePathFactor = 1.194;     // mean 1 / cos of cosine-weighted sky light refracted into water
@@ -53,12 +56,39 @@ vec3 shadowThroughTexel(ivec2 texel, vec3 world, float pointDepth) {
   return (1.0 - fresnel) * exits * exp(-absorptionPerUnitLength * pathLength);
 }
 
+// The background's world position one pixel away along `step`, or `world` itself where that pixel has no
+// surface.
+vec3 neighbourPosition(vec2 step, vec3 world) {
+  vec2 fragCoord = gl_FragCoord.xy + step;
+  if (any(lessThan(fragCoord, vec2(0.0))) || any(greaterThanEqual(fragCoord, frame.viewportSize.xy))) return world;
+  float eyeDepth = texelFetch(backgroundEyeDepth, ivec2(fragCoord), 0).r;
+  return eyeDepth >= kNoSurfaceDepth * 0.5 ? world : worldPositionFromFragCoord(fragCoord, eyeDepth);
+}
+
+// The background's normal at a point, from its depth: along each axis the neighbour nearer in space, so a
+// depth edge does not bend the normal of the surface on either side. Faces the camera; zero where undefined.
+vec3 backgroundNormal(vec3 world) {
+  vec3 right = neighbourPosition(vec2(1.0, 0.0), world) - world, left = world - neighbourPosition(vec2(-1.0, 0.0), world);
+  vec3 up = neighbourPosition(vec2(0.0, 1.0), world) - world, down = world - neighbourPosition(vec2(0.0, -1.0), world);
+  vec3 alongX = (dot(left, left) > 0.0 && (dot(left, left) < dot(right, right) || dot(right, right) == 0.0)) ? left : right;
+  vec3 alongY = (dot(down, down) > 0.0 && (dot(down, down) < dot(up, up) || dot(up, up) == 0.0)) ? down : up;
+  vec3 normal = cross(alongX, alongY);
+  if (dot(normal, normal) < 1e-20) return vec3(0.0);
+  normal = normalize(normal);
+  return dot(normal, frame.worldFromCamera[3].xyz - world) < 0.0 ? -normal : normal;
+}
+
 void main() {
   float eyeDepth = texelFetch(backgroundEyeDepth, ivec2(gl_FragCoord.xy), 0).r;
   outShadow = skyMode ? vec4(1.0) : vec4(0.0);
+  outLampDiffuse = vec4(0.0);
   if (eyeDepth >= kNoSurfaceDepth * 0.5) return;  // Nothing there to shadow.
   vec3 world = worldPositionFromFragCoord(gl_FragCoord.xy, eyeDepth);
   float weight = skyMode ? 1.0 : lightWeightAt(world);
+  if (!skyMode) {
+    float cosine = max(dot(backgroundNormal(world), -lightTravelAt(world)), 0.0);
+    outLampDiffuse = vec4(lightIrradianceAt(world) * cosine / 3.14159265358979 * lightColor, 0.0);
+  }
   vec2 texel = lightTexelFromWorld(world);
   vec3 shadow = vec3(1.0);
   if (insideLightView(texel) && lightEyeDepthOf(world) > 0.0) {

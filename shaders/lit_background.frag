@@ -1,16 +1,20 @@
 #version 450 core
 // The background lit as the liquid lets it be: every light's shadow and caustics (the sums of
-// liquid_shadow.frag and caustic_splat.frag, weighted by each light's irradiance) scale the background's
-// direct light, and the sky light a submerged point keeps scales the rest. With Cycles' light passes the
-// split is exact: Combined - direct diffuse (1 - shadow - caustics) - direct glossy (1 - shadow) - indirect
-// (1 - sky). Without them, `directFraction` of the background is taken as direct light.
+// liquid_shadow.frag and caustic_splat.frag, weighted by each light's irradiance) scale the lamps' direct
+// light, and the sky light a submerged point keeps scales the rest. With Cycles' light passes:
+// Combined - direct (s (1 - shadow - caustics) + (1 - s)(1 - sky)) - indirect (1 - sky), where "direct" is
+// Cycles' direct diffuse and glossy light and s the lamps' share of it. Cycles counts the world's light as
+// direct too (the sky is sampled like a lamp), so s is the lamps' diffuse light at the point without the
+// liquid (liquid_shadow.frag) over DiffDir, at most 1; the glossy light takes the diffuse share (caustics
+// add diffuse light only). Without the passes, `directFraction` of the background is taken as the lamps'.
 layout(binding = 0) uniform sampler2D backgroundColor;
 layout(binding = 1) uniform sampler2D shadowSum;    // (sum of weight x shadow, sum of weight)
 layout(binding = 2) uniform sampler2D causticSum;   // sum of weight x caustic
 layout(binding = 3) uniform sampler2D skyKept;
-layout(binding = 4) uniform sampler2D directDiffuse;  // DiffCol x DiffDir
+layout(binding = 4) uniform sampler2D directDiffuse;  // DiffCol x DiffDir; alpha: DiffDir
 layout(binding = 5) uniform sampler2D directGlossy;   // GlossCol x GlossDir
 layout(binding = 6) uniform sampler2D indirectLight;  // DiffCol x DiffInd + GlossCol x GlossInd
+layout(binding = 7) uniform sampler2D lampDiffuse;    // the lamps' diffuse light without the liquid
 
 uniform bool hasLightPasses;
 uniform float directFraction;
@@ -30,8 +34,13 @@ void main() {
   vec3 sky = texelFetch(skyKept, pixel, 0).rgb;
   vec3 colour;
   if (hasLightPasses) {
-    colour = background.rgb - texelFetch(directDiffuse, pixel, 0).rgb * (1.0 - shadow - caustics) -
-             texelFetch(directGlossy, pixel, 0).rgb * (1.0 - shadow) - texelFetch(indirectLight, pixel, 0).rgb * (1.0 - sky);
+    vec4 diffuse = texelFetch(directDiffuse, pixel, 0);
+    float lamps = dot(texelFetch(lampDiffuse, pixel, 0).rgb, vec3(1.0 / 3.0));
+    float share = diffuse.a > 0.0 ? clamp(lamps / diffuse.a, 0.0, 1.0) : 1.0;
+    vec3 skyLost = (1.0 - share) * (1.0 - sky);
+    colour = background.rgb - diffuse.rgb * (share * (1.0 - shadow - caustics) + skyLost) -
+             texelFetch(directGlossy, pixel, 0).rgb * (share * (1.0 - shadow) + skyLost) -
+             texelFetch(indirectLight, pixel, 0).rgb * (1.0 - sky);
     colour = max(colour, vec3(0.0));
   } else {
     colour = background.rgb * (directFraction * (shadow + caustics) + (1.0 - directFraction) * sky);

@@ -20,6 +20,9 @@ writes into OUTPUT/FRAME/:
   tried and add no sun light through the water in Blender 3.4 (the pool's floor came out at half the
   path-traced brightness), so the sun keeps the dam-break example's 3 degree disc, which a path tracer's
   caustics converge on at affordable sample counts;
+- reference_full_seed2.exr: reference_full.exr again with another sampling seed. The two differ by the
+  references' own noise only, so their difference is the error floor that no renderer can go below at these
+  samples (the pool's floor, lit only by caustics through the surface, is very noisy);
 - water_mask.exr: the water alone, one sample through each pixel's centre, alpha = coverage;
 - particles.ply, shape.json (the water's exact shape) and scene.json (with the sun in `lights`), and
   timings.json.
@@ -235,6 +238,9 @@ def main():
         if missing("reference_full.exr"):
             timings["reference_full"] = references.render(os.path.join(directory, "reference_full.exr"),
                                                           arguments.samples)
+        if missing("reference_full_seed2.exr"):
+            timings["reference_full_seed2"] = references.render(
+                os.path.join(directory, "reference_full_seed2.exr"), arguments.samples, seed=2)
         timings["samples"] = arguments.samples
         timings["background_samples"] = arguments.background_samples
         with open(timings_path, "w", encoding="utf-8") as handle:

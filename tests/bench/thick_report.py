@@ -3,7 +3,7 @@
 water's shadows and caustics. Regenerates the "Light through the liquid: measured" section's table and
 pictures (docs/light-benchmark.md, docs/images/light_*.png).
 
-    tests/bench/thick_report.py [--samples 128]
+    tests/bench/thick_report.py [--samples 512] [--background-samples 128]
 
 Renders whatever is missing under build/bench/thick/ with tests/bench/thick_bodies.py in Blender (once; the
 files are kept), then runs `build/bin/spindrift render` for each frame and setting, and VTK's fluid mapper,
@@ -31,6 +31,8 @@ FRAMES = ["block", "ball", "pool_above", "pool_side"]
 PAGE = os.path.join(REPOSITORY, "docs", "light-benchmark.md")
 IMAGES = os.path.join(REPOSITORY, "docs", "images")
 ABSORPTION_RGB = (0.9, 0.3, 0.15)
+# The full reference rendered again with another seed: its error is the references' own noise.
+NOISE_FLOOR = "Cycles, another seed (noise floor)"
 
 # Each Spindrift setting: a name, whether the scene's sun is kept, whether the background keeps Cycles'
 # light passes, and --set overrides.
@@ -43,15 +45,30 @@ SETTINGS = [
 ]
 
 
-def ensure_renders(samples):
-    missing = [frame for frame in FRAMES
-               if not all(os.path.isfile(os.path.join(OUTPUT, frame, name))
-                          for name in ("background.exr", "reference_noshadow.exr", "reference_full.exr",
-                                       "water_mask.exr", "scene.json", "shape.json"))]
+CYCLES_IMAGES = ("background.exr", "background_plain.exr", "reference_noshadow.exr", "reference_full.exr",
+                 "reference_full_seed2.exr")
+
+
+def ensure_renders(samples, background_samples):
+    """Renders what is missing; a frame rendered at other sample counts is rendered again."""
+    missing = []
+    for frame in FRAMES:
+        directory = os.path.join(OUTPUT, frame)
+        timings_path = os.path.join(directory, "timings.json")
+        timings = json.load(open(timings_path)) if os.path.isfile(timings_path) else {}
+        if (timings.get("samples"), timings.get("background_samples")) != (samples, background_samples):
+            for name in CYCLES_IMAGES:
+                if os.path.isfile(os.path.join(directory, name)):
+                    os.remove(os.path.join(directory, name))
+        if not all(os.path.isfile(os.path.join(directory, name))
+                   for name in ("background.exr", "reference_noshadow.exr", "reference_full.exr",
+                                "reference_full_seed2.exr", "water_mask.exr", "scene.json", "shape.json")):
+            missing.append(frame)
     if missing:
-        subprocess.run(["nice", "-n", "5", "blender", "-b", "--factory-startup", "-t", "1", "--python-exit-code", "1", "--python",
-                        os.path.join(os.path.dirname(os.path.abspath(__file__)), "thick_bodies.py"), "--",
-                        "--output", OUTPUT, "--frames", ",".join(missing), "--samples", str(samples)],
+        subprocess.run(["nice", "-n", "5", "blender", "-b", "--factory-startup", "-t", "2", "--python-exit-code", "1",
+                        "--python", os.path.join(os.path.dirname(os.path.abspath(__file__)), "thick_bodies.py"), "--",
+                        "--output", OUTPUT, "--frames", ",".join(missing), "--samples", str(samples),
+                        "--background-samples", str(background_samples)],
                        check=True)
 
 
@@ -104,10 +121,17 @@ def mae(test, reference, mask):
     return float(np.mean(np.abs(test[mask] - reference[mask]))) if mask.any() else float("nan")
 
 
+def blurred(image):
+    """A Gaussian blur of 2 px: what is left of an error once the references' zero-mean sampling noise is
+    averaged away (and with it detail finer than a few pixels, in both images alike)."""
+    return ndimage.gaussian_filter(image, sigma=(2, 2, 0))
+
+
 def score(test, directory, water, shadowed):
     noshadow = rgb(os.path.join(directory, "reference_noshadow.exr"))
     full = rgb(os.path.join(directory, "reference_full.exr"))
     return {"water_vs_noshadow": mae(test, noshadow, water), "water_vs_full": mae(test, full, water),
+            "water_vs_full_blurred": mae(blurred(test), blurred(full), water),
             "shadow_vs_full": mae(test, full, shadowed)}
 
 
@@ -188,9 +212,10 @@ def passes_strip(exr, path):
 
 def main():
     parser = argparse.ArgumentParser(description=__doc__.split("\n")[0])
-    parser.add_argument("--samples", type=int, default=48)
+    parser.add_argument("--samples", type=int, default=512, help="Cycles samples of the water references")
+    parser.add_argument("--background-samples", type=int, default=128)
     arguments = parser.parse_args()
-    ensure_renders(arguments.samples)
+    ensure_renders(arguments.samples, arguments.background_samples)
     results, timings = {}, {}
     renderer = runs.gl_renderer()
     load_before = os.getloadavg()[0]
@@ -230,6 +255,8 @@ def main():
         vtk, _, _, _ = runs.run_vtk(scene_variant(directory, False, True), ply, os.path.join(directory, "vtk.npz"), 1,
                                     "narrow_range", ABSORPTION_RGB)
         results[frame]["VTK fluid mapper"] = score(vtk, directory, water, shadowed)
+        results[frame][NOISE_FLOOR] = score(rgb(os.path.join(directory, "reference_full_seed2.exr")), directory,
+                                            water, shadowed)
         strip([rgb(os.path.join(directory, "reference_full.exr")), composites["no lights (before)"],
                composites["sun, light passes"], rgb(os.path.join(directory, "reference_noshadow.exr"))],
               os.path.join(IMAGES, f"light_{frame}.png"))
@@ -237,34 +264,45 @@ def main():
     with open(os.path.join(OUTPUT, "results.json"), "w") as handle:
         json.dump({"results": results, "timings": timings, "renderer": renderer}, handle, indent=1)
     loads = (load_before, os.getloadavg()[0])
-    write_page(results, timings, renderer, arguments.samples, loads)
+    write_page(results, timings, renderer, arguments.samples, arguments.background_samples, loads)
 
 
-def write_page(results, timings, renderer, samples, loads):
-    names = [name for name, *_ in SETTINGS] + ["VTK fluid mapper"]
+def write_page(results, timings, renderer, samples, background_samples, loads):
+    names = [name for name, *_ in SETTINGS] + ["VTK fluid mapper", NOISE_FLOOR]
     lines = ["# Light through the liquid: measured", "",
              "Generated by `tests/bench/thick_report.py` (do not edit by hand). Four frames of thick water (a block",
              "resting on the floor, a ball floating above it, a pool in a tank from above and from the side;",
-             "`tests/bench/thick_bodies.py`) at 480x270, Cycles at " + str(samples) + " samples (background 16),",
+             "`tests/bench/thick_bodies.py`) at 480x270, Cycles at " + str(samples) + f" samples (background {background_samples}),",
              "the water an exact mesh with the same IOR and absorption as Spindrift's defaults, Spindrift a lattice",
              f"of particles filling it. Spindrift ran on {renderer}.", "",
              "Image error is the mean absolute error of linear RGB. *Water*: over Cycles' own coverage of the water;",
              "*no-shadow* is the benchmark's old reference (the water casts no shadow), *full* a complete render",
              "(shadows and caustics by path tracing). *Shadowed floor*: outside the water, where the",
              "full reference differs from the background by more than 0.03 after a Gaussian blur of 2 px (so the",
-             "references' sampling noise is not counted), 3 px or more from the water.", ""]
+             "references' sampling noise is not counted), 3 px or more from the water. *Blurred*: both images",
+             "blurred by a Gaussian of 2 px first, which averages the references' sampling noise away. The last row",
+             "is the full reference rendered again with another seed: at these samples no renderer's error can be",
+             "expected below it. *Change* is against the first row (before the light passes).", ""]
     for frame in FRAMES:
         pixels = results[frame]["pixels"]
         lines += [f"## {frame}", "", f"![{frame}: full reference, before, with the sun, no-shadow reference]"
                   f"(images/light_{frame}.png)", "",
                   "Left to right: full Cycles reference; Spindrift without lights (before); Spindrift with the sun "
                   "and Cycles' light passes; the no-shadow reference.", "",
-                  f"| Setting | Water vs no-shadow | Water vs full | Shadowed floor vs full ({pixels['shadowed']} px) |",
-                  "|---|---|---|---|"]
+                  f"| Setting | Water vs no-shadow | Water vs full | change | Water vs full, blurred | change | "
+                  f"Shadowed floor vs full ({pixels['shadowed']} px) | change |",
+                  "|---|---|---|---|---|---|---|---|"]
+        before = results[frame][SETTINGS[0][0]]
+
+        def change(r, key):
+            return f"{100 * (r[key] / before[key] - 1):+.0f} %" if before[key] > 0 else ""
+
         for name in names:
             r = results[frame][name]
             lines.append(f"| {name} | {r['water_vs_noshadow']:.4f} | {r['water_vs_full']:.4f} | "
-                         f"{r['shadow_vs_full']:.4f} |")
+                         f"{change(r, 'water_vs_full')} | {r['water_vs_full_blurred']:.4f} | "
+                         f"{change(r, 'water_vs_full_blurred')} | {r['shadow_vs_full']:.4f} | "
+                         f"{change(r, 'shadow_vs_full')} |")
         lines.append("")
     lines += ["## Light passes", "", "Spindrift's `liquid_shadow`, `caustics` and `liquid_sky` (red channel, black 0, white 1) "
               "and its composite, with the sun and Cycles' light passes:", ""]

@@ -5,6 +5,9 @@
 
 #include <algorithm>
 #include <cmath>
+#include <string>
+
+#include <glm/gtc/constants.hpp>
 
 #include "BackgroundFiles.h"
 #include "LiquidTestScenes.h"
@@ -436,46 +439,60 @@ void writeFloorWithLightPasses(const std::filesystem::path& path, float eyeDepth
 // The shadow and caustics scale the background's direct light only: exactly through Cycles' light passes when
 // the background has them, and with light.direct_fraction when it has none. Checked on the floor the slab
 // shadows where the camera sees no liquid in front of it.
-TEST(GLLiquidLight, LitBackgroundScalesTheDirectLight) {
+// Cycles counts the world's light as direct light too (DiffDir holds the sky's share as well as the lamps'):
+// only the lamps' share, the light a sun of known strength gives the floor (E cos / pi), is scaled by the
+// shadow and caustics; the rest is sky light, which a point outside the liquid keeps. A strong sun (share 1,
+// clamped) and one that gives half of DiffDir.
+TEST(GLLiquidLight, LitBackgroundScalesTheLampsShareOfTheDirectLight) {
   TempDirectory directory;
   const float passes[6][3] = {{0.6f, 0.5f, 0.4f}, {0.2f, 0.25f, 0.3f},   {0.7f, 0.6f, 0.5f},
                               {0.1f, 0.1f, 0.1f}, {0.05f, 0.05f, 0.05f}, {0.3f, 0.3f, 0.3f}};
-  Scene scene = floorScene(directory);
-  scene.background.image = directory.path() / "floor_passes.exr";
-  writeFloorWithLightPasses(scene.background.image, kCameraHeight, passes);
   const double incidence = glm::radians(45.0);
-  scene.lights.push_back(sunAlong({float(std::sin(incidence)), 0.0f, -float(std::cos(incidence))}));
-  const Particles slab = slabParticles({-1.0f, -1.0f, 1.0f}, {0.5f, 1.0f, 1.4f});
-  const RenderResult withPasses = renderer().renderParticles(scene, slab, 1);
-  expectAllChannelsFinite(withPasses);
-  EXPECT_TRUE(withPasses.stats.light.lightPasses);
+  const double diffuseDirect = (passes[0][0] + passes[0][1] + passes[0][2]) / 3.0;
+  for (const double lampShare : {1.0, 0.5}) {
+    SCOPED_TRACE("lamps' share of the direct light " + std::to_string(lampShare));
+    // The floor faces up: a sun of strength E gives it E cos(incidence) / pi of diffuse light.
+    const float strength =
+        lampShare >= 1.0 ? 3.0f : float(lampShare * diffuseDirect * glm::pi<double>() / std::cos(incidence));
+    Scene scene = floorScene(directory);
+    scene.background.image = directory.path() / "floor_passes.exr";
+    writeFloorWithLightPasses(scene.background.image, kCameraHeight, passes);
+    scene.lights.push_back(
+        sunAlong({float(std::sin(incidence)), 0.0f, -float(std::cos(incidence))}, strength));
+    const Particles slab = slabParticles({-1.0f, -1.0f, 1.0f}, {0.5f, 1.0f, 1.4f});
+    const RenderResult withPasses = renderer().renderParticles(scene, slab, 1);
+    expectAllChannelsFinite(withPasses);
+    EXPECT_TRUE(withPasses.stats.light.lightPasses);
 
-  Scene plain = floorScene(directory);
-  plain.lights = scene.lights;
-  const RenderResult withoutPasses = renderer().renderParticles(plain, slab, 1);
-  EXPECT_FALSE(withoutPasses.stats.light.lightPasses);
-  const float fraction = plain.parameters.light.direct_fraction;
+    Scene plain = floorScene(directory);
+    plain.lights = scene.lights;
+    const RenderResult withoutPasses = renderer().renderParticles(plain, slab, 1);
+    EXPECT_FALSE(withoutPasses.stats.light.lightPasses);
+    const float fraction = plain.parameters.light.direct_fraction;
 
-  int compared = 0;
-  for (int row = 0; row < kHeight; ++row)
-    for (int column = 0; column < kWidth; ++column) {
-      if (at(*withPasses.layer("liquid"), kWidth, column, row, 3) > 0.0f) continue;
-      for (int c = 0; c < 3; ++c) {
-        const double shadow = at(*withPasses.layer("liquid_shadow"), kWidth, column, row, c);
-        const double caustic = at(*withPasses.layer("caustics"), kWidth, column, row, c);
-        const double sky = at(*withPasses.layer("liquid_sky"), kWidth, column, row, c);
-        if (c == 0 && shadow + caustic > 0.9) break;
-        if (c == 0) ++compared;
-        const double combined =
-            passes[2][c] * (passes[0][c] + passes[1][c]) + passes[5][c] * (passes[3][c] + passes[4][c]);
-        const double expected = combined - passes[2][c] * passes[0][c] * (1 - shadow - caustic) -
-                                passes[5][c] * passes[3][c] * (1 - shadow) -
-                                (passes[2][c] * passes[1][c] + passes[5][c] * passes[4][c]) * (1 - sky);
-        EXPECT_NEAR(at(*withPasses.layer("composite"), kWidth, column, row, c), expected, 1e-4);
-        const double plainShadow = directMultiplier(withoutPasses, column, row, c);
-        EXPECT_NEAR(at(*withoutPasses.layer("composite"), kWidth, column, row, c),
-                    0.5 * (fraction * plainShadow + (1 - fraction)), 1e-4);
+    int compared = 0;
+    for (int row = 0; row < kHeight; ++row)
+      for (int column = 0; column < kWidth; ++column) {
+        if (at(*withPasses.layer("liquid"), kWidth, column, row, 3) > 0.0f) continue;
+        for (int c = 0; c < 3; ++c) {
+          const double shadow = at(*withPasses.layer("liquid_shadow"), kWidth, column, row, c);
+          const double caustic = at(*withPasses.layer("caustics"), kWidth, column, row, c);
+          const double sky = at(*withPasses.layer("liquid_sky"), kWidth, column, row, c);
+          if (c == 0 && shadow + caustic > 0.9) break;
+          if (c == 0) ++compared;
+          const double combined =
+              passes[2][c] * (passes[0][c] + passes[1][c]) + passes[5][c] * (passes[3][c] + passes[4][c]);
+          const double skyLost = (1 - lampShare) * (1 - sky);
+          const double expected =
+              combined - passes[2][c] * passes[0][c] * (lampShare * (1 - shadow - caustic) + skyLost) -
+              passes[5][c] * passes[3][c] * (lampShare * (1 - shadow) + skyLost) -
+              (passes[2][c] * passes[1][c] + passes[5][c] * passes[4][c]) * (1 - sky);
+          EXPECT_NEAR(at(*withPasses.layer("composite"), kWidth, column, row, c), expected, 2e-4);
+          const double plainShadow = directMultiplier(withoutPasses, column, row, c);
+          EXPECT_NEAR(at(*withoutPasses.layer("composite"), kWidth, column, row, c),
+                      0.5 * (fraction * plainShadow + (1 - fraction)), 1e-4);
+        }
       }
-    }
-  EXPECT_GT(compared, 40) << "shadowed floor pixels with no liquid in front";
+    EXPECT_GT(compared, 40) << "shadowed floor pixels with no liquid in front";
+  }
 }

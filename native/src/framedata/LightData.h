@@ -9,6 +9,9 @@ namespace spindrift {
 struct LiquidShadowData {
   const Texture2D& shadowSum;  ///< RGBA32F: (sum of weight x shadow, sum of weight), weight = irradiance.
   const Texture2D& skyKept;    ///< RGBA32F: the sky light a submerged point keeps.
+  /// RGBA32F: the diffuse direct light the lamps give each point without the liquid (irradiance x cos / pi x
+  /// colour, the units of Cycles' DiffDir), summed over the lights.
+  const Texture2D& lampDiffuse;
 };
 
 /// The sum over the lights of the light the liquid refracts onto the background (the caustic pass's output).

@@ -210,7 +210,12 @@ std::optional<std::array<FloatImage, 3>> readLightPasses(const std::filesystem::
     if (!complete) continue;
     std::array<FloatImage, 3> light{passes[0], passes[3], passes[1]};
     for (std::size_t i = 0; i < light[0].pixels.size(); ++i) {
-      if (i % 4 == 3) continue;
+      if (i % 4 == 3) {
+        // DiffDir alone (its mean over R, G, B): the light that the lamps' share is measured against.
+        light[0].pixels[i] =
+            (passes[0].pixels[i - 3] + passes[0].pixels[i - 2] + passes[0].pixels[i - 1]) / 3.0f;
+        continue;
+      }
       light[0].pixels[i] = passes[2].pixels[i] * passes[0].pixels[i];
       light[1].pixels[i] = passes[5].pixels[i] * passes[3].pixels[i];
       light[2].pixels[i] =

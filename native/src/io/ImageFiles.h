@@ -23,8 +23,9 @@ std::optional<FloatImage> readDepthImage(const std::filesystem::path& path);
 
 /// Reads Cycles' light passes (layers ending in DiffDir, DiffInd, DiffCol, GlossDir, GlossInd, GlossCol, as
 /// Blender writes them in a multilayer EXR) as three RGBA images: direct diffuse (DiffCol x DiffDir), direct
-/// glossy (GlossCol x GlossDir) and indirect light (DiffCol x DiffInd + GlossCol x GlossInd). Nothing when
-/// any of the six is missing.
+/// glossy (GlossCol x GlossDir) and indirect light (DiffCol x DiffInd + GlossCol x GlossInd). The direct
+/// diffuse image's alpha holds DiffDir itself (the mean of its R, G, B), the light before the surface's
+/// colour. Nothing when any of the six is missing.
 std::optional<std::array<FloatImage, 3>> readLightPasses(const std::filesystem::path& path);
 
 /// Resamples to a new size: bilinear for colour, nearest for depth (`nearest`), so depth edges stay sharp.

@@ -13,8 +13,10 @@ LiquidShadowPass::LiquidShadowPass(const ShaderLibrary& shaders)
 void LiquidShadowPass::begin(int width, int height) {
   ensureTexture(shadowSum_, GL_RGBA32F, width, height);
   ensureTexture(skyKept_, GL_RGBA32F, width, height);
+  ensureTexture(lampDiffuse_, GL_RGBA32F, width, height);
   const float nothing[4] = {0.0f, 0.0f, 0.0f, 0.0f}, everything[4] = {1.0f, 1.0f, 1.0f, 1.0f};
   glClearTexImage(shadowSum_.id(), 0, GL_RGBA, GL_FLOAT, nothing);
+  glClearTexImage(lampDiffuse_.id(), 0, GL_RGBA, GL_FLOAT, nothing);
   glClearTexImage(skyKept_.id(), 0, GL_RGBA, GL_FLOAT, everything);
 }
 
@@ -22,11 +24,12 @@ void LiquidShadowPass::addLight(const Light& light, const SurfaceLayers& layers,
                                 const BackgroundData& background, const LiquidParameters& parameters,
                                 bool transmitStraight) {
   setLightUniforms(program_.id(), light);
-  // Every light adds its weighted shadow and its weight.
+  // Every light adds its weighted shadow and its weight, and the diffuse light it gives the point.
   glEnable(GL_BLEND);
   glBlendFunc(GL_ONE, GL_ONE);
   glBlendEquation(GL_FUNC_ADD);
-  draw(shadowSum_, layers, background, parameters, false, transmitStraight);
+  bindColorTargets(framebuffer_.id(), {&shadowSum_, &lampDiffuse_});
+  draw(layers, background, parameters, false, transmitStraight);
   glDisable(GL_BLEND);
 }
 
@@ -34,14 +37,13 @@ void LiquidShadowPass::setSky(const SurfaceLayers& layers, const BackgroundData&
                               const LiquidParameters& parameters, float particleRadius) {
   glProgramUniform1f(program_.id(), uniformLocation(program_.id(), "submergedTolerance"),
                      2.0f * particleRadius);
-  draw(skyKept_, layers, background, parameters, true, true);
+  bindColorTargets(framebuffer_.id(), {&skyKept_});
+  draw(layers, background, parameters, true, true);
 }
 
-void LiquidShadowPass::draw(const Texture2D& target, const SurfaceLayers& layers,
-                            const BackgroundData& background, const LiquidParameters& parameters, bool sky,
-                            bool transmitStraight) {
+void LiquidShadowPass::draw(const SurfaceLayers& layers, const BackgroundData& background,
+                            const LiquidParameters& parameters, bool sky, bool transmitStraight) {
   const GLuint program = program_.id();
-  bindColorTargets(framebuffer_.id(), {&target});
   glDisable(GL_DEPTH_TEST);
   glUseProgram(program);
   glUniform1i(uniformLocation(program, "skyMode"), sky ? 1 : 0);

@@ -23,17 +23,19 @@ class LiquidShadowPass {
   /// `particleRadius`: points up to two radii below the liquid's drawn bottom still lie in it.
   void setSky(const SurfaceLayers& layers, const BackgroundData& background,
               const LiquidParameters& parameters, float particleRadius);
-  LiquidShadowData result() const { return {shadowSum_, skyKept_}; }
+  LiquidShadowData result() const { return {shadowSum_, skyKept_, lampDiffuse_}; }
 
  private:
-  void draw(const Texture2D& target, const SurfaceLayers& layers, const BackgroundData& background,
-            const LiquidParameters& parameters, bool sky, bool transmitStraight);
+  /// Draws into the framebuffer's bound targets.
+  void draw(const SurfaceLayers& layers, const BackgroundData& background, const LiquidParameters& parameters,
+            bool sky, bool transmitStraight);
 
   ProgramObject program_;
   VertexArrayObject emptyVertexArray_;
   FramebufferObject framebuffer_;
   Texture2D shadowSum_;
   Texture2D skyKept_;
+  Texture2D lampDiffuse_;
 };
 
 }  // namespace spindrift

@@ -28,6 +28,7 @@ LitBackgroundData LitBackgroundPass::run(const BackgroundData& background, const
   glBindTextureUnit(3, shadows.skyKept.id());
   for (int i = 0; i < 3; ++i)
     glBindTextureUnit(GLuint(4 + i), hasLightPasses ? background.lightPasses[i].id() : 0);
+  glBindTextureUnit(7, shadows.lampDiffuse.id());
   drawFullscreenTriangle(emptyVertexArray_.id());
   checkGlError("lighting the background");
   return {BackgroundData{color_, background.eyeDepth, background.environment, background.fallbackColor,
