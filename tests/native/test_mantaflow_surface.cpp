@@ -7,6 +7,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
+#include <vector>
 
 #include <glm/geometric.hpp>
 
@@ -264,6 +266,49 @@ TEST(MantaflowSurface, SplashesTakeTheSizeOfTheirBlobOrDisappear) {
   ASSERT_EQ(sized.splashes.size(), 1u);
   EXPECT_NEAR(sized.splashes[0].centreAndBoundingRadius.z, 9.0f, 1e-5f);
   EXPECT_NEAR(sized.splashes[0].centreAndBoundingRadius.w, kKernelCells, 0.01f);
+}
+
+bool sameInstances(const std::vector<EllipsoidInstance>& a, const std::vector<EllipsoidInstance>& b) {
+  return a.size() == b.size() && std::memcmp(a.data(), b.data(), a.size() * sizeof(EllipsoidInstance)) == 0;
+}
+
+TEST(MantaflowSurface, AFrameSurfaceSharedByItsViewsChangesNoViewsResult) {
+  // A body with a ridge and drops over it, seen by an oblique camera and from above (both see every particle:
+  // they share the frame's surface and each other's searches) and from close by (it culls, so it builds its
+  // own): every view's ellipsoids are bit for bit those it gets alone, in any order of the views.
+  Particles particles;
+  const ParticleCloud body = block(12, 6, 7u);
+  for (std::size_t i = 0; i < body.size(); ++i)
+    particles.append({body.x[i], body.y[i], body.z[i]}, kRadius, ParticleKind::Liquid, 0.0f, {});
+  for (int i = -8; i <= 8; ++i)
+    particles.append({i * kSpacing, 0.1f * float(i % 3), 0.3f}, kRadius, ParticleKind::Liquid, 0.0f, {});
+  for (const glm::vec3& drop :
+       {glm::vec3(0.1f, -0.2f, 1.6f), glm::vec3(2.0f, 3.0f, 0.9f), glm::vec3(0, 0, 9)})
+    particles.append(drop, kRadius, ParticleKind::Liquid, 0.0f, {});
+  LiquidParameters parameters;
+  parameters.surface_offset = 1.9f;
+  parameters.mesh_kernel_radius = kKernelCells / kRadius;
+  const Camera views[] = {Camera::lookAt(64, 64, 60.0f, {0, -20, 20}, {0, 0, 0}, {0, 0, 1}),
+                          Camera::lookAt(64, 64, 60.0f, {0.5f, 0.5f, 30}, {0, 0, 0}, {0, 1, 0}),
+                          Camera::lookAt(64, 64, 40.0f, {5, -1, 1}, {7, 0, 0}, {0, 0, 1})};
+  std::vector<LiquidPreparation> alone;
+  for (const Camera& view : views)
+    alone.push_back(prepareLiquid(particles, view, parameters));
+  EXPECT_EQ(alone[0].culled, 0u);
+  EXPECT_EQ(alone[1].culled, 0u);
+  EXPECT_GT(alone[2].culled, 0u);
+  for (const std::vector<int>& order : {std::vector<int>{0, 1, 2, 0}, std::vector<int>{2, 1, 0, 1}}) {
+    FrameMantaflowSurface frame;
+    for (int view : order) {
+      const LiquidPreparation shared = prepareLiquid(particles, views[view], parameters, &frame);
+      EXPECT_TRUE(sameInstances(shared.aggregates, alone[view].aggregates)) << "view " << view;
+      EXPECT_TRUE(sameInstances(shared.splashes, alone[view].splashes)) << "view " << view;
+      EXPECT_EQ(shared.splashesAbsorbed, alone[view].splashesAbsorbed);
+      EXPECT_TRUE(frame.search.has_value() || view == 2)
+          << "built by the first view that sees every particle";
+    }
+  }
+  EXPECT_GT(alone[0].splashes.size(), 0u);
 }
 
 }  // namespace

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <utility>
 
 #include <glm/geometric.hpp>
 
@@ -138,6 +139,22 @@ float MantaflowLevelSet::surfaceDistance(const glm::vec3& particle, float maxRad
     t = std::clamp(next, 0.0f, maxRadius);
   }
   return t;
+}
+
+MantaflowSurfaceSearch::MantaflowSurfaceSearch(MantaflowLevelSet levelSet, std::size_t particles)
+    : levelSet_(std::move(levelSet)), offsetSearches_(particles), splashSearches_(particles) {}
+
+float MantaflowSurfaceSearch::surfaceDistance(Purpose purpose, std::size_t index, const glm::vec3& particle,
+                                              float maxRadius, int refinements, glm::vec3& out) {
+  Search& search = (purpose == Purpose::Offset ? offsetSearches_ : splashSearches_).at(index);
+  if (!(search.maxRadius == maxRadius && search.refinements == refinements && search.particle == particle)) {
+    search.distance = levelSet_.surfaceDistance(particle, maxRadius, refinements, search.out);
+    search.particle = particle;
+    search.maxRadius = maxRadius;
+    search.refinements = refinements;
+  }
+  out = search.out;
+  return search.distance;
 }
 
 }  // namespace spindrift
