@@ -1,6 +1,7 @@
 #pragma once
 
 #include <cstddef>
+#include <cstdint>
 #include <optional>
 #include <vector>
 
@@ -37,9 +38,14 @@ class MantaflowLevelSet {
   float kernelRadius_;
   float cellSize_;
   glm::vec3 origin_{0.0f};
-  int cells_[3] = {0, 0, 0};
-  // Per cell, z fastest: the particle count and the centroid (0 where empty).
-  std::vector<float> count_, centroidX_, centroidY_, centroidZ_;
+  int cellCounts_[3] = {0, 0, 0};
+  // Per cell, z fastest: the centroid and the particle count in one 16-byte vector (0 where empty), so that a
+  // cell's four weighted sums are one vector operation.
+  using Float4 = float __attribute__((vector_size(16)));
+  std::vector<Float4> cells_;
+  // Per column (x, y), the first and last occupied cell along z (first > last where empty): a sum reads only
+  // that part of the ball's chord, the empty cells adding nothing.
+  std::vector<std::int32_t> occupiedLow_, occupiedHigh_;
 };
 
 /// A level set with each particle's searches remembered, so that the views of one frame (the camera's and
