@@ -104,7 +104,10 @@ bool MantaflowLevelSet::offsetToMean(const glm::vec3& at, glm::vec3& offset) con
         const Float4 difference = run[iz] - centre;
         const float distanceSquared =
             difference[0] * difference[0] + difference[1] * difference[1] + difference[2] * difference[2];
-        const float weight = run[iz][3] * std::max(0.0f, 1.0f - distanceSquared * inverseSupportSquared);
+        // max(0, falloff) as a vector select: the compiler branches on the scalar form.
+        const Float4 falloff =
+            Float4{0.0f, 0.0f, 0.0f, 0.0f} + (1.0f - distanceSquared * inverseSupportSquared);
+        const Float4 weight = run[iz][3] * (falloff > 0.0f ? falloff : Float4{0.0f, 0.0f, 0.0f, 0.0f});
         sums += weight * (difference * offsetLanes + weightLane);
       }
     }
