@@ -34,6 +34,7 @@
 #include "prep/HiddenInterior.h"
 #include "prep/LightViews.h"
 #include "prep/LiquidPreparation.h"
+#include "prep/MantaflowSurface.h"
 #include "prep/RaymarchPreparation.h"
 #include "spindrift/Error.h"
 #include "spindrift/Limits.h"
@@ -249,7 +250,9 @@ RenderResult Renderer::renderPrepared(const Scene& scene, const Particles& parti
   const Clock::time_point prepareStart = Clock::now();
   // Under water is decided on every aggregate; dropHiddenAggregates below leaves a body that reaches the
   // camera's near plane whole, so the ellipsoids around the camera are still drawn.
-  LiquidPreparation liquid = prepareLiquid(particles, camera, liquidParameters);
+  // Mantaflow's surface is built and searched once for the camera's view and every light's.
+  FrameMantaflowSurface frameSurface;
+  LiquidPreparation liquid = prepareLiquid(particles, camera, liquidParameters, &frameSurface);
   const bool cameraInLiquid = aggregatesContain(liquid.aggregates, camera.position(), domainBox);
   const float radius = typicalLiquidRadius(particles);
   const FoamPreparation foam = prepareFoam(particles, camera, foamParameters);
@@ -288,7 +291,8 @@ RenderResult Renderer::renderPrepared(const Scene& scene, const Particles& parti
     checkImageFitsGl(impl_->glLimits, backgroundImages.environment->width,
                      backgroundImages.environment->height,
                      "background.environment " + pathForFrame(scene.background.environment, frame).string());
-  const LightingPreparation lighting = prepareLighting(particles, scene.lights, scene.parameters);
+  const LightingPreparation lighting =
+      prepareLighting(particles, scene.lights, scene.parameters, &frameSurface);
   stats.prepareMilliseconds = millisecondsSince(prepareStart);
   recordPreparation(liquid, foam, stats);
   stats.liquid.cameraInLiquid = cameraInLiquid;

@@ -7,6 +7,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
+#include <vector>
 
 #include <glm/geometric.hpp>
 
@@ -264,6 +266,115 @@ TEST(MantaflowSurface, SplashesTakeTheSizeOfTheirBlobOrDisappear) {
   ASSERT_EQ(sized.splashes.size(), 1u);
   EXPECT_NEAR(sized.splashes[0].centreAndBoundingRadius.z, 9.0f, 1e-5f);
   EXPECT_NEAR(sized.splashes[0].centreAndBoundingRadius.w, kKernelCells, 0.01f);
+}
+
+// The lumped sums as plain scalar loops over every cell (a cell beyond the 2 r_m ball weighs exactly 0): the
+// level set's vector form must give the same bits, as each of its lanes sums in the same order.
+glm::vec3 scalarOffsetToMean(const ParticleCloud& cloud, float kernelRadius, const glm::vec3& at) {
+  const float cellSize = 0.5f * kernelRadius;
+  glm::vec3 lower(cloud.x[0], cloud.y[0], cloud.z[0]), upper = lower;
+  for (std::size_t i = 0; i < cloud.size(); ++i) {
+    lower = glm::min(lower, glm::vec3(cloud.x[i], cloud.y[i], cloud.z[i]));
+    upper = glm::max(upper, glm::vec3(cloud.x[i], cloud.y[i], cloud.z[i]));
+  }
+  int cells[3];
+  for (int axis = 0; axis < 3; ++axis)
+    cells[axis] = int(std::floor((upper[axis] - lower[axis]) / cellSize)) + 1;
+  const std::size_t total = std::size_t(cells[0]) * std::size_t(cells[1]) * std::size_t(cells[2]);
+  std::vector<float> count(total, 0.0f), x(total, 0.0f), y(total, 0.0f), z(total, 0.0f);
+  for (std::size_t i = 0; i < cloud.size(); ++i) {
+    const float position[3] = {cloud.x[i], cloud.y[i], cloud.z[i]};
+    int index[3];
+    for (int axis = 0; axis < 3; ++axis)
+      index[axis] = std::clamp(int((position[axis] - lower[axis]) / cellSize), 0, cells[axis] - 1);
+    const std::size_t cell = (std::size_t(index[0]) * cells[1] + index[1]) * cells[2] + index[2];
+    count[cell] += 1.0f;
+    x[cell] += position[0];
+    y[cell] += position[1];
+    z[cell] += position[2];
+  }
+  const float support = 2.0f * kernelRadius, inverseSupportSquared = 1.0f / (support * support);
+  float sum = 0.0f, sx = 0.0f, sy = 0.0f, sz = 0.0f;
+  for (std::size_t cell = 0; cell < total; ++cell) {
+    if (count[cell] == 0.0f) continue;
+    const float dx = x[cell] / count[cell] - at.x, dy = y[cell] / count[cell] - at.y;
+    const float dz = z[cell] / count[cell] - at.z;
+    const float weight =
+        count[cell] * std::max(0.0f, 1.0f - (dx * dx + dy * dy + dz * dz) * inverseSupportSquared);
+    sum += weight;
+    sx += weight * dx;
+    sy += weight * dy;
+    sz += weight * dz;
+  }
+  return sum > 0.0f ? glm::vec3(sx, sy, sz) / sum : glm::vec3(0.0f);
+}
+
+TEST(MantaflowSurface, LumpedSumsAreBitForBitTheScalarSums) {
+  ParticleCloud cloud = block(10, 5, 11u);
+  for (const glm::vec3& drop : {glm::vec3(0.3f, 0.2f, 1.2f), glm::vec3(-2.0f, 1.0f, 0.6f)})
+    addParticle(cloud, drop);
+  const MantaflowLevelSet levelSet(cloud, kKernelCells);
+  unsigned state = 99u;
+  const auto unit = [&] {
+    state = state * 1664525u + 1013904223u;
+    return float(state >> 8) / float(1u << 24) - 0.5f;
+  };
+  int compared = 0;
+  for (std::size_t i = 0; i < cloud.size(); i += 7) {
+    const glm::vec3 at = glm::vec3(cloud.x[i], cloud.y[i], cloud.z[i]) +
+                         kKernelCells * glm::vec3(unit(), unit(), unit() + 0.5f);
+    glm::vec3 offset;
+    levelSet.offsetToMean(at, offset);
+    const glm::vec3 expected = scalarOffsetToMean(cloud, kKernelCells, at);
+    ASSERT_EQ(offset.x, expected.x) << "at particle " << i;
+    ASSERT_EQ(offset.y, expected.y) << "at particle " << i;
+    ASSERT_EQ(offset.z, expected.z) << "at particle " << i;
+    ++compared;
+  }
+  EXPECT_GT(compared, 100);
+}
+
+bool sameInstances(const std::vector<EllipsoidInstance>& a, const std::vector<EllipsoidInstance>& b) {
+  return a.size() == b.size() && std::memcmp(a.data(), b.data(), a.size() * sizeof(EllipsoidInstance)) == 0;
+}
+
+TEST(MantaflowSurface, AFrameSurfaceSharedByItsViewsChangesNoViewsResult) {
+  // A body with a ridge and drops over it, seen by an oblique camera and from above (both see every particle:
+  // they share the frame's surface and each other's searches) and from close by (it culls, so it builds its
+  // own): every view's ellipsoids are bit for bit those it gets alone, in any order of the views.
+  Particles particles;
+  const ParticleCloud body = block(12, 6, 7u);
+  for (std::size_t i = 0; i < body.size(); ++i)
+    particles.append({body.x[i], body.y[i], body.z[i]}, kRadius, ParticleKind::Liquid, 0.0f, {});
+  for (int i = -8; i <= 8; ++i)
+    particles.append({i * kSpacing, 0.1f * float(i % 3), 0.3f}, kRadius, ParticleKind::Liquid, 0.0f, {});
+  for (const glm::vec3& drop :
+       {glm::vec3(0.1f, -0.2f, 1.6f), glm::vec3(2.0f, 3.0f, 0.9f), glm::vec3(0, 0, 9)})
+    particles.append(drop, kRadius, ParticleKind::Liquid, 0.0f, {});
+  LiquidParameters parameters;
+  parameters.surface_offset = 1.9f;
+  parameters.mesh_kernel_radius = kKernelCells / kRadius;
+  const Camera views[] = {Camera::lookAt(64, 64, 60.0f, {0, -20, 20}, {0, 0, 0}, {0, 0, 1}),
+                          Camera::lookAt(64, 64, 60.0f, {0.5f, 0.5f, 30}, {0, 0, 0}, {0, 1, 0}),
+                          Camera::lookAt(64, 64, 40.0f, {5, -1, 1}, {7, 0, 0}, {0, 0, 1})};
+  std::vector<LiquidPreparation> alone;
+  for (const Camera& view : views)
+    alone.push_back(prepareLiquid(particles, view, parameters));
+  EXPECT_EQ(alone[0].culled, 0u);
+  EXPECT_EQ(alone[1].culled, 0u);
+  EXPECT_GT(alone[2].culled, 0u);
+  for (const std::vector<int>& order : {std::vector<int>{0, 1, 2, 0}, std::vector<int>{2, 1, 0, 1}}) {
+    FrameMantaflowSurface frame;
+    for (int view : order) {
+      const LiquidPreparation shared = prepareLiquid(particles, views[view], parameters, &frame);
+      EXPECT_TRUE(sameInstances(shared.aggregates, alone[view].aggregates)) << "view " << view;
+      EXPECT_TRUE(sameInstances(shared.splashes, alone[view].splashes)) << "view " << view;
+      EXPECT_EQ(shared.splashesAbsorbed, alone[view].splashesAbsorbed);
+      EXPECT_TRUE(frame.search.has_value() || view == 2)
+          << "built by the first view that sees every particle";
+    }
+  }
+  EXPECT_GT(alone[0].splashes.size(), 0u);
 }
 
 }  // namespace

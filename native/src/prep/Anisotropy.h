@@ -23,8 +23,9 @@ struct AnisotropySettings {
   float maxEllipsoidScale = 1.2f;
   float surfaceOffset = 0.0f;  ///< Every drawn semi-axis is grown by this, in particle radii.
   /// Mantaflow's surface over these particles (liquid.mesh_kernel_radius > 0): an anisotropic particle's
-  /// offset is then its own, what makes its ellipsoid reach that surface, at most surfaceOffset.
-  const MantaflowLevelSet* meshSurface = nullptr;
+  /// offset is then its own, what makes its ellipsoid reach that surface, at most surfaceOffset. Its searches
+  /// are remembered for the frame's other views.
+  MantaflowSurfaceSearch* meshSurface = nullptr;
   /// The camera's position: particles whose neighbourhood faces away from it shape only the back layers and
   /// keep surfaceOffset (the per-particle search costs two sums over 2 r_m each). Unset: every particle.
   std::optional<glm::vec3> eye;

@@ -102,7 +102,7 @@ std::size_t causticLights(const LightingPreparation& lighting) {
 }
 
 LightingPreparation prepareLighting(const Particles& particles, const std::vector<Light>& lights,
-                                    const Parameters& parameters) {
+                                    const Parameters& parameters, FrameMantaflowSurface* frameSurface) {
   const auto start = std::chrono::steady_clock::now();
   LightingPreparation preparation;
   if (lights.empty()) return preparation;
@@ -114,7 +114,7 @@ LightingPreparation prepareLighting(const Particles& particles, const std::vecto
   // A light sees one body: splashes and aggregates are drawn into the same layers, each shaped as the
   // camera's preparation shapes it.
   const auto prepareFor = [&](const LightView& view) {
-    LightPreparation light{view, prepareLiquid(particles, view.camera, parameters.liquid)};
+    LightPreparation light{view, prepareLiquid(particles, view.camera, parameters.liquid, frameSurface)};
     std::vector<EllipsoidInstance>& body = light.liquid.aggregates;
     body.insert(body.end(), light.liquid.splashes.begin(), light.liquid.splashes.end());
     light.liquid.splashes.clear();

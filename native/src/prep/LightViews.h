@@ -60,7 +60,10 @@ struct LightingPreparation {
 /// The lights among `lighting.lights` that can cast caustics (suns and spots).
 std::size_t causticLights(const LightingPreparation& lighting);
 
+/// Prepares each light's view (and the sky's) of the liquid. `frameSurface`: the camera's, so that
+/// Mantaflow's surface is built and searched once per frame (prepareLiquid).
 LightingPreparation prepareLighting(const Particles& particles, const std::vector<Light>& lights,
-                                    const Parameters& parameters);
+                                    const Parameters& parameters,
+                                    FrameMantaflowSurface* frameSurface = nullptr);
 
 }  // namespace spindrift

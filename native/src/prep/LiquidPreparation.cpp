@@ -24,7 +24,8 @@ double millisecondsBetween(Clock::time_point start, Clock::time_point end) {
   return std::chrono::duration<double, std::milli>(end - start).count();
 }
 
-enum CandidateRole : std::uint8_t { kNotCandidate = 0, kNeighbourOnly = 1, kVisible = 2 };
+// Ineligible: not a liquid particle, or one without a finite position and a positive finite radius.
+enum CandidateRole : std::uint8_t { kIneligible = 0, kOutside = 1, kNeighbourOnly = 2, kVisible = 3 };
 
 // Particles are packed in blocks so that splashes and aggregates can be written in parallel, each block at an
 // offset found by a prefix sum of the blocks' counts.
@@ -40,7 +41,7 @@ LiquidCandidates selectLiquidCandidates(const Particles& particles, const Camera
                                         const LiquidParameters& parameters) {
   const ViewFrustum frustum(camera);
   const std::size_t count = particles.size();
-  std::vector<std::uint8_t> roles(count, kNotCandidate);
+  std::vector<std::uint8_t> roles(count, kIneligible);
   tbb::parallel_for(
       tbb::blocked_range<std::size_t>(0, count), [&](const tbb::blocked_range<std::size_t>& block) {
         for (std::size_t i = block.begin(); i != block.end(); ++i) {
@@ -61,6 +62,8 @@ LiquidCandidates selectLiquidCandidates(const Particles& particles, const Camera
             roles[i] = kVisible;
           else if (frustum.reachedBySphere(centre, drawnReach + neighbourhood))
             roles[i] = kNeighbourOnly;
+          else
+            roles[i] = kOutside;
         }
       });
 
@@ -68,14 +71,15 @@ LiquidCandidates selectLiquidCandidates(const Particles& particles, const Camera
   std::size_t liquid = 0, selected = 0;
   for (std::size_t i = 0; i < count; ++i) {
     liquid += particles.kinds[i] == ParticleKind::Liquid;
-    selected += roles[i] != kNotCandidate;
+    selected += roles[i] >= kNeighbourOnly;
+    candidates.eligible += roles[i] != kIneligible;
   }
   ParticleCloud& cloud = candidates.cloud;
   cloud.resize(selected);
   std::size_t next = 0, visible = 0;
   float largestRadius = 0.0f;
   for (std::size_t i = 0; i < count; ++i) {
-    if (roles[i] == kNotCandidate) continue;
+    if (roles[i] < kNeighbourOnly) continue;
     cloud.x[next] = particles.positions[i].x;
     cloud.y[next] = particles.positions[i].y;
     cloud.z[next] = particles.positions[i].z;
@@ -101,7 +105,7 @@ float restDensity(const ParticleShapes& shapes) {
 }
 
 void classifyAndPack(const NeighbourGrid& grid, const ParticleShapes& shapes,
-                     const LiquidParameters& parameters, const MantaflowLevelSet* meshSurface,
+                     const LiquidParameters& parameters, MantaflowSurfaceSearch* meshSurface,
                      LiquidPreparation& preparation) {
   const ParticleCloud& cloud = grid.particles();
   const bool split = parameters.layers != "merged";
@@ -122,7 +126,8 @@ void classifyAndPack(const NeighbourGrid& grid, const ParticleShapes& shapes,
                         for (std::size_t i = block.begin(); i != block.end(); ++i) {
                           if (shapes.kinds[i] == ShapeKind::Hidden || !isSplash(i)) continue;
                           const glm::vec3 particle(cloud.x[i], cloud.y[i], cloud.z[i]);
-                          splashRadii[i] = meshSurface->surfaceDistance(particle, maxRadius, 3, out);
+                          splashRadii[i] = meshSurface->surfaceDistance(
+                              MantaflowSurfaceSearch::Purpose::Splash, i, particle, maxRadius, 3, out);
                         }
                       });
   }
@@ -196,24 +201,39 @@ bool aggregatesContain(const std::vector<EllipsoidInstance>& aggregates, const g
 }
 
 LiquidPreparation prepareLiquid(const Particles& particles, const Camera& camera,
-                                const LiquidParameters& parameters) {
+                                const LiquidParameters& parameters, FrameMantaflowSurface* frameSurface) {
   const Clock::time_point start = Clock::now();
   LiquidPreparation preparation;
   LiquidCandidates candidates = selectLiquidCandidates(particles, camera, parameters);
   preparation.culled = candidates.culled;
+  const bool wholeLiquid = candidates.cloud.size() == candidates.eligible;
   const NeighbourGrid grid(std::move(candidates.cloud), candidates.cellSize);
   const Clock::time_point gridBuilt = Clock::now();
 
   // Mantaflow's surface (liquid.mesh_kernel_radius, in radii of the largest particle: a Mantaflow liquid's
   // particles all have one radius) sizes each splash and each surface particle's offset.
-  std::optional<MantaflowLevelSet> meshSurface;
-  if (parameters.mesh_kernel_radius > 0.0f && grid.particles().size() > 0)
-    meshSurface.emplace(grid.particles(),
-                        parameters.mesh_kernel_radius * *std::max_element(grid.particles().radius.begin(),
-                                                                          grid.particles().radius.end()));
+  // Its level set and searches depend on the candidates, not on the eye: a view whose candidates are every
+  // liquid particle shares them with the frame's other such views (FrameMantaflowSurface).
+  std::optional<MantaflowSurfaceSearch> ownSurface;
+  MantaflowSurfaceSearch* meshSurface = nullptr;
+  const ParticleCloud& cloud = grid.particles();
+  if (parameters.mesh_kernel_radius > 0.0f && cloud.size() > 0) {
+    const float kernelRadius =
+        parameters.mesh_kernel_radius * *std::max_element(cloud.radius.begin(), cloud.radius.end());
+    const bool shared = frameSurface && wholeLiquid;
+    if (shared && frameSurface->search && frameSurface->search->kernelRadius() == kernelRadius &&
+        frameSurface->cellSize == grid.cellSize()) {
+      meshSurface = &*frameSurface->search;
+    } else {
+      std::optional<MantaflowSurfaceSearch>& built = shared ? frameSurface->search : ownSurface;
+      built.emplace(MantaflowLevelSet(cloud, kernelRadius), cloud.size());
+      if (shared) frameSurface->cellSize = grid.cellSize();
+      meshSurface = &*built;
+    }
+  }
   AnisotropySettings settings = AnisotropySettings::fromParameters(parameters);
   settings.eye = camera.position();
-  settings.meshSurface = meshSurface ? &*meshSurface : nullptr;
+  settings.meshSurface = meshSurface;
   const ParticleShapes shapes = shapeParticles(grid, settings);
   classifyAndPack(grid, shapes, parameters, settings.meshSurface, preparation);
   const Clock::time_point end = Clock::now();

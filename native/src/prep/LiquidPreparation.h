@@ -43,11 +43,17 @@ struct LiquidPreparation {
   double totalMilliseconds = 0.0;
 };
 
+struct FrameMantaflowSurface;
+
 /// Frustum-culls, finds neighbours, classifies each liquid particle as splash or aggregate by its anisotropic
 /// density, and builds the ellipsoids (TBB-parallel). Only particles of kind Liquid are considered.
 /// With liquid.layers = merged every visible particle is an aggregate (the earlier two-layer method).
+/// The views of one frame pass the same `frameSurface` so that Mantaflow's surface
+/// (liquid.mesh_kernel_radius) is built and searched once for all of them; the result is the same with or
+/// without it.
 LiquidPreparation prepareLiquid(const Particles& particles, const Camera& camera,
-                                const LiquidParameters& parameters);
+                                const LiquidParameters& parameters,
+                                FrameMantaflowSurface* frameSurface = nullptr);
 
 /// Whether `point` lies inside the drawn aggregated body: inside one of its ellipsoids and, for a Mantaflow
 /// liquid, inside the domain's box that clips them. This is how the renderer knows the camera is under water.

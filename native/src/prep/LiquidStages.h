@@ -15,6 +15,7 @@ namespace spindrift {
 struct LiquidCandidates {
   ParticleCloud cloud;
   std::size_t culled = 0;
+  std::size_t eligible = 0;  ///< Liquid particles with a finite position and a positive finite radius.
   float cellSize = 1.0f;
 };
 
@@ -29,9 +30,10 @@ constexpr std::size_t kMinInteriorForRestDensity = 64;
 /// Splits the shaped particles into splashes (density below liquid.splash_density_threshold times the rest
 /// density; spheres of radius r at the particle) and aggregates, filling those fields of `preparation`.
 /// With `meshSurface` (Mantaflow's surface, or null), each splash is a sphere as large as that surface
-/// reaches around it, and splashes it passes below are not drawn (LiquidPreparation::splashesAbsorbed).
+/// reaches around it, and splashes it passes below are not drawn (LiquidPreparation::splashesAbsorbed); the
+/// searches are remembered in it.
 void classifyAndPack(const NeighbourGrid& grid, const ParticleShapes& shapes,
-                     const LiquidParameters& parameters, const MantaflowLevelSet* meshSurface,
+                     const LiquidParameters& parameters, MantaflowSurfaceSearch* meshSurface,
                      LiquidPreparation& preparation);
 
 }  // namespace spindrift

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <utility>
 
 #include <glm/geometric.hpp>
 
@@ -31,35 +32,31 @@ MantaflowLevelSet::MantaflowLevelSet(const ParticleCloud& cloud, float kernelRad
   for (;;) {
     double product = 1.0;
     for (int axis = 0; axis < 3; ++axis) {
-      cells_[axis] = int(std::floor((upper[axis] - lower[axis]) / cellSize_)) + 1;
-      product *= double(cells_[axis]);
+      cellCounts_[axis] = int(std::floor((upper[axis] - lower[axis]) / cellSize_)) + 1;
+      product *= double(cellCounts_[axis]);
     }
     if (product <= kMaxCells) break;
     cellSize_ *= 2.0f;
   }
-  const std::size_t total = std::size_t(cells_[0]) * std::size_t(cells_[1]) * std::size_t(cells_[2]);
-  count_.assign(total, 0.0f);
-  centroidX_.assign(total, 0.0f);
-  centroidY_.assign(total, 0.0f);
-  centroidZ_.assign(total, 0.0f);
+  const std::size_t columns = std::size_t(cellCounts_[0]) * std::size_t(cellCounts_[1]);
+  cells_.assign(columns * std::size_t(cellCounts_[2]), Float4{0.0f, 0.0f, 0.0f, 0.0f});
+  occupiedLow_.assign(columns, cellCounts_[2]);
+  occupiedHigh_.assign(columns, -1);
   for (std::size_t i = 0; i < cloud.size(); ++i) {
     int index[3];
     const float position[3] = {cloud.x[i], cloud.y[i], cloud.z[i]};
     for (int axis = 0; axis < 3; ++axis)
-      index[axis] = std::clamp(int((position[axis] - origin_[axis]) / cellSize_), 0, cells_[axis] - 1);
-    const std::size_t cell =
-        (std::size_t(index[0]) * std::size_t(cells_[1]) + std::size_t(index[1])) * std::size_t(cells_[2]) +
-        std::size_t(index[2]);
-    count_[cell] += 1.0f;
-    centroidX_[cell] += position[0];
-    centroidY_[cell] += position[1];
-    centroidZ_[cell] += position[2];
+      index[axis] = std::clamp(int((position[axis] - origin_[axis]) / cellSize_), 0, cellCounts_[axis] - 1);
+    const std::size_t column = std::size_t(index[0]) * std::size_t(cellCounts_[1]) + std::size_t(index[1]);
+    cells_[column * std::size_t(cellCounts_[2]) + std::size_t(index[2])] +=
+        Float4{position[0], position[1], position[2], 1.0f};
+    occupiedLow_[column] = std::min(occupiedLow_[column], index[2]);
+    occupiedHigh_[column] = std::max(occupiedHigh_[column], index[2]);
   }
-  for (std::size_t cell = 0; cell < total; ++cell) {
-    if (count_[cell] == 0.0f) continue;
-    centroidX_[cell] /= count_[cell];
-    centroidY_[cell] /= count_[cell];
-    centroidZ_[cell] /= count_[cell];
+  for (Float4& cell : cells_) {
+    const float count = cell[3];
+    if (count == 0.0f) continue;
+    cell /= Float4{count, count, count, 1.0f};
   }
 }
 
@@ -68,44 +65,55 @@ bool MantaflowLevelSet::offsetToMean(const glm::vec3& at, glm::vec3& offset) con
   const float inverseSupportSquared = 1.0f / (support * support);
   const float inverseCell = 1.0f / cellSize_;
   // A centroid lies in its cell, so the cells the support ball touches hold every centroid within it; per
-  // column only the run of cells the ball's chord spans is read.
+  // column only the run of cells the ball's chord spans, and that holds particles, is read. A cell below
+  // 0 along an axis clamps to 0 whether truncated or floored, so truncation does.
   const auto cellOf = [&](float value, int axis) {
-    return std::clamp(int(std::floor((value - origin_[axis]) * inverseCell)), 0, cells_[axis] - 1);
+    return std::clamp(int((value - origin_[axis]) * inverseCell), 0, cellCounts_[axis] - 1);
   };
   const auto gap = [&](int cell, int axis) {
     const float low = origin_[axis] + float(cell) * cellSize_;
     return std::max({0.0f, low - at[axis], at[axis] - (low + cellSize_)});
   };
-  float sum = 0.0f, sx = 0.0f, sy = 0.0f, sz = 0.0f;
   const int x0 = cellOf(at.x - support, 0), x1 = cellOf(at.x + support, 0);
   const int y0 = cellOf(at.y - support, 1), y1 = cellOf(at.y + support, 1);
+  // The ball spans at most 4 r_m / cell + 2 cells along y (10 at r_m / 2); a coarsened grid spans fewer.
+  float gapYSquared[16];
+  const int spanY = std::min(y1 - y0 + 1, 16);
+  for (int iy = 0; iy < spanY; ++iy) {
+    const float gapY = gap(y0 + iy, 1);
+    gapYSquared[iy] = gapY * gapY;
+  }
+  // Each lane sums in the order of the cells, as four scalar sums would: (x, y, z) weight times offset, and
+  // the weight.
+  const Float4 centre{at.x, at.y, at.z, 0.0f};
+  const Float4 offsetLanes{1.0f, 1.0f, 1.0f, 0.0f}, weightLane{0.0f, 0.0f, 0.0f, 1.0f};
+  Float4 sums{0.0f, 0.0f, 0.0f, 0.0f};
   for (int ix = x0; ix <= x1; ++ix) {
     const float gapX = gap(ix, 0);
     for (int iy = y0; iy <= y1; ++iy) {
-      const float gapY = gap(iy, 1);
-      const float chordSquared = support * support - gapX * gapX - gapY * gapY;
+      const std::size_t column = std::size_t(ix) * std::size_t(cellCounts_[1]) + std::size_t(iy);
+      if (occupiedLow_[column] > occupiedHigh_[column]) continue;
+      const float chordSquared =
+          support * support - gapX * gapX - (iy - y0 < 16 ? gapYSquared[iy - y0] : gap(iy, 1) * gap(iy, 1));
       if (chordSquared < 0.0f) continue;
       const float chord = std::sqrt(chordSquared);
-      const int z0 = cellOf(at.z - chord, 2), z1 = cellOf(at.z + chord, 2);
-      const std::size_t column =
-          (std::size_t(ix) * std::size_t(cells_[1]) + std::size_t(iy)) * std::size_t(cells_[2]);
-      const float* counts = count_.data() + column;
-      const float* xs = centroidX_.data() + column;
-      const float* ys = centroidY_.data() + column;
-      const float* zs = centroidZ_.data() + column;
-#pragma omp simd reduction(+ : sum, sx, sy, sz)
+      const int z0 = std::max(cellOf(at.z - chord, 2), occupiedLow_[column]);
+      const int z1 = std::min(cellOf(at.z + chord, 2), occupiedHigh_[column]);
+      const Float4* run = cells_.data() + column * std::size_t(cellCounts_[2]);
       for (int iz = z0; iz <= z1; ++iz) {
-        const float dx = xs[iz] - at.x, dy = ys[iz] - at.y, dz = zs[iz] - at.z;
-        const float weight =
-            counts[iz] * std::max(0.0f, 1.0f - (dx * dx + dy * dy + dz * dz) * inverseSupportSquared);
-        sum += weight;
-        sx += weight * dx;
-        sy += weight * dy;
-        sz += weight * dz;
+        const Float4 difference = run[iz] - centre;
+        const float distanceSquared =
+            difference[0] * difference[0] + difference[1] * difference[1] + difference[2] * difference[2];
+        // max(0, falloff) as a vector select: the compiler branches on the scalar form.
+        const Float4 falloff =
+            Float4{0.0f, 0.0f, 0.0f, 0.0f} + (1.0f - distanceSquared * inverseSupportSquared);
+        const Float4 weight = run[iz][3] * (falloff > 0.0f ? falloff : Float4{0.0f, 0.0f, 0.0f, 0.0f});
+        sums += weight * (difference * offsetLanes + weightLane);
       }
     }
   }
-  offset = sum > 0.0f ? glm::vec3(sx, sy, sz) / sum : glm::vec3(0.0f);
+  const float sum = sums[3];
+  offset = sum > 0.0f ? glm::vec3(sums[0], sums[1], sums[2]) / sum : glm::vec3(0.0f);
   return sum > 0.0f;
 }
 
@@ -138,6 +146,22 @@ float MantaflowLevelSet::surfaceDistance(const glm::vec3& particle, float maxRad
     t = std::clamp(next, 0.0f, maxRadius);
   }
   return t;
+}
+
+MantaflowSurfaceSearch::MantaflowSurfaceSearch(MantaflowLevelSet levelSet, std::size_t particles)
+    : levelSet_(std::move(levelSet)), offsetSearches_(particles), splashSearches_(particles) {}
+
+float MantaflowSurfaceSearch::surfaceDistance(Purpose purpose, std::size_t index, const glm::vec3& particle,
+                                              float maxRadius, int refinements, glm::vec3& out) {
+  Search& search = (purpose == Purpose::Offset ? offsetSearches_ : splashSearches_).at(index);
+  if (!(search.maxRadius == maxRadius && search.refinements == refinements && search.particle == particle)) {
+    search.distance = levelSet_.surfaceDistance(particle, maxRadius, refinements, search.out);
+    search.particle = particle;
+    search.maxRadius = maxRadius;
+    search.refinements = refinements;
+  }
+  out = search.out;
+  return search.distance;
 }
 
 }  // namespace spindrift

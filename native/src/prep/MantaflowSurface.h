@@ -1,6 +1,8 @@
 #pragma once
 
 #include <cstddef>
+#include <cstdint>
+#include <optional>
 #include <vector>
 
 #include <glm/vec3.hpp>
@@ -36,9 +38,54 @@ class MantaflowLevelSet {
   float kernelRadius_;
   float cellSize_;
   glm::vec3 origin_{0.0f};
-  int cells_[3] = {0, 0, 0};
-  // Per cell, z fastest: the particle count and the centroid (0 where empty).
-  std::vector<float> count_, centroidX_, centroidY_, centroidZ_;
+  int cellCounts_[3] = {0, 0, 0};
+  // Per cell, z fastest: the centroid and the particle count in one 16-byte vector (0 where empty), so that a
+  // cell's four weighted sums are one vector operation.
+  using Float4 = float __attribute__((vector_size(16)));
+  std::vector<Float4> cells_;
+  // Per column (x, y), the first and last occupied cell along z (first > last where empty): a sum reads only
+  // that part of the ball's chord, the empty cells adding nothing.
+  std::vector<std::int32_t> occupiedLow_, occupiedHigh_;
+};
+
+/// A level set with each particle's searches remembered, so that the views of one frame (the camera's and
+/// every light's) search each particle once. Indexed like the cloud the level set was built over; a search is
+/// reused only when it was made for the same position, maximum radius and refinements, so a reused result is
+/// bit for bit the one a new search would give. One thread at a time may search a given index.
+class MantaflowSurfaceSearch {
+ public:
+  /// What a search is for: a surface particle's offset (Anisotropy.cpp) or a splash's size (classifyAndPack).
+  /// Each keeps its own result per particle, as a particle may be a splash in one view and not in another.
+  enum class Purpose { Offset, Splash };
+
+  MantaflowSurfaceSearch(MantaflowLevelSet levelSet, std::size_t particles);
+
+  const MantaflowLevelSet& levelSet() const { return levelSet_; }
+  float kernelRadius() const { return levelSet_.kernelRadius(); }
+
+  /// MantaflowLevelSet::surfaceDistance for particle `index` at `particle`, remembered.
+  float surfaceDistance(Purpose purpose, std::size_t index, const glm::vec3& particle, float maxRadius,
+                        int refinements, glm::vec3& out);
+
+ private:
+  struct Search {
+    glm::vec3 particle{0.0f};
+    float maxRadius = -1.0f;  // Negative: not searched yet.
+    int refinements = 0;
+    float distance = 0.0f;
+    glm::vec3 out{0.0f};
+  };
+  MantaflowLevelSet levelSet_;
+  std::vector<Search> offsetSearches_, splashSearches_;
+};
+
+/// Mantaflow's surface as the views of one frame share it. The first view whose candidates are every liquid
+/// particle of the frame (every light's view frames the whole liquid; the camera's when nothing is culled)
+/// builds it; each later such view, which would build the same level set over the same sorted cloud, uses it
+/// and its remembered searches. A view that culls particles builds its own, as its level set differs.
+struct FrameMantaflowSurface {
+  std::optional<MantaflowSurfaceSearch> search;
+  float cellSize = 0.0f;  ///< The neighbour grid's cell size the cloud was sorted with.
 };
 
 }  // namespace spindrift
