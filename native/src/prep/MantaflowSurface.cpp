@@ -139,6 +139,8 @@ float MantaflowLevelSet::surfaceDistance(const glm::vec3& particle, float maxRad
   for (int step = 0; step <= refinements; ++step) {
     const float value = levelSet(t);
     if (value <= 0.0f && t >= maxRadius) return maxRadius;
+    // Converged: the secant through two equal points would be 0 / 0 and jump to maxRadius.
+    if (value == 0.0f || t == inside) return t;
     const float slope = (value - insideValue) / (t - inside);
     const float next = slope > 1e-3f ? t - value / slope : maxRadius;
     inside = t;
