@@ -40,6 +40,13 @@ uniform float sizeWeight;     // B of equation 13, per pixel
 uniform int tileSize;
 uniform bool hasSplash;
 uniform bool hasAggregate;
+// A Mantaflow domain's box (ellipsoid_impostor.frag clips the drawn liquid to it the same way): rays march
+// only inside it, and where the density is already at the iso-value where a ray enters it, the surface is
+// the box's face, as Mantaflow's mesh closes the liquid at the walls.
+uniform bool clipToDomain;
+uniform mat4 domainFromWorld;
+uniform vec3 domainLow;
+uniform vec3 domainHigh;
 const int kBisections = 3;  // adaptive stepping: a bracket of one stepLength refined to 1/8 (then a secant)
 const int kEntryRetreats = 4;
 const int kMaxBoundSteps = 32;  // how many step lengths ahead one density sample bounds
@@ -95,8 +102,6 @@ float densityAndReach(vec3 origin, vec3 inverseDirection, vec3 direction, float 
   float bound[kMaxBoundSteps];
   for (int k = 0; k < kMaxBoundSteps; ++k)
     bound[k] = 0.0;
-  float squaredRadius = smoothingRadius * smoothingRadius;
-  float inverseSquaredRadius = 1.0 / squaredRadius;
   for (int m = 0; m < 27 + 9 * kReachCells; ++m) {
     ivec3 visit;
     if (m < 27) {
@@ -114,7 +119,10 @@ float densityAndReach(vec3 origin, vec3 inverseDirection, vec3 direction, float 
     uint end = begin + cellCount[index];
     particlesVisited += end - begin;
     for (uint j = begin; j < end; ++j) {
-      vec3 offset = sortedParticles[j].xyz - position;
+      vec4 particle = sortedParticles[j];
+      vec3 offset = particle.xyz - position;
+      float squaredRadius = particle.w * particle.w;  // the particle's own support h_j
+      float inverseSquaredRadius = 1.0 / squaredRadius;
       float squaredDistance = dot(offset, offset);
       if (squaredDistance < squaredRadius) {
         float falloff = 1.0 - squaredDistance * inverseSquaredRadius;
@@ -201,11 +209,29 @@ void main() {
 
   float tEntry = entryDepth * lengthPerDepth;
   vec2 grid = boxSpan(origin, inverseDirection, gridOrigin, gridOrigin + vec3(gridSize) * cellSize);
-  float t = max(tEntry - entryBackoff, grid.x);
+  // The part of the ray the surface may lie on: inside the grid and, for a Mantaflow liquid, its domain box
+  // (an affine map keeps the ray's parameter).
+  vec2 span = grid;
+  vec3 boxFaceNormal = vec3(0.0);
+  if (clipToDomain) {
+    vec3 boxOrigin = (domainFromWorld * vec4(origin, 1.0)).xyz;
+    vec3 boxDirection = mat3(domainFromWorld) * direction;
+    vec3 inverseBoxDirection =
+        1.0 / mix(boxDirection, vec3(1e-12), lessThan(abs(boxDirection), vec3(1e-12)));
+    vec3 tLow = (domainLow - boxOrigin) * inverseBoxDirection, tHigh = (domainHigh - boxOrigin) * inverseBoxDirection;
+    vec3 tEnter = min(tLow, tHigh), tLeave = max(tLow, tHigh);
+    float enter = max(tEnter.x, max(tEnter.y, tEnter.z)), leave = min(tLeave.x, min(tLeave.y, tLeave.z));
+    int axis = enter == tEnter.x ? 0 : (enter == tEnter.y ? 1 : 2);
+    vec3 faceInBox = vec3(0.0);
+    faceInBox[axis] = -sign(boxDirection[axis]);
+    boxFaceNormal = normalize(transpose(mat3(domainFromWorld)) * faceInBox);  // normals map by the inverse transpose
+    span = vec2(max(grid.x, enter), min(grid.y, leave));
+  }
+  float t = max(tEntry - entryBackoff, span.x);
   // No particle reaches beyond the farthest back face by more than h; nothing behind a solid is seen.
   float tEnd = max(rayParameter(texelFetch(splashBackDepth, pixel, 0).r, lengthPerDepth),
                    rayParameter(texelFetch(aggregateBackDepth, pixel, 0).r, lengthPerDepth)) + smoothingRadius;
-  tEnd = min(tEnd, grid.y);
+  tEnd = min(tEnd, span.y);
   float background = rayParameter(texelFetch(backgroundEyeDepth, pixel, 0).r, lengthPerDepth);
   if (background > 0.0) tEnd = min(tEnd, background);
   float tAggregate = rayParameter(texelFetch(aggregateFrontDepth, pixel, 0).r, lengthPerDepth) - entryBackoff;
@@ -216,13 +242,20 @@ void main() {
   vec3 gradient, insideGradient = vec3(0.0);
   float safe = 0.0;
   float density = 0.0;
-  for (int k = 0; k < kEntryRetreats && t > grid.x; ++k) {
+  bool onBox = false;
+  for (int k = 0; k < kEntryRetreats && t >= span.x; ++k) {
     ++steps;
     ++densities;
     density = sampleDensity(origin, inverseDirection, direction, t, gradient, safe);
     if (density < iso) break;
     safe = 0.0;
-    t = max(t - smoothingRadius, grid.x);
+    // Inside already where the ray enters the domain's box: the surface is the box's face.
+    if (clipToDomain && t <= span.x && span.x > grid.x) {
+      onBox = true;
+      break;
+    }
+    if (t <= span.x) break;
+    t = max(t - smoothingRadius, span.x);
   }
   // Between tOutside and t the surface may lie; before tOutside the ray is known to be outside. outsideDensity
   // is the density at tOutside where it was sampled (-1 where a skip, a bound or the jump put it there).
@@ -230,9 +263,9 @@ void main() {
   float outsideDensity = safe > 0.0 || density >= iso ? -1.0 : density;  // still inside after the retreats
   t = tOutside + stepLength;
   bool jumped = !adaptive;
-  bool hit = false;
+  bool hit = onBox;
   float epsilon = 1e-4 * cellSize;
-  for (int i = 0; i < maxSteps && t <= tEnd; ++i) {
+  for (int i = 0; i < maxSteps && t <= tEnd && !onBox; ++i) {
     ++steps;
     if (!jumped && i >= maxSkipSteps) {
       jumped = true;
@@ -275,7 +308,8 @@ void main() {
     outsideDensity = safe > 0.0 ? -1.0 : density;
     t = tOutside + stepLength;
   }
-  if (hit && adaptive && t > tOutside) {
+  if (onBox) t = span.x;
+  if (hit && !onBox && adaptive && t > tOutside) {
     // Bisection, then the secant through the bracket's ends where both densities are known.
     float inside = t, insideDensity = density;
     for (int k = 0; k < kBisections; ++k) {
@@ -320,6 +354,7 @@ void main() {
                                 : 1.0;
   vec3 normal = normalize(weight * objectNormal + (1.0 - weight) * screen.xyz);
   if (dot(normal, direction) > 0.0) normal = objectNormal;  // never a front surface facing away
+  if (onBox) normal = boxFaceNormal;
   float aggregateDepth = texelFetch(aggregateFrontDepth, pixel, 0).r;
   bool aggregate = hasAggregate && (!hasSplash || (hasSurface(aggregateDepth) &&
                                                    depth >= aggregateDepth - smoothingRadius / lengthPerDepth));

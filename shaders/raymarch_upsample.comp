@@ -4,7 +4,8 @@
 // missed outvote the hits when their weight is larger (a silhouette), and only corners of the nearest hit's
 // class are blended, so a splash is never averaged with the body behind it. Then the marched first surface is
 // written into the front layers the refraction pass reads: as the splash front or the aggregate front by its
-// class, the other class's front kept only where it lies behind.
+// class, the other class's front kept only where it lies behind. A drawn splash sphere in front of the marched
+// surface is kept as the surface.
 layout(local_size_x = 8, local_size_y = 8) in;
 #include "lib/frame.glsl"
 #include "lib/depth_layer.glsl"
@@ -73,10 +74,17 @@ void main() {
       normal = vec4(length(normalSum) > 0.0 ? normalize(normalSum) : vec3(0.0, 0.0, 1.0), nearestClass);
     }
   }
-  bool hit = normal.w > 0.5;
-  bool splash = hit && normal.w < 1.5;
   float splashBehind = texelFetch(splashFrontDepth, pixel, 0).r;
   float aggregateBehind = texelFetch(aggregateFrontDepth, pixel, 0).r;
+  // A drawn splash is the sphere of Mantaflow's surface around it (or of (1 + offset) r): the marched
+  // surface, whose kernels are capped at the body's support, is never smaller. Where the sphere stands in
+  // front of the marched surface, it is the surface.
+  if (hasSurface(splashBehind) && (normal.w <= 0.5 || splashBehind < depth)) {
+    depth = splashBehind;
+    normal = vec4(texelFetch(splashFrontNormal, pixel, 0).xyz, 1.0);
+  }
+  bool hit = normal.w > 0.5;
+  bool splash = hit && normal.w < 1.5;
   vec4 none = vec4(0.0);
   if (!hit) {
     imageStore(outSplashDepth, pixel, vec4(kNoSurfaceDepth));

@@ -71,7 +71,8 @@ MarchedFronts RaymarchSurface::run(const RaymarchPreparation& preparation,
                                 aggregates ? aggregates->back : empty,
                                 background,
                                 bool(splashes),
-                                bool(aggregates)};
+                                bool(aggregates),
+                                preparation.domain ? &*preparation.domain : nullptr};
     samples.emplace(march_.run(inputs, radius, parameters, width, height));
   }
   ScopedPassTimer timed(timer, "raymarch_upsample");

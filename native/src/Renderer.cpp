@@ -258,7 +258,7 @@ RenderResult Renderer::renderPrepared(const Scene& scene, const Particles& parti
   const FoamPreparation foam = prepareFoam(particles, camera, foamParameters);
   std::optional<RaymarchPreparation> raymarch;
   if (liquidParameters.surface == "raymarch")
-    raymarch.emplace(prepareRaymarch(particles, camera, radius, liquidParameters));
+    raymarch.emplace(prepareRaymarch(liquid, camera, radius, liquidParameters, domainBox));
   BackgroundImages backgroundImages = impl_->backgroundCache.load(scene.background, frame, width, height);
   if (extras.backgroundColor) {
     requireCameraSize(*extras.backgroundColor, 4, "background colour", width, height);

@@ -24,21 +24,24 @@ struct GridCheck {
   std::size_t missedCells = 0;    ///< Cells marked 0 with a sample at or above the iso-value.
 };
 
-// Density in units of one particle's peak, sum of (1 - q^2)^3, as lib/raymarch_grid.glsl defines it, from a
-// CPU bucket grid of side h (independent of the GPU's cell lists).
+// Density in units of one particle's peak, sum of (1 - q^2)^3 with q = d / h_j and h_j each particle's w, as
+// lib/raymarch_grid.glsl defines it, from a CPU bucket grid of the largest h_j (independent of the GPU's cell
+// lists).
 class CpuDensity {
  public:
-  CpuDensity(const std::vector<glm::vec4>& particles, float h) : h_(h) {
+  explicit CpuDensity(const std::vector<glm::vec4>& particles) {
     low_ = glm::vec3(INFINITY);
     glm::vec3 high(-INFINITY);
+    side_ = 0.0f;
     for (const glm::vec4& p : particles) {
       low_ = glm::min(low_, glm::vec3(p));
       high = glm::max(high, glm::vec3(p));
+      side_ = std::max(side_, p.w);
     }
-    size_ = glm::ivec3(glm::floor((high - low_) / h)) + 1;
+    size_ = glm::ivec3(glm::floor((high - low_) / side_)) + 1;
     buckets_.resize(std::size_t(size_.x) * size_.y * size_.z);
     for (const glm::vec4& p : particles)
-      buckets_[index(bucketOf(glm::vec3(p)))].push_back(glm::vec3(p));
+      buckets_[index(bucketOf(glm::vec3(p)))].push_back(p);
   }
   float operator()(const glm::vec3& x) const {
     const glm::ivec3 centre = bucketOf(x);
@@ -49,8 +52,8 @@ class CpuDensity {
           const glm::ivec3 b = centre + glm::ivec3(dx, dy, dz);
           if (glm::any(glm::lessThan(b, glm::ivec3(0))) || glm::any(glm::greaterThanEqual(b, size_)))
             continue;
-          for (const glm::vec3& p : buckets_[index(b)]) {
-            const float q2 = glm::dot(x - p, x - p) / (h_ * h_);
+          for (const glm::vec4& p : buckets_[index(b)]) {
+            const float q2 = glm::dot(x - glm::vec3(p), x - glm::vec3(p)) / (p.w * p.w);
             if (q2 < 1.0f) density += (1.0f - q2) * (1.0f - q2) * (1.0f - q2);
           }
         }
@@ -58,25 +61,28 @@ class CpuDensity {
   }
 
  private:
-  glm::ivec3 bucketOf(const glm::vec3& x) const { return glm::ivec3(glm::floor((x - low_) / h_)); }
+  glm::ivec3 bucketOf(const glm::vec3& x) const { return glm::ivec3(glm::floor((x - low_) / side_)); }
   std::size_t index(const glm::ivec3& b) const { return (std::size_t(b.z) * size_.y + b.y) * size_.x + b.x; }
-  float h_;
+  float side_;
   glm::vec3 low_;
   glm::ivec3 size_;
-  std::vector<std::vector<glm::vec3>> buckets_;
+  std::vector<std::vector<glm::vec4>> buckets_;
 };
 
-inline GridCheck checkDensityGrid(const std::vector<glm::vec4>& particles, float h,
+// `particles`: world position and kernel support h_j (w).
+inline GridCheck checkDensityGrid(const std::vector<glm::vec4>& particles,
                                   const spindrift::LiquidParameters& parameters) {
   using namespace spindrift;
   RaymarchPreparation preparation;
   preparation.particles = particles;
-  preparation.smoothingRadius = h;
+  float h = 0.0f;
   glm::vec3 low(INFINITY), high(-INFINITY);
   for (const glm::vec4& p : particles) {
     low = glm::min(low, glm::vec3(p));
     high = glm::max(high, glm::vec3(p));
+    h = std::max(h, p.w);
   }
+  preparation.smoothingRadius = h;
   preparation.grid = fitRaymarchGrid(low, high, h);
   GlThread thread;
   const std::vector<std::uint8_t> mask = thread.run([&] {
@@ -87,7 +93,7 @@ inline GridCheck checkDensityGrid(const std::vector<glm::vec4>& particles, float
     return maskPass.readCells();
   });
   const RaymarchGrid& grid = preparation.grid;
-  const CpuDensity density(particles, h);
+  const CpuDensity density(particles);
   GridCheck check;
   constexpr int kSamples = 5;
   for (int z = 0; z < grid.size.z; ++z)

@@ -54,10 +54,11 @@ float depthAt(const RenderResult& result, int column, int row) {
   return at(*result.layer("depth"), result.width, column, row, 0);
 }
 
-std::vector<glm::vec4> withRadius(const std::vector<glm::vec3>& positions) {
+// Positions with kernel supports: h, and every third one `larger` h (particles sized apart, as splashes are).
+std::vector<glm::vec4> withSupports(const std::vector<glm::vec3>& positions, float h, float larger) {
   std::vector<glm::vec4> particles;
-  for (const glm::vec3& p : positions)
-    particles.emplace_back(p, kRadius);
+  for (std::size_t i = 0; i < positions.size(); ++i)
+    particles.emplace_back(positions[i], i % 3 == 0 ? larger * h : h);
   return particles;
 }
 
@@ -67,15 +68,22 @@ TEST(GLRaymarch, DensityGridIsConservativeOnRandomParticles) {
   LiquidParameters parameters;
   const float h = parameters.raymarch_smoothing_radius * kRadius;
   // Sparse enough that many cells hold one or two particles, where a too-small kernel weight shows.
-  const auto particles = withRadius(randomPoints(1500, glm::vec3(0.0f), glm::vec3(1.2f), 3));
-  const raymarch_test::GridCheck check = raymarch_test::checkDensityGrid(particles, h, parameters);
+  const auto particles = withSupports(randomPoints(1500, glm::vec3(0.0f), glm::vec3(1.2f), 3), h, 1.0f);
+  const raymarch_test::GridCheck check = raymarch_test::checkDensityGrid(particles, parameters);
   EXPECT_GT(check.crossingCells, 500u) << "the iso-surface crosses many cells";
   EXPECT_LT(check.markedCells, check.cells) << "some cells are empty, else the grid skips nothing";
   EXPECT_EQ(check.missedCells, 0u) << "a cell marked 0 holds density at or above the iso-value";
 
+  // Per-particle supports (the derived surface's): the cells are the largest support, smaller kernels fit.
+  const auto mixed = withSupports(randomPoints(800, glm::vec3(0.0f), glm::vec3(1.2f), 4), h, 1.8f);
+  const raymarch_test::GridCheck mixedCheck = raymarch_test::checkDensityGrid(mixed, parameters);
+  EXPECT_GT(mixedCheck.crossingCells, 100u);
+  EXPECT_LT(mixedCheck.markedCells, mixedCheck.cells);
+  EXPECT_EQ(mixedCheck.missedCells, 0u) << "with per-particle supports";
+
   // The check has teeth: with b^3 below the iso-value, lone particles near a cell's corner are missed.
   parameters.raymarch_kernel_side = 0.5f;
-  EXPECT_GT(raymarch_test::checkDensityGrid(particles, h, parameters).missedCells, 0u);
+  EXPECT_GT(raymarch_test::checkDensityGrid(particles, parameters).missedCells, 0u);
 }
 
 TEST(GLRaymarch, AdaptiveSteppingFindsTheUniformSurfaceInFewerSteps) {
@@ -152,16 +160,18 @@ TEST(GLRaymarch, AdaptiveSteppingFindsTheFineSurfaceInAQuarterOfTheUniformSteps)
   // The named scene "pool with droplets", its particles drawn grown by 1.9 r as the examples' Mantaflow
   // domains grow them (liquid.surface_offset): D_all then stands about 1.9 r in front of the iso-surface and
   // the rays start h - r before that, as in the examples. Three marches of the same rays: uniform steps of r
-  // / 20 (the converged surface, within r / 20), uniform steps of r / 4 (Xiao et al.'s baseline, within r / 4
+  // / 10 (the converged surface, within r / 10), uniform steps of r / 4 (Xiao et al.'s baseline, within r / 4
   // of it without refinement) and the adaptive march (kernel bound, one r / 4 step beyond it, bisection).
+  // (With the offset's larger kernels a density reads about four times the particles; r / 20 steps then
+  // ran into llvmpipe's cap of 65,535 loop iterations per invocation on 129 long rays, r / 10 on 4.)
   Scene scene = raymarchScene({0.0f, -1.6f, 1.0f}, {0.0f, 0.0f, 0.1f});
   scene.parameters.liquid.raymarch_resolution = "full";
   scene.parameters.liquid.surface_offset = 1.9f;
   const std::vector<glm::vec3> positions = poolWithDroplets();
   liquid_test::renderer().setIntermediateLayers(true);
   scene.parameters.liquid.raymarch_stepping = "uniform";
-  scene.parameters.liquid.raymarch_step = 0.05f;
-  scene.parameters.liquid.raymarch_max_steps = 4096;
+  scene.parameters.liquid.raymarch_step = 0.1f;
+  scene.parameters.liquid.raymarch_max_steps = 2048;
   const RenderResult fine = render(scene, positions);
   scene.parameters.liquid.raymarch_step = 0.25f;
   scene.parameters.liquid.raymarch_max_steps = 256;
@@ -183,9 +193,9 @@ TEST(GLRaymarch, AdaptiveSteppingFindsTheFineSurfaceInAQuarterOfTheUniformSteps)
       << "rays where the adaptive march misses the fine surface by more than 0.25 r (worst " << marched.worst
       << " r)";
 
-  // Measured 2.85 against 25.0 steps per ray, 4.84 against 25.0 density evaluations (refinement included) and
-  // 158 against 245 particles read. Without the offset the rays start within about 2 r of the surface and the
-  // adaptive march's least, two samples, is 2.61 against 6.36 steps.
+  // Measured 2.34 against 19.8 steps per ray, 5.08 against 19.8 density evaluations (refinement included) and
+  // 941 against 1,867 particles read. Without the offset the rays start within about 2 r of the surface and
+  // the adaptive march's least, two samples, is 2.61 against 6.36 steps.
   const RaymarchFrameStats& a = adaptive.stats.raymarch;
   const RaymarchFrameStats& u = uniform.stats.raymarch;
   ASSERT_TRUE(a.enabled && u.enabled && a.adaptiveStepping && !u.adaptiveStepping);
@@ -240,6 +250,66 @@ TEST(GLRaymarch, LoneParticleIsASphereOfItsRadius) {
   // D_all is the drawn sphere of radius r, and the iso-surface lies 0.2 % outside it: every ray hits.
   EXPECT_GT(result.stats.raymarch.raysCast, 50u);  // the sphere is about 5 pixels in radius
   EXPECT_EQ(result.stats.raymarch.hits, result.stats.raymarch.raysCast);
+}
+
+// The derived surface (docs/mantaflow-caches.md): a Mantaflow liquid's particles are grown by
+// liquid.surface_offset so a flat body stands at Mantaflow's flat offset, 0.4 r + offset above its top layer,
+// and a lone drop is a sphere of Mantaflow's kernel radius (liquid.mesh_kernel_radius). The marched surface
+// must stand there too. The examples' values: offset 1.91 r, kernel radius 3.16 r, spacing r / 1.1.
+constexpr float kExampleOffset = 1.91f, kExampleKernelRadius = 3.16f, kMantaflowSpacing = kRadius / 1.1f;
+
+TEST(GLRaymarch, FlatBodyStandsAtTheSurfaceOffset) {
+  // A slab on Mantaflow's lattice seen from straight above: eye depth is height below the eye everywhere.
+  Scene scene = raymarchScene({0.0f, 0.0f, 1.0f}, {0.0f, 0.0f, 0.0f});
+  scene.camera = Camera::lookAt(kWidth, kHeight, 40.0f, {0.0f, 0.0f, 1.0f}, {0.0f, 0.0f, 0.0f}, {0, 1, 0});
+  scene.parameters.liquid.surface_offset = kExampleOffset;
+  const std::vector<glm::vec3> slab = block({-0.6f, -0.6f, -0.3f}, {0.6f, 0.6f, 0.0f}, kMantaflowSpacing);
+  float top = -INFINITY;
+  for (const glm::vec3& p : slab)
+    top = std::max(top, p.z);
+  const float expected = 1.0f - (top + (0.4f + kExampleOffset) * kRadius);
+  const RenderResult result = render(scene, slab);
+  liquid_test::expectAllChannelsFinite(result);
+  // The 16 x 12 pixels around the centre see the flat top far from the slab's edges (the image spans about
+  // 0.5 x 0.35 at the top's depth).
+  double worst = 0.0;
+  for (int row = kHeight / 2 - 6; row < kHeight / 2 + 6; ++row)
+    for (int column = kWidth / 2 - 8; column < kWidth / 2 + 8; ++column)
+      worst = std::max(worst, std::abs(double(depthAt(result, column, row)) - expected));
+  EXPECT_LT(worst, 0.1 * kRadius) << "the flat top stands 0.4 r + offset above the top particles";
+}
+
+TEST(GLRaymarch, LoneDropIsMantaflowsSphere) {
+  // With Mantaflow's level set a lone drop's surface is the sphere of its kernel radius r_m.
+  Scene scene = raymarchScene({0.0f, -1.0f, 0.0f}, {0.0f, 0.0f, 0.0f});
+  scene.parameters.liquid.surface_offset = kExampleOffset;
+  scene.parameters.liquid.mesh_kernel_radius = kExampleKernelRadius;
+  const RenderResult result = render(scene, {glm::vec3(0.0f)});
+  liquid_test::expectAllChannelsFinite(result);
+  const float radius = kExampleKernelRadius * kRadius;
+  double worst = 0.0;
+  for (int row = kHeight / 2 - 1; row <= kHeight / 2; ++row)
+    for (int column = kWidth / 2 - 1; column <= kWidth / 2; ++column)
+      worst = std::max(worst, std::abs(double(depthAt(result, column, row)) - (1.0 - radius)));
+  EXPECT_LT(worst, 0.05 * kRadius);
+  // Its silhouette: the pixels whose ray passes within the sphere, by the pinhole model, and no others
+  // (one pixel of slack at the edge).
+  const float focal = 0.5f * float(kHeight) / std::tan(glm::radians(20.0f));
+  std::size_t wrong = 0, inside = 0;
+  for (int row = 0; row < kHeight; ++row)
+    for (int column = 0; column < kWidth; ++column) {
+      const glm::vec2 offset(float(column) + 0.5f - 0.5f * kWidth, float(row) + 0.5f - 0.5f * kHeight);
+      // The ray's distance from the centre at unit depth along the axis, and the sphere's angular radius.
+      const float aside = glm::length(offset) / focal, sine = radius;
+      const float pixelAngle = 1.0f / focal;
+      const float angle = std::atan(aside), sphereAngle = std::asin(sine);
+      if (std::abs(angle - sphereAngle) < 1.5f * pixelAngle) continue;
+      const bool covered = depthAt(result, column, row) < 1e9f;
+      inside += angle < sphereAngle;
+      wrong += covered != (angle < sphereAngle);
+    }
+  EXPECT_GT(inside, 50u);
+  EXPECT_EQ(wrong, 0u);
 }
 
 TEST(GLRaymarch, EmptyFrameAndCulledParticlesRenderWithoutNaN) {

@@ -1,5 +1,8 @@
 #include "passes/RaymarchPass.h"
 
+#include <glm/mat4x4.hpp>
+#include <glm/matrix.hpp>
+
 namespace spindrift {
 
 RaymarchPass::RaymarchPass(const ShaderLibrary& shaders)
@@ -43,6 +46,13 @@ RaymarchSamples RaymarchPass::run(const RaymarchInputs& in, float particleRadius
   glUniform1i(uniformLocation(program, "tileSize"), in.tiles.tileSize);
   glUniform1i(uniformLocation(program, "hasSplash"), in.hasSplash ? 1 : 0);
   glUniform1i(uniformLocation(program, "hasAggregate"), in.hasAggregate ? 1 : 0);
+  glUniform1i(uniformLocation(program, "clipToDomain"), in.domain ? 1 : 0);
+  if (in.domain) {
+    const glm::mat4 domainFromWorld = glm::inverse(in.domain->worldFromBox);
+    glUniformMatrix4fv(uniformLocation(program, "domainFromWorld"), 1, GL_FALSE, &domainFromWorld[0][0]);
+    glUniform3fv(uniformLocation(program, "domainLow"), 1, &in.domain->low[0]);
+    glUniform3fv(uniformLocation(program, "domainHigh"), 1, &in.domain->high[0]);
+  }
   glDispatchCompute(GLuint((width + 7) / 8), GLuint((height + 7) / 8), 1);
   glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_STORAGE_BARRIER_BIT |
                   GL_TEXTURE_UPDATE_BARRIER_BIT);

@@ -10,6 +10,7 @@
 #include "gl/GlObjects.h"
 #include "gl/ShaderLibrary.h"
 #include "spindrift/Parameters.h"
+#include "spindrift/Scene.h"
 
 namespace spindrift {
 
@@ -25,6 +26,7 @@ struct RaymarchInputs {
   const BackgroundData& background;
   bool hasSplash;
   bool hasAggregate;
+  const DomainBox* domain;  ///< A Mantaflow liquid's box, or null: the surface is clipped to it.
 };
 
 /// Adaptive ray marching of the density iso-surface (Wu et al., algorithm 1; shaders/raymarch_march.comp).

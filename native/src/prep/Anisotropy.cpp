@@ -247,6 +247,7 @@ ParticleShapes shapeParticles(const NeighbourGrid& grid, const AnisotropySetting
   shapes.instances.resize(cloud.size());
   shapes.kinds.assign(cloud.size(), ShapeKind::Hidden);
   shapes.densities.assign(cloud.size(), 0.0f);
+  shapes.offsets.assign(cloud.size(), settings.surfaceOffset);
   const float radiusCubed = settings.neighbourRadius * settings.neighbourRadius * settings.neighbourRadius;
 
   tbb::parallel_for(
@@ -273,6 +274,7 @@ ParticleShapes shapeParticles(const NeighbourGrid& grid, const AnisotropySetting
                 facesEye(cloud, i, moments, settings))
               offset = offsetToMantaflowSurface(grid, i, shape, centre, settings);
             shapes.instances[i] = ellipsoidInstance(centre, shape.axes, shape.semiAxes + offset * radius);
+            shapes.offsets[i] = offset;
             if (!settings.needDensity) continue;
             // Unit-free density: the kernel's normalisation over its support volume, times r^3.
             if (shape.kind == ShapeKind::Anisotropic) {

@@ -85,6 +85,9 @@ struct ParticleShapes {
   /// Yu and Turk's density sum_j W(x_j - x_i, G_i) times r^3: neighbours per cubed particle radius, so
   /// unit-free. Zero when the settings do not need densities.
   std::vector<float> densities;
+  /// The surface offset each instance was grown by, in radii (liquid.surface_offset, or the per-particle
+  /// offset to Mantaflow's surface).
+  std::vector<float> offsets;
 };
 
 /// Shapes every visible particle of the grid from its neighbours (TBB-parallel over cells).

@@ -178,6 +178,23 @@ void classifyAndPack(const NeighbourGrid& grid, const ParticleShapes& shapes,
   preparation.splashesAbsorbed = 0;
   for (std::size_t i = 0; i < cloud.size() && !splashRadii.empty(); ++i)
     preparation.splashesAbsorbed += shapes.kinds[i] != ShapeKind::Hidden && absorbed(i);
+
+  if (parameters.surface != "raymarch") return;
+  // The marched density sums every candidate, the neighbours outside the frustum included (their kernels
+  // reach into it), each sized as the drawn surface sizes it.
+  preparation.marchedAggregates.clear();
+  preparation.marchedSplashes.clear();
+  for (std::size_t i = 0; i < cloud.size(); ++i) {
+    const glm::vec3 position(cloud.x[i], cloud.y[i], cloud.z[i]);
+    if (shapes.kinds[i] == ShapeKind::Hidden)
+      preparation.marchedAggregates.emplace_back(position, parameters.surface_offset * cloud.radius[i]);
+    else if (absorbed(i))
+      continue;
+    else if (isSplash(i))
+      preparation.marchedSplashes.emplace_back(position, splashRadius(i));
+    else
+      preparation.marchedAggregates.emplace_back(position, shapes.offsets[i] * cloud.radius[i]);
+  }
 }
 
 bool aggregatesContain(const std::vector<EllipsoidInstance>& aggregates, const glm::vec3& point,

@@ -38,6 +38,11 @@ struct LiquidPreparation {
   std::size_t isotropicInterior = 0;  ///< Aggregates deep inside the body, drawn as spheres without PCA.
   /// Splashes not drawn because Mantaflow's surface passes below them (liquid.mesh_kernel_radius > 0).
   std::size_t splashesAbsorbed = 0;
+  /// For the ray-marched surface (liquid.surface = raymarch; empty otherwise): every liquid candidate, drawn
+  /// or only a neighbour, as the drawn surface sizes it. Aggregates: w the offset their ellipsoid is grown by
+  /// (world units; liquid.surface_offset r for those not shaped). Splashes: w their sphere's radius. Absorbed
+  /// splashes are left out.
+  std::vector<glm::vec4> marchedAggregates, marchedSplashes;
   double neighbourMilliseconds = 0.0;
   double anisotropyMilliseconds = 0.0;
   double totalMilliseconds = 0.0;

@@ -1,11 +1,25 @@
 #include "prep/RaymarchPreparation.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 
 #include "prep/ViewFrustum.h"
+#include "scene/MantaflowDomain.h"
 
 namespace spindrift {
+namespace {
+
+// Supports tabulated between liquid.raymarch_smoothing_radius r and the largest an aggregate needs; the
+// height is smooth and increasing in the support (about 0.9 per unit), so linear interpolation is ample.
+constexpr int kSupportTableSize = 33;
+
+float kernelProfile(float squaredDistance, float inverseSquaredSupport) {
+  const float falloff = 1.0f - squaredDistance * inverseSquaredSupport;
+  return falloff > 0.0f ? falloff * falloff * falloff : 0.0f;
+}
+
+}  // namespace
 
 RaymarchGrid fitRaymarchGrid(const glm::vec3& low, const glm::vec3& high, float smoothingRadius) {
   RaymarchGrid grid;
@@ -29,26 +43,87 @@ RaymarchGrid fitRaymarchGrid(const glm::vec3& low, const glm::vec3& high, float 
   return grid;
 }
 
-RaymarchPreparation prepareRaymarch(const Particles& particles, const Camera& camera, float particleRadius,
-                                    const LiquidParameters& parameters) {
+float flatIsoSurfaceHeight(float support, float spacing, float iso) {
+  const int reach = int(std::ceil(support / spacing)) + 1;
+  const float inverseSquaredSupport = 1.0f / (support * support);
+  const auto density = [&](float height) {
+    float sum = 0.0f;
+    for (int layer = 0; layer <= reach; ++layer)
+      for (int i = -reach; i <= reach; ++i)
+        for (int j = -reach; j <= reach; ++j) {
+          const float dz = height + float(layer) * spacing, dx = float(i) * spacing, dy = float(j) * spacing;
+          sum += kernelProfile(dx * dx + dy * dy + dz * dz, inverseSquaredSupport);
+        }
+    return sum;
+  };
+  // At the top particle the density is at least one (above any sensible iso-value), at the support's
+  // distance above it zero.
+  float inside = 0.0f, outside = support;
+  for (int step = 0; step < 32; ++step) {
+    const float middle = 0.5f * (inside + outside);
+    (density(middle) >= iso ? inside : outside) = middle;
+  }
+  return inside;
+}
+
+RaymarchPreparation prepareRaymarch(const LiquidPreparation& liquid, const Camera& camera,
+                                    float particleRadius, const LiquidParameters& parameters,
+                                    const DomainBox* domain) {
   RaymarchPreparation preparation;
+  if (domain) preparation.domain = *domain;
   preparation.particleRadius = particleRadius;
-  preparation.smoothingRadius = parameters.raymarch_smoothing_radius * particleRadius;
-  const float support = preparation.smoothingRadius;
+  const float baseSupport = parameters.raymarch_smoothing_radius * particleRadius;
+  const float iso = parameters.raymarch_iso;
+
+  // Aggregates: the drawn flat surface stands kSpindriftFlatOffsetRadii r + o above the top particles. The
+  // supports between the base and the one the largest offset needs are tabulated with their flat heights.
+  const float spacing = particleRadius / kRadiusPerSpacing;
+  float largestOffset = 0.0f;
+  for (const glm::vec4& aggregate : liquid.marchedAggregates)
+    if (std::isfinite(aggregate.w)) largestOffset = std::max(largestOffset, aggregate.w);
+  const float highestFlat = kSpindriftFlatOffsetRadii * particleRadius + largestOffset;
+  float largestSupport = baseSupport;
+  while (flatIsoSurfaceHeight(largestSupport, spacing, iso) < highestFlat &&
+         largestSupport < 64.0f * particleRadius)
+    largestSupport *= 1.25f;
+  std::array<float, kSupportTableSize> supports{}, heights{};
+  for (int k = 0; k < kSupportTableSize; ++k) {
+    supports[k] = baseSupport + (largestSupport - baseSupport) * float(k) / float(kSupportTableSize - 1);
+    heights[k] = flatIsoSurfaceHeight(supports[k], spacing, iso);
+  }
+  const auto aggregateSupport = [&](float offset) {
+    const float height = kSpindriftFlatOffsetRadii * particleRadius + offset;
+    if (!(height > heights[0])) return supports[0];
+    const auto upper = std::lower_bound(heights.begin(), heights.end(), height);
+    if (upper == heights.end()) return supports.back();
+    const std::size_t k = std::size_t(upper - heights.begin());
+    const float fraction = (height - heights[k - 1]) / std::max(heights[k] - heights[k - 1], 1e-12f);
+    return supports[k - 1] + fraction * (supports[k] - supports[k - 1]);
+  };
+  // Splashes: a lone particle's iso-surface is the sphere where (1 - q^2)^3 = iso.
+  const float loneRadiusPerSupport = std::sqrt(std::max(1.0f - std::cbrt(iso), 1e-6f));
+
   const ViewFrustum frustum(camera);
   glm::vec3 low(INFINITY), high(-INFINITY);
-  for (std::size_t i = 0; i < particles.size(); ++i) {
-    const glm::vec3& position = particles.positions[i];
-    const float radius = particles.radii[i];
-    if (particles.kinds[i] != ParticleKind::Liquid || !(radius > 0.0f) || !std::isfinite(radius) ||
-        !std::isfinite(position.x + position.y + position.z))
-      continue;
-    if (!frustum.reachedBySphere(frustum.cameraFromWorld(position), support)) continue;
-    preparation.particles.emplace_back(position, radius);
+  float largest = baseSupport;
+  const auto add = [&](const glm::vec3& position, float support) {
+    if (!(support > 0.0f) || !std::isfinite(support) || !std::isfinite(position.x + position.y + position.z))
+      return;
+    if (!frustum.reachedBySphere(frustum.cameraFromWorld(position), support)) return;
+    preparation.particles.emplace_back(position, support);
     low = glm::min(low, position);
     high = glm::max(high, position);
-  }
-  preparation.grid = fitRaymarchGrid(low, high, support);
+    largest = std::max(largest, support);
+  };
+  for (const glm::vec4& aggregate : liquid.marchedAggregates)
+    add(glm::vec3(aggregate), aggregateSupport(std::max(aggregate.w, 0.0f)));
+  // A splash's kernel is capped at the body's largest support: a larger one fuses with the body nearby into a
+  // bulge far outside Mantaflow's surface, and would widen every cell. A lone drop larger than the cap keeps
+  // its size through its drawn sphere (raymarch_upsample.comp).
+  for (const glm::vec4& splash : liquid.marchedSplashes)
+    add(glm::vec3(splash), std::min(supports.back(), splash.w / loneRadiusPerSupport));
+  preparation.smoothingRadius = largest;
+  preparation.grid = fitRaymarchGrid(low, high, largest);
   return preparation;
 }
 

@@ -30,11 +30,6 @@ struct RawConfig {
   float objectMatrix[16];  // column-major, as Blender stores obmat
 };
 
-// Spindrift's particle radius per particle spacing: spheres that far apart overlap into a closed surface
-// without bloating thin sheets (the radius the examples used before it was derived, 0.55 cells at 2 particles
-// per cell).
-constexpr float kRadiusPerSpacing = 1.1f;
-
 // Weighted mean height of the particles around (x, y, h) with Mantaflow's averaged level set weight
 // max(0, 1 - d^2 / (2 r)^2) (ComputeAveragedLevelsetWeight), or for the union level set the distance to the
 // nearest particle; the particles sit on a lattice of `spacing` filling z < 0, the top layer at -spacing / 2.

@@ -62,6 +62,11 @@ struct LiquidSurfaceFromDomain {
 /// above a lattice of particles filling a half space.
 float mantaflowFlatOffset(float kernelRadiusCells, float spacingCells);
 
+/// Spindrift's particle radius per particle spacing: spheres that far apart overlap into a closed surface
+/// without bloating thin sheets (the radius the examples used before it was derived, 0.55 cells at 2
+/// particles per cell).
+constexpr float kRadiusPerSpacing = 1.1f;
+
 /// Spindrift's flat surface of anisotropic ellipsoids stands this many radii above the top particle layer
 /// (liquid.md: a particle on a flat free surface is drawn about (r, r, 0.4 r)).
 constexpr float kSpindriftFlatOffsetRadii = 0.4f;
