@@ -36,6 +36,7 @@ uniform int maxRefractions;            // 1, 2 or 4
 // The camera is inside the aggregated body (under water): every ray starts in liquid, the body's front is the
 // near plane and the first surface a ray meets is the body's back layer, the liquid's surface seen from below.
 uniform bool cameraInLiquid;
+uniform float solidContactDistance;  // two particle radii: a solid this close behind the drawn back touches it
 
 layout(location = 0) out vec4 outLiquid;       // premultiplied RGBA over transparent
 layout(location = 1) out vec4 outSplash;       // the same, where the first surface is a splash
@@ -120,7 +121,8 @@ struct Crossing {
   bool found;
   float t;
   int body;
-  bool back;  // crossed the body's back boundary
+  bool back;   // crossed the body's back boundary
+  bool solid;  // that boundary is a solid inside the body (a pool's floor), not the liquid's back surface
   vec2 fragCoord;
 };
 
@@ -174,6 +176,11 @@ Crossing crossingAt(int body, vec3 origin, vec3 direction, float t) {
   crossing.t = t;
   crossing.fragCoord = clamp(fragCoordFromCamera(origin + t * direction), vec2(0.0), frame.viewportSize.xy - 1.0);
   insideDistance(body, crossing.fragCoord, rayEyeDepth(origin, direction, t), true, crossing.back);
+  // A solid that the body's drawn back lies on (within solidContactDistance, the bottom's undulation), or
+  // that lies in front of it, ends the path there.
+  float drawnBack = layerDepth(body, true, crossing.fragCoord);
+  crossing.solid = crossing.back && drawnBack < kNoSurfaceDepth * 0.5 &&
+                   texelFetch(backgroundEyeDepth, ivec2(crossing.fragCoord), 0).r < drawnBack + solidContactDistance;
   return crossing;
 }
 
@@ -390,6 +397,15 @@ void main() {
       }
       pathInLiquid += length;
       throughput *= exp(-absorptionPerUnitLength * length);
+      if (exit.found && exit.solid) {
+        // The path ends on a solid inside the liquid (a pool's floor, a stone under water). Its light leaves
+        // the liquid through the surface the path entered by, and radiance divided by the square of the index
+        // is what carries across an interface: seen from air, a submerged surface keeps 1 / n^2 of its
+        // radiance (after Fresnel). A camera in the liquid sees it in the same medium.
+        position += exit.t * direction;
+        if (!underLiquid) throughput /= indexOfRefraction * indexOfRefraction;
+        break;
+      }
       if (!exit.found || refractions >= maxRefractions) {
         // One refraction, or a march that left the screen: the light behind comes straight through.
         position += exit.t * direction;

@@ -18,7 +18,7 @@ RefractionPass::RefractionPass(const ShaderLibrary& shaders)
 LiquidData RefractionPass::run(const std::optional<SurfaceLayers>& splashes,
                                const std::optional<SurfaceLayers>& aggregates,
                                const BackgroundData& background, const LiquidParameters& parameters,
-                               bool cameraInLiquid, int width, int height) {
+                               bool cameraInLiquid, float particleRadius, int width, int height) {
   ensureTexture(color_, GL_RGBA32F, width, height);
   ensureTexture(splashColor_, GL_RGBA32F, width, height);
   ensureTexture(surfaceClass_, GL_R32F, width, height);
@@ -77,6 +77,7 @@ LiquidData RefractionPass::run(const std::optional<SurfaceLayers>& splashes,
   glUniform3fv(uniformLocation(program, "absorptionPerUnitLength"), 1, &absorption.x);
   glUniform1i(uniformLocation(program, "maxRefractions"), parameters.max_refractions);
   glUniform1i(uniformLocation(program, "cameraInLiquid"), cameraInLiquid ? 1 : 0);
+  glUniform1f(uniformLocation(program, "solidContactDistance"), 2.0f * particleRadius);
   glUniform1f(uniformLocation(program, "stepPixels"), parameters.trace_step_pixels);
   glUniform1i(uniformLocation(program, "maxSteps"), parameters.trace_max_steps);
   drawFullscreenTriangle(emptyVertexArray_.id());

@@ -18,10 +18,11 @@ class RefractionPass {
  public:
   explicit RefractionPass(const ShaderLibrary& shaders);
   /// Either layer set may be absent (no splash, or no aggregate, in view). With `cameraInLiquid` every ray
-  /// starts inside the aggregated body and first meets its back layer, the surface seen from below.
+  /// starts inside the aggregated body and first meets its back layer, the surface seen from below. A path
+  /// ends on a solid within two `particleRadius` of the body's drawn back (the liquid rests on it).
   LiquidData run(const std::optional<SurfaceLayers>& splashes, const std::optional<SurfaceLayers>& aggregates,
                  const BackgroundData& background, const LiquidParameters& parameters, bool cameraInLiquid,
-                 int width, int height);
+                 float particleRadius, int width, int height);
   /// The counters of the last run (waits for the GPU).
   RefractionStatistics statistics() const;
 
