@@ -37,6 +37,12 @@ uniform int maxRefractions;            // 1, 2 or 4
 // near plane and the first surface a ray meets is the body's back layer, the liquid's surface seen from below.
 uniform bool cameraInLiquid;
 uniform float solidContactDistance;  // two particle radii: a solid this close behind the drawn back touches it
+// A Mantaflow domain's box, inset to where its mesh closes against the walls: beyond it lies air between the
+// liquid and whatever solid is there (the domain's floor), so a solid outside it never touches the liquid.
+uniform bool hasDomain;
+uniform mat4 domainFromWorld;
+uniform vec3 domainLow;
+uniform vec3 domainHigh;
 
 layout(location = 0) out vec4 outLiquid;       // premultiplied RGBA over transparent
 layout(location = 1) out vec4 outSplash;       // the same, where the first surface is a splash
@@ -179,8 +185,14 @@ Crossing crossingAt(int body, vec3 origin, vec3 direction, float t) {
   // A solid that the body's drawn back lies on (within solidContactDistance, the bottom's undulation), or
   // that lies in front of it, ends the path there.
   float drawnBack = layerDepth(body, true, crossing.fragCoord);
-  crossing.solid = crossing.back && drawnBack < kNoSurfaceDepth * 0.5 &&
-                   texelFetch(backgroundEyeDepth, ivec2(crossing.fragCoord), 0).r < drawnBack + solidContactDistance;
+  float solidDepth = texelFetch(backgroundEyeDepth, ivec2(crossing.fragCoord), 0).r;
+  crossing.solid = crossing.back && drawnBack < kNoSurfaceDepth * 0.5 && solidDepth < drawnBack + solidContactDistance;
+  if (crossing.solid && hasDomain) {
+    // Where the ray meets the solid (its planar depth grows by -direction.z per unit).
+    float toSolid = -direction.z > 1e-6 ? (solidDepth + origin.z) / -direction.z : t;
+    vec3 inBox = (domainFromWorld * (frame.worldFromCamera * vec4(origin + toSolid * direction, 1.0))).xyz;
+    crossing.solid = all(greaterThan(inBox, domainLow)) && all(lessThan(inBox, domainHigh));
+  }
   return crossing;
 }
 

@@ -378,7 +378,7 @@ RenderResult Renderer::renderPrepared(const Scene& scene, const Particles& parti
     if (plan.runs(Pass::Refraction))
       liquidLayer.emplace(timed(Pass::Refraction, [&] {
         return pipeline.refraction.run(splashes, aggregates, background, liquidParameters, cameraInLiquid,
-                                       radius, width, height);
+                                       radius, domainBox, width, height);
       }));
 
     // Foam (foam paper, figure 2): the solids' and the liquid's depth, the foam's nearest depth, its

@@ -1,5 +1,7 @@
 #include "passes/RefractionPass.h"
 
+#include <glm/matrix.hpp>
+
 #include "passes/FrameUniforms.h"
 
 namespace spindrift {
@@ -18,7 +20,8 @@ RefractionPass::RefractionPass(const ShaderLibrary& shaders)
 LiquidData RefractionPass::run(const std::optional<SurfaceLayers>& splashes,
                                const std::optional<SurfaceLayers>& aggregates,
                                const BackgroundData& background, const LiquidParameters& parameters,
-                               bool cameraInLiquid, float particleRadius, int width, int height) {
+                               bool cameraInLiquid, float particleRadius, const DomainBox* domain, int width,
+                               int height) {
   ensureTexture(color_, GL_RGBA32F, width, height);
   ensureTexture(splashColor_, GL_RGBA32F, width, height);
   ensureTexture(surfaceClass_, GL_R32F, width, height);
@@ -78,6 +81,13 @@ LiquidData RefractionPass::run(const std::optional<SurfaceLayers>& splashes,
   glUniform1i(uniformLocation(program, "maxRefractions"), parameters.max_refractions);
   glUniform1i(uniformLocation(program, "cameraInLiquid"), cameraInLiquid ? 1 : 0);
   glUniform1f(uniformLocation(program, "solidContactDistance"), 2.0f * particleRadius);
+  glUniform1i(uniformLocation(program, "hasDomain"), domain ? 1 : 0);
+  if (domain) {
+    const glm::mat4 domainFromWorld = glm::inverse(domain->worldFromBox);
+    glUniformMatrix4fv(uniformLocation(program, "domainFromWorld"), 1, GL_FALSE, &domainFromWorld[0][0]);
+    glUniform3fv(uniformLocation(program, "domainLow"), 1, &domain->low.x);
+    glUniform3fv(uniformLocation(program, "domainHigh"), 1, &domain->high.x);
+  }
   glUniform1f(uniformLocation(program, "stepPixels"), parameters.trace_step_pixels);
   glUniform1i(uniformLocation(program, "maxSteps"), parameters.trace_max_steps);
   drawFullscreenTriangle(emptyVertexArray_.id());

@@ -9,6 +9,7 @@
 #include "gl/GlObjects.h"
 #include "gl/ShaderLibrary.h"
 #include "spindrift/Parameters.h"
+#include "spindrift/Scene.h"
 
 namespace spindrift {
 
@@ -19,10 +20,12 @@ class RefractionPass {
   explicit RefractionPass(const ShaderLibrary& shaders);
   /// Either layer set may be absent (no splash, or no aggregate, in view). With `cameraInLiquid` every ray
   /// starts inside the aggregated body and first meets its back layer, the surface seen from below. A path
-  /// ends on a solid within two `particleRadius` of the body's drawn back (the liquid rests on it).
+  /// ends on a solid within two `particleRadius` of the body's drawn back (the liquid rests on it), unless
+  /// the solid lies outside a Mantaflow `domain`'s box (air separates Mantaflow's mesh from the domain's
+  /// walls).
   LiquidData run(const std::optional<SurfaceLayers>& splashes, const std::optional<SurfaceLayers>& aggregates,
                  const BackgroundData& background, const LiquidParameters& parameters, bool cameraInLiquid,
-                 float particleRadius, int width, int height);
+                 float particleRadius, const DomainBox* domain, int width, int height);
   /// The counters of the last run (waits for the GPU).
   RefractionStatistics statistics() const;
 
