@@ -500,19 +500,30 @@ TEST(GLLiquidLight, LitBackgroundScalesTheLampsShareOfTheDirectLight) {
 // Radiance divided by the square of the index is what carries across an interface, so a floor under water,
 // seen from air, keeps (1 - F) exp(-sigma t) / n^2 of its radiance: a slab resting on the floor, seen from
 // straight above, no lights. The same slab floating above the floor keeps (1 - F)^2 exp(-sigma t): its light
-// leaves the water into air again before it meets the floor, and the two interfaces' n^2 cancel.
+// leaves the water into air again before it meets the floor, and the two interfaces' n^2 cancel. So does a
+// slab resting on the floor as a Mantaflow domain's liquid, whose box (where Mantaflow's mesh closes) stops
+// short of the floor: air lies between the mesh and the floor.
 TEST(GLLiquidLight, AFloorUnderWaterKeepsOneOverNSquaredOfItsRadiance) {
   TempDirectory directory;
   const double floorRadiance = 0.5;  // floorScene's colour
-  for (const bool resting : {true, false}) {
-    SCOPED_TRACE(resting ? "slab resting on the floor" : "slab floating above the floor");
+  enum class Slab { Resting, Floating, RestingInADomain };
+  for (const Slab slab : {Slab::Resting, Slab::Floating, Slab::RestingInADomain}) {
+    SCOPED_TRACE(slab == Slab::Resting    ? "slab resting on the floor"
+                 : slab == Slab::Floating ? "slab floating above the floor"
+                                          : "slab resting on the floor in a Mantaflow domain");
     Scene scene = floorScene(directory);
     scene.background.color =
         glm::vec3(0.0f);  // what the surface reflects: nothing, so only the floor is seen
     scene.parameters.liquid.absorption_rgb = {0.9f, 0.3f, 0.15f};
+    if (slab == Slab::RestingInADomain) {
+      ParticleSource source;
+      source.role = ParticleRole::Liquid;
+      source.domainBox = DomainBox{glm::mat4(1.0f), {-3.0f, -3.0f, 0.02f}, {3.0f, 3.0f, 3.0f}};
+      scene.particles.push_back(source);
+    }
     // Particles of radius 0.05 on a 0.05 lattice: the resting slab's drawn bottom touches the floor (z = 0),
     // the floating one's lies 0.45 (9 radii) above it.
-    const float bottom = resting ? 0.05f : 0.5f;
+    const float bottom = slab == Slab::Floating ? 0.5f : 0.05f;
     const RenderResult result = renderer().renderParticles(
         scene, slabParticles({-1.0f, -1.0f, bottom}, {1.0f, 1.0f, bottom + 0.4f}), 1);
     expectAllChannelsFinite(result);
@@ -526,8 +537,8 @@ TEST(GLLiquidLight, AFloorUnderWaterKeepsOneOverNSquaredOfItsRadiance) {
         ASSERT_GT(path, 0.3) << "no water at the image's centre";
         for (int c = 0; c < 3; ++c) {
           const double beer = std::exp(-scene.parameters.liquid.absorption_rgb[c] * path);
-          const double expected =
-              resting ? (1.0 - fresnel) * beer / (ior * ior) : (1.0 - fresnel) * (1.0 - fresnel) * beer;
+          const double expected = slab == Slab::Resting ? (1.0 - fresnel) * beer / (ior * ior)
+                                                        : (1.0 - fresnel) * (1.0 - fresnel) * beer;
           EXPECT_NEAR(at(*result.layer("liquid"), kWidth, column, row, c), expected * floorRadiance,
                       0.02 * expected * floorRadiance);
           EXPECT_NEAR(at(*result.layer("transmittance"), kWidth, column, row, c), expected, 0.02 * expected);
