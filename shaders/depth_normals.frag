@@ -12,20 +12,6 @@ uniform bool backLayer;  // the layer's outward normals face away from the camer
 
 layout(location = 0) out vec4 outNormal;  // xyz: world normal, w: coverage
 
-// The difference to the neighbour along ±axis with the smaller depth step, in units of the centre depth (so
-// that the cross product stays in float range at any distance); false when neither neighbour has a surface.
-bool smallerOneSidedDifference(ivec2 pixel, ivec2 axis, float centreDepth, out vec3 difference) {
-  float forwardDepth = layerDepthAt(smoothedEyeDepth, pixel + axis);
-  float backwardDepth = layerDepthAt(smoothedEyeDepth, pixel - axis);
-  bool hasForward = hasSurface(forwardDepth), hasBackward = hasSurface(backwardDepth);
-  if (!hasForward && !hasBackward) return false;
-  vec3 centre = cameraPositionAtPixel(pixel, 1.0);
-  bool useForward = hasForward && (!hasBackward || abs(forwardDepth - centreDepth) <= abs(centreDepth - backwardDepth));
-  if (useForward) difference = cameraPositionAtPixel(pixel + axis, forwardDepth / centreDepth) - centre;
-  else difference = centre - cameraPositionAtPixel(pixel - axis, backwardDepth / centreDepth);
-  return true;
-}
-
 void main() {
   ivec2 pixel = ivec2(gl_FragCoord.xy);
   float centreDepth = texelFetch(smoothedEyeDepth, pixel, 0).r;
@@ -35,8 +21,8 @@ void main() {
   vec3 towardsSurface = cameraRayFromFragCoord(gl_FragCoord.xy);
   vec3 alongX, alongY;
   vec3 normal = vec3(0.0);
-  if (smallerOneSidedDifference(pixel, ivec2(1, 0), centreDepth, alongX) &&
-      smallerOneSidedDifference(pixel, ivec2(0, 1), centreDepth, alongY))
+  if (smallerOneSidedDifference(smoothedEyeDepth, pixel, ivec2(1, 0), centreDepth, alongX) &&
+      smallerOneSidedDifference(smoothedEyeDepth, pixel, ivec2(0, 1), centreDepth, alongY))
     normal = cross(alongX, alongY);
   float normalLength = length(normal);
   if (normalLength > 0.0 && !isinf(normalLength)) {

@@ -9,6 +9,7 @@
 // light gives the point without the liquid (in the units of Cycles' DiffDir pass), so the lit background can
 // tell the lamps' share of the direct light from the sky's.
 #include "lib/frame.glsl"
+#include "lib/depth_layer.glsl"
 #include "lib/optics.glsl"
 #include "lib/light_view.glsl"
 
@@ -56,26 +57,18 @@ vec3 shadowThroughTexel(ivec2 texel, vec3 world, float pointDepth) {
   return (1.0 - fresnel) * exits * exp(-absorptionPerUnitLength * pathLength);
 }
 
-// The background's world position one pixel away along `step`, or `world` itself where that pixel has no
-// surface.
-vec3 neighbourPosition(vec2 step, vec3 world) {
-  vec2 fragCoord = gl_FragCoord.xy + step;
-  if (any(lessThan(fragCoord, vec2(0.0))) || any(greaterThanEqual(fragCoord, frame.viewportSize.xy))) return world;
-  float eyeDepth = texelFetch(backgroundEyeDepth, ivec2(fragCoord), 0).r;
-  return eyeDepth >= kNoSurfaceDepth * 0.5 ? world : worldPositionFromFragCoord(fragCoord, eyeDepth);
-}
-
-// The background's normal at a point, from its depth: along each axis the neighbour nearer in space, so a
-// depth edge does not bend the normal of the surface on either side. Faces the camera; zero where undefined.
-vec3 backgroundNormal(vec3 world) {
-  vec3 right = neighbourPosition(vec2(1.0, 0.0), world) - world, left = world - neighbourPosition(vec2(-1.0, 0.0), world);
-  vec3 up = neighbourPosition(vec2(0.0, 1.0), world) - world, down = world - neighbourPosition(vec2(0.0, -1.0), world);
-  vec3 alongX = (dot(left, left) > 0.0 && (dot(left, left) < dot(right, right) || dot(right, right) == 0.0)) ? left : right;
-  vec3 alongY = (dot(down, down) > 0.0 && (dot(down, down) < dot(up, up) || dot(up, up) == 0.0)) ? down : up;
+// The background's world normal at a pixel, from its depth (the smaller one-sided differences, as the liquid's
+// depth normals take them), facing the camera; zero where a neighbour is missing along an axis.
+vec3 backgroundNormal(ivec2 pixel, float eyeDepth) {
+  vec3 alongX, alongY;
+  if (!smallerOneSidedDifference(backgroundEyeDepth, pixel, ivec2(1, 0), eyeDepth, alongX) ||
+      !smallerOneSidedDifference(backgroundEyeDepth, pixel, ivec2(0, 1), eyeDepth, alongY))
+    return vec3(0.0);
   vec3 normal = cross(alongX, alongY);
-  if (dot(normal, normal) < 1e-20) return vec3(0.0);
+  if (!(dot(normal, normal) > 0.0)) return vec3(0.0);
   normal = normalize(normal);
-  return dot(normal, frame.worldFromCamera[3].xyz - world) < 0.0 ? -normal : normal;
+  if (dot(normal, cameraRayFromFragCoord(vec2(pixel) + 0.5)) > 0.0) normal = -normal;
+  return mat3(frame.worldFromCamera) * normal;
 }
 
 void main() {
@@ -86,7 +79,7 @@ void main() {
   vec3 world = worldPositionFromFragCoord(gl_FragCoord.xy, eyeDepth);
   float weight = skyMode ? 1.0 : lightWeightAt(world);
   if (!skyMode) {
-    float cosine = max(dot(backgroundNormal(world), -lightTravelAt(world)), 0.0);
+    float cosine = max(dot(backgroundNormal(ivec2(gl_FragCoord.xy), eyeDepth), -lightTravelAt(world)), 0.0);
     outLampDiffuse = vec4(lightIrradianceAt(world) * cosine / 3.14159265358979 * lightColor, 0.0);
   }
   vec2 texel = lightTexelFromWorld(world);

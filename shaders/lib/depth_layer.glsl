@@ -17,6 +17,22 @@ vec3 cameraPositionAtPixel(ivec2 pixel, float eyeDepth) {
   return cameraRayFromFragCoord(vec2(pixel) + 0.5) * eyeDepth;
 }
 
+// The difference to the neighbour along ±axis with the smaller depth step, in units of the centre depth (so
+// that a cross product of two stays in float range at any distance); false when neither neighbour has a
+// surface. Taking the smaller step, a pixel on a silhouette takes its tangent from its own surface, not from
+// across the depth jump.
+bool smallerOneSidedDifference(sampler2D eyeDepth, ivec2 pixel, ivec2 axis, float centreDepth, out vec3 difference) {
+  float forwardDepth = layerDepthAt(eyeDepth, pixel + axis);
+  float backwardDepth = layerDepthAt(eyeDepth, pixel - axis);
+  bool hasForward = hasSurface(forwardDepth), hasBackward = hasSurface(backwardDepth);
+  if (!hasForward && !hasBackward) return false;
+  vec3 centre = cameraPositionAtPixel(pixel, 1.0);
+  bool useForward = hasForward && (!hasBackward || abs(forwardDepth - centreDepth) <= abs(centreDepth - backwardDepth));
+  if (useForward) difference = cameraPositionAtPixel(pixel + axis, forwardDepth / centreDepth) - centre;
+  else difference = centre - cameraPositionAtPixel(pixel - axis, backwardDepth / centreDepth);
+  return true;
+}
+
 // Pixels per world unit at an eye depth (the focal length in pixels over the depth), for filters whose width
 // is given in particle radii.
 float pixelsPerUnitAtDepth(float eyeDepth) {
