@@ -15,6 +15,12 @@ from .scene_json import BadInput
 
 KIND_CODES = {"LIQUID": 0, "SPRAY": 2, "BUBBLE": 4, "FOAM": 8}
 TRIANGLE_TYPES = {"MESH", "CURVE", "SURFACE", "META", "FONT"}
+# Objects the viewport draws as lines or a box: the scene behind them shows through, so in the viewport they hide
+# no liquid (a Mantaflow flow or effector object is usually shown so).
+SEE_THROUGH_DISPLAY = {"WIRE", "BOUNDS"}
+# While the viewport preview is on, enabled objects are drawn as wire; their own settings are kept here
+# (viewport.hide_own_drawing).
+SAVED_DISPLAY = "spindrift_saved_display"
 
 
 def fluid_modifier(obj):
@@ -234,8 +240,24 @@ def object_triangles(obj_eval, matrix):
     return world.astype(np.float32), triangles.reshape(-1, 3)
 
 
+def viewport_display_type(obj):
+    """How the viewport draws `obj` as its user set it (the preview's own wire drawing of enabled objects set
+    aside)."""
+    saved = obj.get(SAVED_DISPLAY)
+    if saved:
+        import ast
+
+        try:
+            return ast.literal_eval(saved)["display_type"]
+        except (ValueError, SyntaxError, KeyError, TypeError):
+            pass
+    return obj.display_type
+
+
 def occluder_triangles(depsgraph, excluded_names, for_render=True):
-    """Every solid the depsgraph shows (instances included) except `excluded_names`, as one triangle soup."""
+    """Every solid the depsgraph shows (instances included) except `excluded_names`, as one triangle soup. For
+    the viewport (`for_render` False) an object displayed as wire or bounds is not a solid: it hides nothing
+    there, whereas the render draws it as it renders."""
     cache = {}
     vertex_blocks, triangle_blocks, offset = [], [], 0
     for instance in depsgraph.object_instances:
@@ -247,6 +269,8 @@ def occluder_triangles(depsgraph, excluded_names, for_render=True):
         if original.name in excluded_names or owner.name in excluded_names:
             continue
         if for_render and owner.hide_render:
+            continue
+        if not for_render and viewport_display_type(original) in SEE_THROUGH_DISPLAY:
             continue
         if liquid_domain_settings(original) is not None:
             continue

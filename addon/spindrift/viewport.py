@@ -138,7 +138,7 @@ class Previews:
 # --- State shared by the callbacks -----------------------------------------------------------------------------
 
 _state = {"previews": None, "draw_handler": None, "timer": False, "version": 0, "submitted": {}, "status": {},
-          "redraw_ms": [], "occluders": {}}
+          "redraw_ms": [], "occluders": {}, "status_redraws": 0}
 
 
 def settings_changed():
@@ -155,6 +155,29 @@ def status(region_key=None):
     if region_key is None:
         return next(reversed(statuses.values()), ("", None)) if statuses else ("", None)
     return statuses.get(region_key, ("", None))
+
+
+def _set_status(region_key, value):
+    """Sets a region's status; a new one redraws the panels that show it. They are drawn apart from the viewport
+    (the Render properties, the viewport's sidebar, drawn before its main region), so a status set while the
+    viewport draws showed only at their next redraw: the trial by hand of 2026-12-02 saw no frame time until
+    the mouse went over the panel."""
+    statuses = _state["status"]
+    if statuses.get(region_key) == value:
+        return
+    statuses[region_key] = value
+    if not bpy.app.timers.is_registered(_redraw_status_panels):
+        bpy.app.timers.register(_redraw_status_panels, first_interval=0.0)
+
+
+def _redraw_status_panels():
+    _state["status_redraws"] += 1
+    window_manager = bpy.context.window_manager if bpy.context else None
+    for window in window_manager.windows if window_manager else ():
+        for area in window.screen.areas:
+            if area.type in ("PROPERTIES", "VIEW_3D"):
+                area.tag_redraw()
+    return None
 
 
 def redraw_times_ms():
@@ -204,6 +227,16 @@ def cached_occluders(scene, depsgraph):
     return cache["triangles"]
 
 
+def shading_hides_liquid(shading):
+    """Whether the view draws the scene's solids opaque: in wireframe shading, and with X-ray in solid shading,
+    the viewport shows what lies behind them, so the preview hands no occluders."""
+    if shading is None:
+        return True
+    if shading.type == "WIREFRAME":
+        return False
+    return not (shading.type == "SOLID" and shading.show_xray)
+
+
 def build_job(context, region, region_data, key, phases):
     scene = context.scene
     settings = scene.spindrift
@@ -216,7 +249,7 @@ def build_job(context, region, region_data, key, phases):
     inputs = frame_inputs.collect(scene, depsgraph, scene.frame_current, camera, occluders=False,
                                   quality=settings.preview_quality, for_render=False, mode="OVER")
     occluders_started = time.perf_counter()
-    if settings.occluders:
+    if settings.occluders and shading_hides_liquid(getattr(context.space_data, "shading", None)):
         triangles = cached_occluders(scene, depsgraph)
         if triangles is not None:
             inputs.kwargs["occluders"] = triangles
@@ -230,7 +263,8 @@ def build_job(context, region, region_data, key, phases):
 def _view_key(context, region, region_data):
     return (tuple(tuple(round(v, 6) for v in row) for row in region_data.view_matrix),
             tuple(tuple(round(v, 6) for v in row) for row in region_data.window_matrix),
-            region.width, region.height, context.scene.frame_current, _state["version"])
+            region.width, region.height, context.scene.frame_current, _state["version"],
+            shading_hides_liquid(getattr(context.space_data, "shading", None)))
 
 
 def draw():
@@ -254,13 +288,13 @@ def draw():
                 reports.warn(f"viewport: {issue}")
             previews.submit(region_key, job)
     except BadInput as error:
-        _state["status"][region_key] = (str(error), None)
+        _set_status(region_key, (str(error), None))
     except Exception as error:  # noqa: BLE001 - a draw callback must never raise into Blender's drawing
-        _state["status"][region_key] = (f"{type(error).__name__}: {error}", None)
+        _set_status(region_key, (f"{type(error).__name__}: {error}", None))
 
     image = previews.latest(region_key)
     if isinstance(image, str):
-        _state["status"][region_key] = (image, None)
+        _set_status(region_key, (image, None))
     elif image is not None:
         drawn = time.perf_counter()
         try:
@@ -269,7 +303,7 @@ def draw():
             previews.fail(region_key, f"{type(error).__name__}: {error}")
             return
         phases["draw_ms"] = (time.perf_counter() - drawn) * 1000
-        _state["status"][region_key] = (f"{image.width}x{image.height}", image.seconds * 1000)
+        _set_status(region_key, (f"{image.width}x{image.height}", image.seconds * 1000))
     phases["total_ms"] = (time.perf_counter() - started) * 1000
     _state["redraw_ms"] = (_state["redraw_ms"] + [phases])[-200:]
 
@@ -294,7 +328,7 @@ def _draw_image(image, phases):
 # Blender's own stand-ins for the liquid (a domain's mesh drawn solid, its particles as points) would show
 # beside Spindrift's liquid and hide the scene behind it. While the preview is on, enabled objects draw as
 # wire and their particles not at all; the originals come back after.
-SAVED_DISPLAY = "spindrift_saved_display"
+SAVED_DISPLAY = export.SAVED_DISPLAY
 
 
 def hide_own_drawing(scene):
@@ -353,6 +387,8 @@ def shutdown():
         _state["previews"] = None
     if _state["timer"] and bpy.app.timers.is_registered(_poll):
         bpy.app.timers.unregister(_poll)
+    if bpy.app.timers.is_registered(_redraw_status_panels):
+        bpy.app.timers.unregister(_redraw_status_panels)
     _state["timer"] = False
     _state["submitted"].clear()
     _state["occluders"].clear()
