@@ -8,7 +8,6 @@ bl_info = {
     "blender": (3, 4, 0),
     "location": "Properties > Physics > Spindrift; Properties > Render > Spindrift; 3D Viewport > Sidebar",
     "description": "Screen-space liquid and foam: live viewport preview and compositor layers per frame",
-    "doc_url": "https://github.com/spindrift/spindrift/blob/main/docs/blender.md",
     "category": "Render",
 }
 
