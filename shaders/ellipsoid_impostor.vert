@@ -3,7 +3,9 @@
 // 2006, section 3.2), or, where that does not exist (an ellipsoid reaching the camera plane), as a
 // camera-facing quad around its bounding sphere's silhouette; the fragment shader ray-casts the exact
 // ellipsoid. A flattened ellipsoid seen edge-on covers a fraction of its bounding sphere's square, and every
-// fragment of the quad costs a ray cast. One instance per particle, four vertices as a triangle strip.
+// fragment of the quad costs a ray cast. Four vertices per particle (gl_VertexID / 4 names it), drawn as two
+// indexed triangles rather than one instance each: llvmpipe pays per instance, and the lights' views of a
+// thick body drew 1.8 times faster so (docs/frame-cost.md).
 #include "lib/frame.glsl"
 
 struct Ellipsoid {
@@ -16,13 +18,13 @@ layout(std430, binding = 0) readonly buffer Ellipsoids {
 };
 
 uniform bool backFaces;
-uniform int firstEllipsoid;  // This layer draws ellipsoids [firstEllipsoid, firstEllipsoid + instances).
+uniform int firstEllipsoid;  // This layer draws ellipsoids [firstEllipsoid, firstEllipsoid + count).
 
 flat out vec3 vCameraCentre;
 flat out mat3 vInverseAxesCamera;  // maps camera-space offsets from the centre to the unit sphere
 
 void main() {
-  Ellipsoid ellipsoid = ellipsoids[firstEllipsoid + gl_InstanceID];
+  Ellipsoid ellipsoid = ellipsoids[firstEllipsoid + (gl_VertexID >> 2)];
   vec3 centre = (frame.cameraFromWorld * vec4(ellipsoid.centreAndBoundingRadius.xyz, 1.0)).xyz;
   float radius = ellipsoid.centreAndBoundingRadius.w;
   mat3 inverseAxesWorld = transpose(mat3(ellipsoid.inverseAxesRows[0].xyz, ellipsoid.inverseAxesRows[1].xyz,
@@ -49,15 +51,16 @@ void main() {
     vec2 halfExtent = abs(sqrt(vec2(xDiscriminant, yDiscriminant)) / wDw);
     // One pixel of margin keeps every pixel centre the exact silhouette covers inside, despite rounding.
     halfExtent += 2.0 * frame.viewportSize.zw;
-    vec2 corner = vec2(gl_VertexID & 1, gl_VertexID >> 1) * 2.0 - 1.0;
+    vec2 corner = vec2(gl_VertexID & 1, (gl_VertexID >> 1) & 1) * 2.0 - 1.0;
     // The rectangle's depth is irrelevant (the fragment shader writes gl_FragDepth); mid-range keeps it
     // inside the clip volume.
-    gl_Position = vec4(middle + corner * halfExtent, 0.0, 1.0);
+    float bound = backFaces ? -centre.z + radius : -centre.z - radius;
+    gl_Position = vec4(middle + corner * halfExtent, depthBufferFromEyeDepth(bound) * 2.0 - 1.0, 1.0);
     return;
   }
 
   float distanceToCentre = length(centre);
-  vec2 corner = vec2(gl_VertexID & 1, gl_VertexID >> 1) * 2.0 - 1.0;
+  vec2 corner = vec2(gl_VertexID & 1, (gl_VertexID >> 1) & 1) * 2.0 - 1.0;
   if (distanceToCentre <= radius * 1.0001) {
     // A camera inside the liquid sits inside a few particles. Their back surfaces are what it sees above it
     // (the liquid's surface from below), so the back layer draws them over the whole screen and the fragment

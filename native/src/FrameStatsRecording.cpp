@@ -4,7 +4,9 @@ namespace spindrift {
 
 void recordPreparation(const LiquidPreparation& liquid, const FoamPreparation& foam, FrameStats& stats) {
   stats.liquid.splashParticles = liquid.splashes.size();
-  stats.liquid.aggregateParticles = liquid.aggregates.size();
+  // Shaped as aggregates, whether drawn or left out as hidden (the drops are recorded before this).
+  stats.liquid.aggregateParticles =
+      liquid.aggregates.size() + stats.liquid.hiddenInteriorDropped + stats.liquid.occludedDropped;
   stats.liquid.isotropicInterior = liquid.isotropicInterior;
   stats.liquid.culled = liquid.culled;
   stats.liquid.splashesAbsorbed = liquid.splashesAbsorbed;
@@ -22,6 +24,14 @@ void recordLighting(std::size_t sceneLights, const LightingPreparation& lighting
   stats.lightsSeeingLiquid = lighting.lights.size();
   stats.lightPasses = lightPasses;
   stats.prepareMilliseconds = lighting.milliseconds;
+  stats.viewSize = lighting.viewSize;
+  const auto count = [&](const LightPreparation& view) {
+    stats.viewParticles += view.liquid.aggregates.size() + view.leftOut;
+    stats.viewParticlesLeftOut += view.leftOut;
+  };
+  for (const LightPreparation& light : lighting.lights)
+    count(light);
+  if (lighting.sky) count(*lighting.sky);
 }
 
 void recordRefraction(const RefractionStatistics& rays, LiquidFrameStats& stats) {

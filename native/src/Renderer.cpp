@@ -286,13 +286,17 @@ RenderResult Renderer::renderPrepared(const Scene& scene, const Particles& parti
     stats.liquid.hiddenInteriorBackLayerOnly = hidden.split.backOnly;
     stats.liquid.hiddenInteriorNotApplied = hidden.notApplied;
     stats.liquid.hiddenInteriorMilliseconds = hidden.milliseconds;
+    stats.liquid.occludedFromFront = hidden.occluded.hiddenFromFront;
+    stats.liquid.occludedFromBack = hidden.occluded.hiddenFromBack;
+    stats.liquid.occludedDropped = hidden.occluded.dropped;
+    stats.liquid.occlusionMilliseconds = hidden.occluded.milliseconds;
   }
   if (backgroundImages.environment)
     checkImageFitsGl(impl_->glLimits, backgroundImages.environment->width,
                      backgroundImages.environment->height,
                      "background.environment " + pathForFrame(scene.background.environment, frame).string());
   const LightingPreparation lighting =
-      prepareLighting(particles, scene.lights, scene.parameters, &frameSurface);
+      prepareLighting(particles, camera, scene.lights, scene.parameters, &frameSurface);
   stats.prepareMilliseconds = millisecondsSince(prepareStart);
   recordPreparation(liquid, foam, stats);
   stats.liquid.cameraInLiquid = cameraInLiquid;

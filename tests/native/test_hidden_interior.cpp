@@ -315,6 +315,13 @@ void expectIdenticalFrames(Scene scene, const Particles& particles,
       dropped.stats.liquid.hiddenInteriorFrontLayerOnly + dropped.stats.liquid.hiddenInteriorBackLayerOnly,
       0u);
   EXPECT_EQ(all.stats.liquid.hiddenInteriorDropped, 0u);
+  // The view hides more besides (prep/OccludedAggregates.cpp): the block's far side behind its near side.
+  EXPECT_GT(dropped.stats.liquid.occludedDropped, 0u);
+  EXPECT_EQ(all.stats.liquid.occludedDropped, 0u);
+  if (!scene.lights.empty()) {
+    EXPECT_GT(dropped.stats.light.viewParticlesLeftOut, 0u);
+    EXPECT_EQ(all.stats.light.viewParticlesLeftOut, 0u);
+  }
   ASSERT_EQ(all.layers.size(), dropped.layers.size());
   for (std::size_t l = 0; l < all.layers.size(); ++l) {
     ASSERT_EQ(all.layers[l].pixels.size(), dropped.layers[l].pixels.size());
@@ -335,6 +342,19 @@ Scene blockScene() {
 
 TEST(GLHiddenInterior, EveryLayerIsBitIdenticalWithAndWithout) {
   expectIdenticalFrames(blockScene(), jitteredBlock());
+}
+
+TEST(GLHiddenInterior, EveryLightPassIsBitIdenticalWithAndWithout) {
+  // A sun at an angle: its view and the sky's drop what they hide, and the shadow, caustic and sky layers
+  // stay the same to the bit.
+  Scene scene = blockScene();
+  Light sun;
+  sun.type = Light::Type::Sun;
+  sun.direction = glm::normalize(glm::vec3(0.3f, 0.5f, -0.8f));
+  sun.strength = 3.0f;
+  scene.lights.push_back(sun);
+  scene.parameters.light.shadow_map_size = 128;
+  expectIdenticalFrames(scene, jitteredBlock());
 }
 
 TEST(GLHiddenInterior, EveryLayerIsBitIdenticalInsideADomainBox) {

@@ -34,7 +34,7 @@ struct SkippedPass {
 /// What the liquid pipeline found in a frame.
 struct LiquidFrameStats {
   std::size_t splashParticles = 0;     ///< Drawn as spheres.
-  std::size_t aggregateParticles = 0;  ///< Drawn as ellipsoids.
+  std::size_t aggregateParticles = 0;  ///< Shaped as ellipsoids (drawn, or left out as hidden).
   std::size_t isotropicInterior = 0;   ///< Aggregates deep inside the body, drawn without anisotropy.
   std::size_t culled = 0;              ///< Outside the view frustum.
   std::size_t splashesAbsorbed = 0;    ///< Splashes below Mantaflow's surface: not drawn.
@@ -44,6 +44,10 @@ struct LiquidFrameStats {
   std::size_t hiddenInteriorBackLayerOnly = 0;   ///< Their near half hidden: drawn into the back layer only.
   std::string hiddenInteriorNotApplied;  ///< Why none were left out this frame, if something ruled it out.
   double hiddenInteriorMilliseconds = 0.0;
+  std::size_t occludedFromFront = 0;  ///< Aggregates the view hides from the front layer (others cover them).
+  std::size_t occludedFromBack = 0;   ///< Likewise from the back layer.
+  std::size_t occludedDropped = 0;    ///< Hidden by the view from both layers: not drawn.
+  double occlusionMilliseconds = 0.0;
   std::size_t liquidPixels = 0;
   std::size_t raysWithSecondBody =
       0;  ///< Rays that went on into a second body (third and fourth refraction).
@@ -93,6 +97,9 @@ struct LightFrameStats {
   bool caustics = false;               ///< Whether any light's caustics were splatted.
   bool lightPasses = false;            ///< Whether the background had Cycles' light passes.
   double prepareMilliseconds = 0.0;    ///< CPU preparation of the lights' views (included in prepare_ms).
+  int viewSize = 0;                    ///< Side in texels of the lights' views (light.texels_per_radius).
+  std::size_t viewParticles = 0;  ///< Liquid particles shaped for the lights' and the sky's views, summed.
+  std::size_t viewParticlesLeftOut = 0;  ///< Of those, hidden from both layers of their view: not drawn.
 };
 
 /// The cost a Renderer pays once, before its first frame: the GL context and the shader programs.

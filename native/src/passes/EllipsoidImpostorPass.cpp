@@ -24,6 +24,18 @@ SurfaceLayers EllipsoidImpostorPass::run(const std::vector<EllipsoidInstance>& e
     ellipsoidBufferBytes_ = bytes;
   }
   if (bytes > 0) glNamedBufferSubData(ellipsoidBuffer_.id(), 0, GLsizeiptr(bytes), ellipsoids.data());
+  // Two triangles per particle over its four vertices, the indices shared by every frame (grow-only).
+  if (ellipsoids.size() > quadCount_) {
+    std::vector<GLuint> indices(6 * ellipsoids.size());
+    for (std::size_t i = 0; i < ellipsoids.size(); ++i) {
+      const GLuint corner = GLuint(4 * i);
+      const GLuint quad[6] = {corner, corner + 1, corner + 2, corner + 2, corner + 1, corner + 3};
+      std::copy(quad, quad + 6, indices.begin() + std::ptrdiff_t(6 * i));
+    }
+    quadIndices_ = createBuffer();
+    glNamedBufferStorage(quadIndices_.id(), GLsizeiptr(indices.size() * sizeof(GLuint)), indices.data(), 0);
+    quadCount_ = ellipsoids.size();
+  }
   checkGlError("uploading liquid particles");
   const GLsizei all = GLsizei(ellipsoids.size());
   drawLayer(front_, false, 0, all - GLsizei(split.backOnly), background, width, height, domain);
@@ -74,7 +86,8 @@ void EllipsoidImpostorPass::drawLayer(Target& target, bool backFaces, GLint firs
   glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, ellipsoidBuffer_.id());
   glBindTextureUnit(0, background.eyeDepth.id());
   glBindVertexArray(emptyVertexArray_.id());
-  glDrawArraysInstanced(GL_TRIANGLE_STRIP, 0, 4, count);
+  glVertexArrayElementBuffer(emptyVertexArray_.id(), quadIndices_.id());
+  glDrawElements(GL_TRIANGLES, 6 * count, GL_UNSIGNED_INT, nullptr);
   glDisable(GL_DEPTH_TEST);
   glDepthFunc(GL_LESS);
   checkGlError(backFaces ? "drawing back faces of liquid particles"

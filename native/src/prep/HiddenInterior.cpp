@@ -6,10 +6,13 @@
 #include <cmath>
 #include <cstdint>
 #include <memory>
+#include <optional>
 
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 #include <glm/glm.hpp>
+
+#include "prep/EllipsoidBounds.h"
 
 namespace spindrift {
 namespace {
@@ -28,21 +31,6 @@ constexpr double kMinDeepFraction = 0.1;
 
 constexpr std::int32_t kNoOwner = -1;
 constexpr std::int32_t kSeveralOwners = -2;
-
-// The largest singular value of the matrix whose rows are given, bounded from above by Gershgorin's theorem
-// on M M^T: exact for orthogonal rows (an ellipsoid's), and never smaller than the true value, which keeps
-// both of its uses below conservative.
-float largestSingularValue(const EllipsoidInstance& ellipsoid) {
-  float largest = 0.0f;
-  for (int i = 0; i < 3; ++i) {
-    float rowSum = 0.0f;
-    for (int j = 0; j < 3; ++j)
-      rowSum += std::abs(
-          glm::dot(glm::vec3(ellipsoid.inverseAxesRows[i]), glm::vec3(ellipsoid.inverseAxesRows[j])));
-    largest = std::max(largest, rowSum);
-  }
-  return std::sqrt(largest);
-}
 
 struct VoxelGrid {
   glm::vec3 low{0.0f};
@@ -254,7 +242,7 @@ HiddenInteriorResult dropHiddenInterior(std::vector<EllipsoidInstance>& ellipsoi
   std::vector<float> inscribed(count);
   glm::vec3 low(INFINITY), high(-INFINITY);
   for (std::size_t i = 0; i < count; ++i) {
-    inscribed[i] = 1.0f / largestSingularValue(ellipsoids[i]);
+    inscribed[i] = inscribedRadius(ellipsoids[i]);
     const glm::vec4& sphere = ellipsoids[i].centreAndBoundingRadius;
     low = glm::min(low, glm::vec3(sphere) - sphere.w);
     high = glm::max(high, glm::vec3(sphere) + sphere.w);
@@ -361,6 +349,9 @@ HiddenInteriorResult dropHiddenInterior(std::vector<EllipsoidInstance>& ellipsoi
 HiddenInteriorResult dropHiddenAggregates(LiquidPreparation& liquid, const Camera& camera,
                                           const DomainBox* domain,
                                           const std::function<SolidDepthTiles()>& solids) {
+  std::optional<SolidDepthTiles> tiles;
+  if (solids) tiles.emplace(solids());
+  const SolidDepthTiles* solidTiles = tiles ? &*tiles : nullptr;
   // Deep particles are the ones the anisotropy found isotropic; where they are few the body is a sheet or a
   // spray, which hides little: on the dam-break example (5 % deep) 0.8 % of the aggregates are hidden from
   // both layers and 6 % from one, fewer fragments than the grid's cost on the CPU (docs/frame-cost.md).
@@ -368,15 +359,14 @@ HiddenInteriorResult dropHiddenAggregates(LiquidPreparation& liquid, const Camer
   if (double(liquid.isotropicInterior) < kMinDeepFraction * double(liquid.aggregates.size())) {
     result.notApplied = "few deep aggregates (" + std::to_string(liquid.isotropicInterior) + " of " +
                         std::to_string(liquid.aggregates.size()) + ")";
-    return result;
-  }
-  if (!solids) {
-    result = dropHiddenInterior(liquid.aggregates, camera, domain);
   } else {
-    const SolidDepthTiles tiles = solids();
-    result = dropHiddenInterior(liquid.aggregates, camera, domain, &tiles);
+    result = dropHiddenInterior(liquid.aggregates, camera, domain, solidTiles);
   }
   liquid.aggregateLayers = result.split;
+  // What the view hides: the body's far side behind its near side, and the inside of a body whose particles
+  // leave gaps between them.
+  result.occluded =
+      dropOccludedAggregates(liquid.aggregates, liquid.aggregateLayers, camera, domain, solidTiles);
   return result;
 }
 

@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "prep/LiquidPreparation.h"
+#include "prep/OccludedAggregates.h"
 #include "prep/SolidDepthTiles.h"
 #include "spindrift/Camera.h"
 #include "spindrift/Scene.h"
@@ -18,6 +19,8 @@ struct HiddenInteriorResult {
   LayerSplit split;         ///< Hidden from one layer: drawn into the other only.
   std::string notApplied;   ///< Why nothing was tried, when something ruled it out for this frame.
   double milliseconds = 0.0;
+  /// dropHiddenAggregates only: what the view hides besides (dropOccludedAggregates, run after).
+  OccludedAggregatesResult occluded;
 };
 
 /// Leaves out of each depth layer the ellipsoids that cannot win a pixel of it. The front layer keeps each
@@ -35,7 +38,8 @@ struct HiddenInteriorResult {
 HiddenInteriorResult dropHiddenInterior(std::vector<EllipsoidInstance>& ellipsoids, const Camera& camera,
                                         const DomainBox* domain, const SolidDepthTiles* solids = nullptr);
 
-/// dropHiddenInterior on a preparation's aggregates, recording the split in `liquid.aggregateLayers`.
+/// dropHiddenInterior on a preparation's aggregates (where enough of them are deep), then
+/// dropOccludedAggregates, recording the split in `liquid.aggregateLayers`.
 /// `solids`, when given, makes the frame's solids; it is called only when the step is tried (its cost, a pass
 /// over the background's depth, is not paid on frames that skip the step).
 HiddenInteriorResult dropHiddenAggregates(LiquidPreparation& liquid, const Camera& camera,

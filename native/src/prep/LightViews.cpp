@@ -31,6 +31,12 @@ Camera framingCamera(const glm::vec3& position, const LiquidBounds& bounds, int 
   return camera;
 }
 
+// World size of a view's texel at the liquid's centre.
+float texelSizeAt(const Camera& camera, const LiquidBounds& bounds) {
+  const float distance = glm::distance(camera.position(), bounds.centre);
+  return 2.0f * distance * std::tan(glm::radians(0.5f * camera.fovYDegrees)) / float(camera.height);
+}
+
 }  // namespace
 
 LiquidBounds liquidBounds(const Particles& particles, const LiquidParameters& parameters) {
@@ -51,7 +57,27 @@ LiquidBounds liquidBounds(const Particles& particles, const LiquidParameters& pa
   const float reach = std::max(1.0f, parameters.max_ellipsoid_scale) * largestRadius +
                       parameters.anisotropy_smoothing * parameters.neighbour_radius * largestRadius;
   bounds.radius = 0.5f * glm::length(high - low) + reach;
+  bounds.particleRadius = largestRadius;
   return bounds;
+}
+
+int lightViewSize(const LiquidBounds& bounds, const Camera& camera, const LightParameters& parameters) {
+  const int largest = parameters.shadow_map_size;
+  if (!(parameters.texels_per_radius > 0.0f) || !(bounds.radius > 0.0f)) return largest;
+  const float nearest =
+      std::max(glm::distance(camera.position(), bounds.centre) - bounds.radius, camera.nearClip);
+  const float pixel =
+      2.0f * nearest * std::tan(glm::radians(0.5f * camera.fovYDegrees)) / float(camera.height);
+  // A view frames the bounding sphere with a 2 % margin (framingCamera). The particles' radius bounds the
+  // detail a body of many particles has (its bumps are smoothed away); a body of a few large ones curves at
+  // its own size, which a view resolves in kDetailTexels.
+  constexpr float kDetailTexels = 128.0f;
+  const float side = 2.04f * bounds.radius;
+  const float detail = std::min(bounds.particleRadius / parameters.texels_per_radius, side / kDetailTexels);
+  const float wanted = std::ceil(side / std::max(detail, pixel));
+  constexpr int kSmallest = 32;
+  if (!(wanted < float(largest))) return largest;
+  return std::max(int(wanted), std::min(kSmallest, largest));
 }
 
 std::optional<LightView> lightViewOf(const Light& light, const LiquidBounds& bounds, int size,
@@ -61,6 +87,7 @@ std::optional<LightView> lightViewOf(const Light& light, const LiquidBounds& bou
   if (light.type == Light::Type::Sun) {
     view.camera =
         framingCamera(bounds.centre - light.direction * (kSunDistanceInRadii * bounds.radius), bounds, size);
+    view.texelSize = texelSizeAt(view.camera, bounds);
     return view;
   }
   const glm::vec3 toLiquid = bounds.centre - light.position;
@@ -80,6 +107,7 @@ std::optional<LightView> lightViewOf(const Light& light, const LiquidBounds& bou
     }
   }
   view.camera = framingCamera(light.position, bounds, size);
+  view.texelSize = texelSizeAt(view.camera, bounds);
   return view;
 }
 
@@ -101,8 +129,9 @@ std::size_t causticLights(const LightingPreparation& lighting) {
   return count;
 }
 
-LightingPreparation prepareLighting(const Particles& particles, const std::vector<Light>& lights,
-                                    const Parameters& parameters, FrameMantaflowSurface* frameSurface) {
+LightingPreparation prepareLighting(const Particles& particles, const Camera& camera,
+                                    const std::vector<Light>& lights, const Parameters& parameters,
+                                    FrameMantaflowSurface* frameSurface) {
   const auto start = std::chrono::steady_clock::now();
   LightingPreparation preparation;
   if (lights.empty()) return preparation;
@@ -119,10 +148,14 @@ LightingPreparation prepareLighting(const Particles& particles, const std::vecto
     body.insert(body.end(), light.liquid.splashes.begin(), light.liquid.splashes.end());
     light.liquid.splashes.clear();
     // The light's layers are the body's nearest entry and farthest exit too, unclipped by the domain.
-    if (parameters.liquid.drop_hidden_interior) dropHiddenAggregates(light.liquid, view.camera, nullptr);
+    if (parameters.liquid.drop_hidden_interior) {
+      const HiddenInteriorResult hidden = dropHiddenAggregates(light.liquid, view.camera, nullptr);
+      light.leftOut = hidden.dropped + hidden.occluded.dropped;
+    }
     return light;
   };
-  const int size = parameters.light.shadow_map_size;
+  const int size = lightViewSize(bounds, camera, parameters.light);
+  preparation.viewSize = size;
   for (std::size_t i = 0; i < lights.size(); ++i) {
     std::string whyNot;
     std::optional<LightView> view = lightViewOf(lights[i], bounds, size, &whyNot);
@@ -132,7 +165,8 @@ LightingPreparation prepareLighting(const Particles& particles, const std::vecto
     }
     preparation.lights.push_back(prepareFor(*view));
   }
-  const LightView sky = skyView(bounds, size);
+  // The sky's view finds how deep below the surface a point lies, which varies slowly: half the lights' side.
+  const LightView sky = skyView(bounds, std::max(size / 2, std::min(32, size)));
   preparation.sky = prepareFor(sky);
   preparation.milliseconds =
       std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();

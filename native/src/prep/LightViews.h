@@ -17,8 +17,15 @@ namespace spindrift {
 /// A sphere around every liquid particle's drawn ellipsoid.
 struct LiquidBounds {
   glm::vec3 centre{0.0f};
-  float radius = 0.0f;  ///< 0 when there is no liquid.
+  float radius = 0.0f;          ///< 0 when there is no liquid.
+  float particleRadius = 0.0f;  ///< The largest liquid particle's.
 };
+
+/// The side in texels of the lights' views: each texel as wide as the coarser of the camera's pixel where the
+/// liquid comes nearest and the body's detail, a particle radius over light.texels_per_radius or 1/128 of
+/// the view where that is finer (finer than both shows nothing the frame can use), within
+/// [32, light.shadow_map_size]; light.shadow_map_size itself when light.texels_per_radius is 0.
+int lightViewSize(const LiquidBounds& bounds, const Camera& camera, const LightParameters& parameters);
 
 LiquidBounds liquidBounds(const Particles& particles, const LiquidParameters& parameters);
 
@@ -28,7 +35,8 @@ LiquidBounds liquidBounds(const Particles& particles, const LiquidParameters& pa
 struct LightView {
   Light light;
   Camera camera;
-  bool sky = false;  ///< The view straight down that measures how deep a point lies below the surface.
+  bool sky = false;        ///< The view straight down that measures how deep a point lies below the surface.
+  float texelSize = 0.0f;  ///< World size of a texel at the liquid's centre.
 };
 
 constexpr float kSunDistanceInRadii = 1000.0f;
@@ -46,6 +54,7 @@ LightView skyView(const LiquidBounds& bounds, int size);
 struct LightPreparation {
   LightView view;
   LiquidPreparation liquid;
+  std::size_t leftOut = 0;  ///< Particles hidden from both of the view's layers, not drawn.
 };
 
 /// The views and ellipsoids of every light that sees the liquid, and of the sky; lights that do not are
@@ -54,6 +63,7 @@ struct LightingPreparation {
   std::vector<LightPreparation> lights;
   std::optional<LightPreparation> sky;
   std::vector<std::string> skipped;
+  int viewSize = 0;  ///< Side in texels of every view (lightViewSize).
   double milliseconds = 0.0;
 };
 
@@ -62,8 +72,8 @@ std::size_t causticLights(const LightingPreparation& lighting);
 
 /// Prepares each light's view (and the sky's) of the liquid. `frameSurface`: the camera's, so that
 /// Mantaflow's surface is built and searched once per frame (prepareLiquid).
-LightingPreparation prepareLighting(const Particles& particles, const std::vector<Light>& lights,
-                                    const Parameters& parameters,
+LightingPreparation prepareLighting(const Particles& particles, const Camera& camera,
+                                    const std::vector<Light>& lights, const Parameters& parameters,
                                     FrameMantaflowSurface* frameSurface = nullptr);
 
 }  // namespace spindrift

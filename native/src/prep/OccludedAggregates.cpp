@@ -1,0 +1,212 @@
+#include "prep/OccludedAggregates.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <limits>
+
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+#include <glm/geometric.hpp>
+#include <glm/matrix.hpp>
+#include <glm/trigonometric.hpp>
+
+#include "prep/EllipsoidBounds.h"
+
+namespace spindrift {
+namespace {
+
+// Margins for the rounding between this test and the impostor pass's float ray casts. A covering ball is
+// shrunk and a bounding sphere grown by kRadiusMargin of its radius (and a ray's distance to a centre is
+// trusted to kDirectionMargin of the centre's distance: a float ray direction's error); where a chord ends is
+// trusted to kChordMargin of the radius (a grazing ray's end is ill-conditioned) and kDistanceMargin of the
+// distance.
+constexpr double kRadiusMargin = 1e-3;
+constexpr double kDirectionMargin = 1e-6;
+constexpr double kChordMargin = 1e-2;
+constexpr double kDistanceMargin = 1e-5;
+
+// One ellipsoid as this view sees it: where a pixel's ray meets its bounding sphere (it may be drawn there,
+// no nearer than the sphere's entry and no farther than its exit) and its inscribed ball (it is drawn there,
+// entering no later than the ball's entry and leaving no earlier than the ball's exit).
+struct ViewedEllipsoid {
+  glm::dvec3 centre{0.0};  // camera space
+  double bounding = 0.0;   // radii, with their margins
+  double inscribed = 0.0;
+  double chordMargin = 0.0;
+  glm::ivec2 reachLow{0}, reachHigh{-1};  // pixel rectangles (inclusive) of the sphere and the ball
+  glm::ivec2 coverLow{0}, coverHigh{-1};
+  bool valid = false;  // whole between the near and far planes
+};
+
+// Where a unit ray from the eye enters and leaves a ball; false when it misses. Distances along the ray: for
+// one pixel every ellipsoid is compared on the same ray, so they order as planar depths do.
+bool chord(const glm::dvec3& centre, double radius, const glm::dvec3& ray, double& entry, double& exit) {
+  const glm::dvec3 offset = glm::cross(centre, ray);  // |c x r|: the ray's distance from the centre
+  const double missing = radius * radius - glm::dot(offset, offset);
+  if (!(missing >= 0.0)) return false;
+  const double along = glm::dot(centre, ray), half = std::sqrt(missing);
+  entry = along - half;
+  exit = along + half;
+  return true;
+}
+
+struct ViewGrid {
+  int width = 0;
+  int height = 0;
+  float focal = 1.0f;            // pixels per unit of the image plane at distance 1
+  std::vector<glm::dvec3> rays;  // unit ray through each pixel centre (x right, y down), camera space
+
+  explicit ViewGrid(const Camera& camera) : width(camera.width), height(camera.height) {
+    focal = 0.5f * float(height) / std::tan(glm::radians(0.5f * camera.fovYDegrees));
+    rays.resize(std::size_t(width) * height);
+    for (int y = 0; y < height; ++y)
+      for (int x = 0; x < width; ++x)
+        rays[std::size_t(y) * width + x] = glm::normalize(
+            glm::dvec3((x + 0.5 - 0.5 * width) / focal, (0.5 * height - (y + 0.5)) / focal, -1.0));
+  }
+  const glm::dvec3& ray(int x, int y) const { return rays[std::size_t(y) * width + x]; }
+
+  // The pixels whose centres may see a ball (camera space, wholly in front of the eye): its bounding box's
+  // corners projected, which bound its projection.
+  void rectangle(const glm::vec3& centre, float radius, glm::ivec2& low, glm::ivec2& high) const {
+    glm::vec2 least(std::numeric_limits<float>::max()), most(std::numeric_limits<float>::lowest());
+    for (int corner = 0; corner < 8; ++corner) {
+      const glm::vec3 point =
+          centre +
+          radius * glm::vec3(corner & 1 ? 1.0f : -1.0f, corner & 2 ? 1.0f : -1.0f, corner & 4 ? 1.0f : -1.0f);
+      const glm::vec2 pixel(0.5f * width + focal * point.x / -point.z,
+                            0.5f * height - focal * point.y / -point.z);
+      least = glm::min(least, pixel);
+      most = glm::max(most, pixel);
+    }
+    // Pixel centres at +0.5 inside [least, most], widened by one pixel for rounding.
+    low = glm::max(glm::ivec2(glm::floor(least - 0.5f)) - 1, glm::ivec2(0));
+    high = glm::min(glm::ivec2(glm::ceil(most - 0.5f)) + 1, glm::ivec2(width - 1, height - 1));
+  }
+};
+
+bool insideBox(const EllipsoidInstance& ellipsoid, const DomainBox& domain, const glm::mat4& boxFromWorld,
+               float boxScale) {
+  const glm::vec3 centre =
+      glm::vec3(boxFromWorld * glm::vec4(glm::vec3(ellipsoid.centreAndBoundingRadius), 1.0f));
+  const float reach = ellipsoid.centreAndBoundingRadius.w * boxScale;
+  return glm::all(glm::greaterThan(centre - reach, domain.low)) &&
+         glm::all(glm::lessThan(centre + reach, domain.high));
+}
+
+}  // namespace
+
+OccludedAggregatesResult dropOccludedAggregates(std::vector<EllipsoidInstance>& ellipsoids, LayerSplit& split,
+                                                const Camera& camera, const DomainBox* domain,
+                                                const SolidDepthTiles* solids) {
+  const auto start = std::chrono::steady_clock::now();
+  OccludedAggregatesResult result;
+  const std::size_t count = ellipsoids.size();
+  if (count == 0 || camera.width <= 0 || camera.height <= 0) return result;
+  const ViewGrid grid(camera);
+  const glm::mat4 cameraFromWorld = camera.cameraFromWorld();
+  glm::mat4 boxFromWorld(1.0f);
+  float boxScale = 1.0f;
+  if (domain) {
+    boxFromWorld = glm::inverse(domain->worldFromBox);
+    const glm::mat3 linear(boxFromWorld);
+    boxScale = std::sqrt(glm::dot(linear[0], linear[0]) + glm::dot(linear[1], linear[1]) +
+                         glm::dot(linear[2], linear[2]));  // Frobenius: at least the largest stretch.
+  }
+
+  std::vector<ViewedEllipsoid> viewed(count);
+  std::vector<char> coversFront(count, 0), coversBack(count, 0);
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, count), [&](const tbb::blocked_range<std::size_t>& r) {
+    for (std::size_t i = r.begin(); i != r.end(); ++i) {
+      const glm::vec4& sphere = ellipsoids[i].centreAndBoundingRadius;
+      const glm::vec3 centre = glm::vec3(cameraFromWorld * glm::vec4(glm::vec3(sphere), 1.0f));
+      const float radius = sphere.w, depth = -centre.z, distance = glm::length(centre);
+      if (!(depth - radius > camera.nearClip) || !(depth + radius < camera.farClip) || !(distance > radius))
+        continue;
+      ViewedEllipsoid& view = viewed[i];
+      view.valid = true;
+      view.centre = glm::dvec3(centre);
+      const double slack = kDirectionMargin * double(distance);
+      view.bounding = double(radius) * (1.0 + kRadiusMargin) + slack;
+      view.chordMargin = kChordMargin * double(radius) + kDistanceMargin * double(distance);
+      grid.rectangle(centre, float(view.bounding), view.reachLow, view.reachHigh);
+      const double inscribed = double(inscribedRadius(ellipsoids[i])) * (1.0 - kRadiusMargin) - slack;
+      if (!(inscribed > 0.0)) continue;
+      view.inscribed = inscribed;
+      grid.rectangle(centre, float(inscribed), view.coverLow, view.coverHigh);
+      const bool unclipped = !domain || insideBox(ellipsoids[i], *domain, boxFromWorld, boxScale);
+      coversFront[i] = unclipped;
+      coversBack[i] =
+          unclipped && !(solids && solids->solidNearerThan(glm::vec3(sphere), radius, depth + radius));
+    }
+  });
+
+  // How far along each pixel's ray the front layer's surface lies at most, and the back layer's at least:
+  // each covering ellipsoid bounds them by its inscribed ball's chord. In bands of rows, so that each pixel
+  // is written by one thread.
+  const std::size_t pixels = std::size_t(grid.width) * grid.height;
+  std::vector<double> frontAtMost(pixels, std::numeric_limits<double>::infinity());
+  std::vector<double> backAtLeast(pixels, -std::numeric_limits<double>::infinity());
+  constexpr int kRowsPerBand = 16;
+  const int bands = (grid.height + kRowsPerBand - 1) / kRowsPerBand;
+  tbb::parallel_for(0, bands, [&](int band) {
+    const int firstRow = band * kRowsPerBand, lastRow = std::min(firstRow + kRowsPerBand, grid.height) - 1;
+    for (std::size_t i = 0; i < count; ++i) {
+      const ViewedEllipsoid& view = viewed[i];
+      if (!coversFront[i] && !coversBack[i]) continue;
+      for (int y = std::max(view.coverLow.y, firstRow); y <= std::min(view.coverHigh.y, lastRow); ++y)
+        for (int x = view.coverLow.x; x <= view.coverHigh.x; ++x) {
+          double entry, exit;
+          if (!chord(view.centre, view.inscribed, grid.ray(x, y), entry, exit)) continue;
+          const std::size_t pixel = std::size_t(y) * grid.width + x;
+          if (coversFront[i]) frontAtMost[pixel] = std::min(frontAtMost[pixel], entry + view.chordMargin);
+          if (coversBack[i]) backAtLeast[pixel] = std::max(backAtLeast[pixel], exit - view.chordMargin);
+        }
+    }
+  });
+
+  // An ellipsoid is hidden from a layer when at every pixel where its bounding sphere may be drawn, another
+  // ellipsoid's surface is certainly nearer than the sphere's entry (front) or farther than its exit (back).
+  // Its own ball never hides it: the ball's chord lies inside the sphere's, and the margins only widen that.
+  const std::size_t backFrom = count - split.backOnly;
+  std::vector<char> inFront(count), inBack(count);
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, count), [&](const tbb::blocked_range<std::size_t>& r) {
+    for (std::size_t i = r.begin(); i != r.end(); ++i) {
+      inFront[i] = i < backFrom;
+      inBack[i] = i >= split.frontOnly;
+      const ViewedEllipsoid& view = viewed[i];
+      if (!view.valid) continue;
+      bool hiddenFront = inFront[i], hiddenBack = inBack[i];
+      for (int y = view.reachLow.y; y <= view.reachHigh.y && (hiddenFront || hiddenBack); ++y)
+        for (int x = view.reachLow.x; x <= view.reachHigh.x && (hiddenFront || hiddenBack); ++x) {
+          double entry, exit;
+          if (!chord(view.centre, view.bounding, grid.ray(x, y), entry, exit)) continue;
+          const std::size_t pixel = std::size_t(y) * grid.width + x;
+          hiddenFront = hiddenFront && frontAtMost[pixel] < entry - view.chordMargin;
+          hiddenBack = hiddenBack && backAtLeast[pixel] > exit + view.chordMargin;
+        }
+      if (hiddenFront) inFront[i] = 0;
+      if (hiddenBack) inBack[i] = 0;
+    }
+  });
+
+  // [front layer only | both | back layer only], each group in its previous order; in neither: out.
+  std::vector<EllipsoidInstance> frontOnly, both, backOnly;
+  for (std::size_t i = 0; i < count; ++i) {
+    result.hiddenFromFront += i < backFrom && !inFront[i];
+    result.hiddenFromBack += i >= split.frontOnly && !inBack[i];
+    if (!inFront[i] && !inBack[i]) continue;
+    (inFront[i] && inBack[i] ? both : inFront[i] ? frontOnly : backOnly).push_back(ellipsoids[i]);
+  }
+  result.dropped = count - frontOnly.size() - both.size() - backOnly.size();
+  split = {frontOnly.size(), backOnly.size()};
+  ellipsoids = std::move(frontOnly);
+  ellipsoids.insert(ellipsoids.end(), both.begin(), both.end());
+  ellipsoids.insert(ellipsoids.end(), backOnly.begin(), backOnly.end());
+  result.milliseconds =
+      std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+  return result;
+}
+
+}  // namespace spindrift

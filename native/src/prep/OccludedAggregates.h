@@ -1,0 +1,36 @@
+#pragma once
+
+#include <cstddef>
+
+#include "prep/LiquidPreparation.h"
+#include "prep/SolidDepthTiles.h"
+#include "spindrift/Camera.h"
+#include "spindrift/Scene.h"
+
+namespace spindrift {
+
+/// What dropOccludedAggregates did to one view's ellipsoids.
+struct OccludedAggregatesResult {
+  std::size_t hiddenFromFront = 0;  ///< Newly left out of the front layer (including those dropped).
+  std::size_t hiddenFromBack = 0;   ///< Newly left out of the back layer (including those dropped).
+  std::size_t dropped = 0;          ///< Now in neither layer: left out.
+  double milliseconds = 0.0;
+};
+
+/// Leaves out of each depth layer the ellipsoids that another one hides from the view at every pixel they
+/// could cover, on the view's own pixel grid. An ellipsoid Q covers a pixel when the pixel's ray passes
+/// through Q's inscribed ball: there the front layer is at most Q's farthest depth (its bounding sphere's).
+/// An ellipsoid P whose nearest depth lies beyond that at every pixel its bounding sphere may reach never
+/// wins a front pixel; the back layer likewise, mirrored. Unlike dropHiddenInterior this needs no overlap
+/// between the particles (a lattice of spheres has gaps between them that the view never sees through) and
+/// it also drops what a nearer part of the body hides (a wave's back behind its front).
+///
+/// Q counts as covering only where its fragments are certain to be drawn: whole inside the near and far
+/// planes and the domain box, and, for the back layer, with no solid nearer than its farthest depth (the
+/// impostor pass hides an ellipsoid whose entry lies behind a solid). `ellipsoids` and `split` come as
+/// dropHiddenInterior leaves them ([front only | both | back only]) and leave in that order too.
+OccludedAggregatesResult dropOccludedAggregates(std::vector<EllipsoidInstance>& ellipsoids, LayerSplit& split,
+                                                const Camera& camera, const DomainBox* domain,
+                                                const SolidDepthTiles* solids);
+
+}  // namespace spindrift

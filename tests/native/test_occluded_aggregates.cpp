@@ -1,0 +1,207 @@
+// Leaving out of each depth layer the aggregates that the view hides (prep/OccludedAggregates.cpp): through
+// the centre of every pixel of the view, the front layer's ellipsoids must give the same nearest entry as all
+// of them and the back layer's the same farthest exit (a double-precision CPU ray cast); a lattice of
+// separate spheres, which the interior test cannot thin, must lose most of its particles, also from a view
+// as distant as a sun's; and nothing may go where the near plane cuts the body. The frame-level checks (every
+// layer bit-identical, with a domain box, solids and a sun) are in test_hidden_interior.cpp.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstring>
+#include <random>
+#include <vector>
+
+#include <glm/glm.hpp>
+
+#include "EllipsoidRayCast.h"
+#include "LiquidTestScenes.h"
+#include "prep/HiddenInterior.h"
+#include "prep/LiquidPreparation.h"
+#include "prep/OccludedAggregates.h"
+
+namespace spindrift {
+namespace {
+
+// Nearest entry and farthest exit (planar-independent: along the unit ray) over a set of ellipsoids.
+std::pair<double, double> rayCast(const std::vector<EllipsoidInstance>& ellipsoids, const glm::dvec3& origin,
+                                  const glm::dvec3& direction) {
+  double nearest = 1e10, farthest = -1e10;
+  for (const EllipsoidInstance& ellipsoid : ellipsoids) {
+    const ellipsoid_test::Chord chord = ellipsoid_test::castRay(ellipsoid, origin, direction);
+    if (chord.miss < 0.0) continue;
+    nearest = std::min(nearest, chord.entry);
+    farthest = std::max(farthest, chord.exit);
+  }
+  return {nearest, farthest};
+}
+
+// The ray through a pixel's centre (x right, y down), in double precision: a point a metre before the eye in
+// float world coordinates would be off by a float's rounding of the eye's position, 300 m away too much.
+glm::dvec3 pixelRay(const Camera& camera, int x, int y) {
+  const double focal = 0.5 * camera.height / std::tan(0.5 * double(glm::radians(camera.fovYDegrees)));
+  const glm::dvec3 inCamera((x + 0.5 - 0.5 * camera.width) / focal, (0.5 * camera.height - (y + 0.5)) / focal,
+                            -1.0);
+  return glm::normalize(glm::dmat3(glm::mat3(camera.worldFromCamera)) * inCamera);
+}
+
+struct PixelCheck {
+  std::size_t hits = 0;
+  std::size_t differing = 0;
+};
+
+// Through every pixel centre of the camera: the layers' lists against all ellipsoids.
+PixelCheck everyPixel(const std::vector<EllipsoidInstance>& all, const std::vector<EllipsoidInstance>& kept,
+                      const LayerSplit& split, const Camera& camera) {
+  const std::vector<EllipsoidInstance> front(kept.begin(), kept.end() - std::ptrdiff_t(split.backOnly));
+  const std::vector<EllipsoidInstance> back(kept.begin() + std::ptrdiff_t(split.frontOnly), kept.end());
+  const glm::dvec3 eye(camera.position());
+  PixelCheck check;
+  for (int y = 0; y < camera.height; ++y)
+    for (int x = 0; x < camera.width; ++x) {
+      const glm::dvec3 direction = pixelRay(camera, x, y);
+      const auto [allFront, allBack] = rayCast(all, eye, direction);
+      if (allFront > 1e9) continue;
+      ++check.hits;
+      check.differing += rayCast(front, eye, direction).first != allFront;
+      check.differing += rayCast(back, eye, direction).second != allBack;
+    }
+  return check;
+}
+
+// A jittered 16 x 16 x 10 block, grown as a default Mantaflow domain grows its particles.
+std::vector<EllipsoidInstance> jitteredBlock(const Camera& camera) {
+  std::mt19937 random(3);
+  std::uniform_real_distribution<float> jitter(-0.03f, 0.03f);
+  std::vector<glm::vec3> positions = liquid_test::block({0.05f, 0.05f, 0.05f}, {1.55f, 1.55f, 0.95f}, 0.1f);
+  for (glm::vec3& position : positions)
+    position += glm::vec3(jitter(random), jitter(random), jitter(random));
+  LiquidParameters parameters;
+  parameters.surface_offset = 1.9f;
+  return prepareLiquid(liquid_test::particlesOf(positions, 0.11f), camera, parameters).aggregates;
+}
+
+// Spheres of radius 0.048 on a lattice of spacing 0.1: none touches another.
+std::vector<EllipsoidInstance> separateSpheres() {
+  std::vector<EllipsoidInstance> spheres;
+  for (const glm::vec3& centre : liquid_test::block({0.05f, 0.05f, 0.05f}, {0.95f, 0.95f, 0.95f}, 0.1f)) {
+    EllipsoidInstance sphere{};
+    sphere.centreAndBoundingRadius = glm::vec4(centre, 0.048f);
+    for (int axis = 0; axis < 3; ++axis) {
+      sphere.inverseAxesRows[axis] = glm::vec4(0.0f);
+      sphere.inverseAxesRows[axis][axis] = 1.0f / 0.048f;
+    }
+    spheres.push_back(sphere);
+  }
+  return spheres;
+}
+
+TEST(OccludedAggregates, EveryPixelSeesInEachLayerWhatAllEllipsoidsGive) {
+  const Camera camera = Camera::lookAt(128, 96, 40.0f, {4.0f, -2.5f, 3.0f}, {0.8f, 0.8f, 0.4f}, {0, 0, 1});
+  const std::vector<EllipsoidInstance> all = jitteredBlock(camera);
+  std::vector<EllipsoidInstance> kept = all;
+  LayerSplit split;
+  const OccludedAggregatesResult result = dropOccludedAggregates(kept, split, camera, nullptr, nullptr);
+  EXPECT_EQ(result.dropped + kept.size(), all.size());
+  // The near side hides the far side's fronts and the other way round: most go from each layer.
+  EXPECT_GT(result.hiddenFromFront, all.size() / 2) << "of " << all.size();
+  EXPECT_GT(result.hiddenFromBack, all.size() / 2) << "of " << all.size();
+  EXPECT_GT(result.dropped, all.size() / 4) << "of " << all.size();
+  const PixelCheck check = everyPixel(all, kept, split, camera);
+  EXPECT_GT(check.hits, 3000u);
+  EXPECT_EQ(check.differing, 0u) << "of " << 2 * check.hits << " layer values";
+}
+
+TEST(OccludedAggregates, SeparateSpheresAreThinnedWhereTheInteriorTestCannot) {
+  // From an oblique close camera and from as far as a sun's view (300 sizes away, where the angles a sphere
+  // is seen under are below a float's resolution of their cosines).
+  for (const float distance : {4.0f, 300.0f}) {
+    const glm::vec3 direction = glm::normalize(glm::vec3(0.4f, -0.6f, 1.0f));
+    const Camera camera = Camera::lookAt(160, 160, glm::degrees(2.0f * std::atan(1.0f / distance)),
+                                         glm::vec3(0.5f) + distance * direction, glm::vec3(0.5f), {0, 0, 1});
+    const std::vector<EllipsoidInstance> all = separateSpheres();
+    std::vector<EllipsoidInstance> interior = all;
+    EXPECT_EQ(dropHiddenInterior(interior, camera, nullptr).dropped, 0u) << "at " << distance;
+    std::vector<EllipsoidInstance> kept = all;
+    LayerSplit split;
+    const OccludedAggregatesResult result = dropOccludedAggregates(kept, split, camera, nullptr, nullptr);
+    EXPECT_GT(result.dropped, all.size() / 3) << "of " << all.size() << " at " << distance;
+    EXPECT_GT(result.hiddenFromFront, all.size() / 2) << "of " << all.size() << " at " << distance;
+    EXPECT_GT(result.hiddenFromBack, all.size() / 2) << "of " << all.size() << " at " << distance;
+    const PixelCheck check = everyPixel(all, kept, split, camera);
+    EXPECT_GT(check.hits, 5000u) << "at " << distance;
+    EXPECT_EQ(check.differing, 0u) << "of " << 2 * check.hits << " layer values at " << distance;
+  }
+}
+
+TEST(OccludedAggregates, KeepsTheSplitOfTheInteriorTestAndRefinesIt) {
+  // After the interior test, [front only | both | back only] stays in that order and each layer still sees
+  // through every pixel what all ellipsoids give.
+  const Camera camera = Camera::lookAt(128, 128, 40.0f, {0.8f, 0.8f, 6.0f}, {0.8f, 0.8f, 0.5f}, {0, 1, 0});
+  const std::vector<EllipsoidInstance> all = jitteredBlock(camera);
+  std::vector<EllipsoidInstance> kept = all;
+  HiddenInteriorResult interior = dropHiddenInterior(kept, camera, nullptr);
+  ASSERT_GT(interior.split.frontOnly + interior.split.backOnly, 0u);
+  const OccludedAggregatesResult result =
+      dropOccludedAggregates(kept, interior.split, camera, nullptr, nullptr);
+  EXPECT_GT(result.dropped, 0u);
+  EXPECT_EQ(interior.dropped + result.dropped + kept.size(), all.size());
+  const PixelCheck check = everyPixel(all, kept, interior.split, camera);
+  EXPECT_GT(check.hits, 4000u);
+  EXPECT_EQ(check.differing, 0u) << "of " << 2 * check.hits << " layer values";
+}
+
+TEST(OccludedAggregates, WhatReachesTheNearPlaneIsKeptInBothLayers) {
+  // The camera inside the block: the ellipsoids around the eye reach the near plane, where the impostor pass
+  // clips them, so they neither cover nor go.
+  Camera camera = Camera::lookAt(96, 64, 60.0f, {0.8f, 0.8f, 0.5f}, {1.5f, 0.8f, 0.5f}, {0, 0, 1});
+  camera.nearClip = 0.05f;
+  const std::vector<EllipsoidInstance> all = jitteredBlock(camera);
+  std::vector<EllipsoidInstance> kept = all;
+  LayerSplit split;
+  const OccludedAggregatesResult result = dropOccludedAggregates(kept, split, camera, nullptr, nullptr);
+  EXPECT_GT(result.dropped, 0u) << "the walls far from the eye still hide what lies behind them";
+  const std::vector<EllipsoidInstance> front(kept.begin(), kept.end() - std::ptrdiff_t(split.backOnly));
+  const std::vector<EllipsoidInstance> back(kept.begin() + std::ptrdiff_t(split.frontOnly), kept.end());
+  const auto holds = [](const std::vector<EllipsoidInstance>& list, const EllipsoidInstance& ellipsoid) {
+    for (const EllipsoidInstance& other : list)
+      if (std::memcmp(&other, &ellipsoid, sizeof(EllipsoidInstance)) == 0) return true;
+    return false;
+  };
+  const glm::mat4 cameraFromWorld = camera.cameraFromWorld();
+  std::size_t reaching = 0;
+  for (const EllipsoidInstance& ellipsoid : all) {
+    const glm::vec4& sphere = ellipsoid.centreAndBoundingRadius;
+    const float depth = -(cameraFromWorld * glm::vec4(glm::vec3(sphere), 1.0f)).z;
+    if (depth - sphere.w > camera.nearClip) continue;
+    ++reaching;
+    EXPECT_TRUE(holds(front, ellipsoid) && holds(back, ellipsoid));
+  }
+  EXPECT_GT(reaching, 0u);
+}
+
+TEST(OccludedAggregates, EmptyAndDegenerateInputsAreLeftAlone) {
+  const Camera camera = Camera::lookAt(64, 64, 40.0f, {0, 0, 5}, {0, 0, 0}, {0, 1, 0});
+  std::vector<EllipsoidInstance> none;
+  LayerSplit split;
+  EXPECT_EQ(dropOccludedAggregates(none, split, camera, nullptr, nullptr).dropped, 0u);
+  // Identical spheres: each one's cover is its own depth range, so none hides another.
+  std::vector<EllipsoidInstance> same(10, separateSpheres().front());
+  EXPECT_EQ(dropOccludedAggregates(same, split, camera, nullptr, nullptr).dropped, 0u);
+  EXPECT_EQ(same.size(), 10u);
+  // A zero-size camera and a NaN particle: nothing happens, nothing crashes.
+  Camera empty = camera;
+  empty.width = 0;
+  EXPECT_EQ(dropOccludedAggregates(same, split, empty, nullptr, nullptr).dropped, 0u);
+  std::vector<EllipsoidInstance> broken = separateSpheres();
+  broken[5].centreAndBoundingRadius.x = std::nanf("");
+  const std::size_t before = broken.size();
+  dropOccludedAggregates(broken, split, camera, nullptr, nullptr);
+  EXPECT_LE(broken.size(), before);
+  bool nanKept = false;
+  for (const EllipsoidInstance& ellipsoid : broken)
+    nanKept |= std::isnan(ellipsoid.centreAndBoundingRadius.x);
+  EXPECT_TRUE(nanKept) << "an ellipsoid the test cannot place is left to the impostor pass";
+}
+
+}  // namespace
+}  // namespace spindrift
