@@ -1,5 +1,5 @@
 #!/usr/bin/python3
-"""A/B of liquid.drop_hidden_interior: prints a Markdown table of interleaved runs (docs/frame-cost.md).
+"""A/B of liquid.drop_hidden_interior (the interior test and each view's occlusion): prints a Markdown table of interleaved runs (docs/frame-cost.md).
 
     tests/bench/hidden_interior.py [--rounds 3] [--work build/bench/hidden_interior]
 
@@ -75,6 +75,10 @@ def render(scene, drop, work, name):
                  "back_only": stats["liquid"]["hidden_interior_back_layer_only"],
                  "why_not": stats["liquid"]["hidden_interior_not_applied"],
                  "drop_ms": stats["liquid"]["hidden_interior_ms"],
+                 "occluded_front": stats["liquid"]["occluded_from_front"],
+                 "occluded_back": stats["liquid"]["occluded_from_back"],
+                 "occluded_dropped": stats["liquid"]["occluded_dropped"],
+                 "occlusion_ms": stats["liquid"]["occlusion_ms"],
                  "aggregate_ms": passes.get("aggregate_depth_layers", 0.0),
                  "prepare_ms": stats["prepare_ms"], "total_ms": stats["total_ms"]}
 
@@ -99,15 +103,18 @@ def main():
                                   capture_output=True).returncode == 0
             identical[name] = identical.get(name, True) and same
     print(f"load average at end: {os.getloadavg()}\n")
-    print("| scene | drop_hidden_interior | aggregates kept | dropped | front layer only / back layer only "
-          "| drop ms | aggregate depth layers ms | prepare ms | frame ms | EXR identical |")
-    print("|---|---|---|---|---|---|---|---|---|---|")
+    print("| scene | drop_hidden_interior | aggregates | interior: dropped | interior: front layer only / back layer "
+          "only | interior ms | occluded: from front / from back / dropped | occlusion ms | aggregate depth layers ms "
+          "| prepare ms | frame ms | EXR identical |")
+    print("|---|---|---|---|---|---|---|---|---|---|---|---|")
     for (name, drop), runs in results.items():
-        median = {key: statistics.median(run[key] for run in runs) for key in ("drop_ms", "aggregate_ms",
-                                                                                 "prepare_ms", "total_ms")}
+        median = {key: statistics.median(run[key] for run in runs)
+                  for key in ("drop_ms", "occlusion_ms", "aggregate_ms", "prepare_ms", "total_ms")}
         note = f" ({runs[0]['why_not']})" if runs[0]["why_not"] else ""
         print(f"| {name} | {'true' if drop else 'false'} | {runs[0]['drawn']:,} | {runs[0]['dropped']:,}{note} "
-              f"| {runs[0]['front_only']:,} / {runs[0]['back_only']:,} | {median['drop_ms']:.0f} | {median['aggregate_ms']:.0f} | {median['prepare_ms']:.0f} "
+              f"| {runs[0]['front_only']:,} / {runs[0]['back_only']:,} | {median['drop_ms']:.0f} "
+              f"| {runs[0]['occluded_front']:,} / {runs[0]['occluded_back']:,} / {runs[0]['occluded_dropped']:,} "
+              f"| {median['occlusion_ms']:.0f} | {median['aggregate_ms']:.0f} | {median['prepare_ms']:.0f} "
               f"| {median['total_ms']:.0f} | {'yes' if identical[name] else 'NO'} |")
 
 
