@@ -188,6 +188,14 @@ TEST(OccludedAggregates, EmptyAndDegenerateInputsAreLeftAlone) {
   std::vector<EllipsoidInstance> same(10, separateSpheres().front());
   EXPECT_EQ(dropOccludedAggregates(same, split, camera, nullptr, nullptr).dropped, 0u);
   EXPECT_EQ(same.size(), 10u);
+  // A sphere just beyond the near plane, a million pixels to the side: it reaches no pixel, so it draws
+  // nothing and goes, without overflowing a pixel coordinate.
+  Camera near = camera;
+  near.nearClip = 1e-3f;
+  std::vector<EllipsoidInstance> aside(1, separateSpheres().front());
+  aside[0].centreAndBoundingRadius = glm::vec4(5000.0f, 0.0f, 5.0f - 0.002f - 0.048f, 0.048f);
+  LayerSplit asideSplit;
+  EXPECT_EQ(dropOccludedAggregates(aside, asideSplit, near, nullptr, nullptr).dropped, 1u);
   // A zero-size camera and a NaN particle: nothing happens, nothing crashes.
   Camera empty = camera;
   empty.width = 0;

@@ -80,7 +80,11 @@ struct ViewGrid {
       least = glm::min(least, pixel);
       most = glm::max(most, pixel);
     }
-    // Pixel centres at +0.5 inside [least, most], widened by one pixel for rounding.
+    // Pixel centres at +0.5 inside [least, most], widened by one pixel for rounding; clamped to just outside
+    // the frame first, so that a ball close to the eye plane cannot overflow the conversion to int.
+    const glm::vec2 outside(-2.0f), beyond(float(width) + 2.0f, float(height) + 2.0f);
+    least = glm::clamp(least, outside, beyond);
+    most = glm::clamp(most, outside, beyond);
     low = glm::max(glm::ivec2(glm::floor(least - 0.5f)) - 1, glm::ivec2(0));
     high = glm::min(glm::ivec2(glm::ceil(most - 0.5f)) + 1, glm::ivec2(width - 1, height - 1));
   }
