@@ -69,7 +69,7 @@ def render(scene, drop, work, name):
     with open(stats_path) as file:
         stats = json.load(file)
     passes = {entry["name"]: entry["gpu_ms"] for entry in stats["passes"]}
-    return exr, {"drawn": stats["liquid"]["aggregate_particles"],
+    return exr, {"aggregates": stats["liquid"]["aggregate_particles"],
                  "dropped": stats["liquid"]["hidden_interior_dropped"],
                  "front_only": stats["liquid"]["hidden_interior_front_layer_only"],
                  "back_only": stats["liquid"]["hidden_interior_back_layer_only"],
@@ -111,7 +111,7 @@ def main():
         median = {key: statistics.median(run[key] for run in runs)
                   for key in ("drop_ms", "occlusion_ms", "aggregate_ms", "prepare_ms", "total_ms")}
         note = f" ({runs[0]['why_not']})" if runs[0]["why_not"] else ""
-        print(f"| {name} | {'true' if drop else 'false'} | {runs[0]['drawn']:,} | {runs[0]['dropped']:,}{note} "
+        print(f"| {name} | {'true' if drop else 'false'} | {runs[0]['aggregates']:,} | {runs[0]['dropped']:,}{note} "
               f"| {runs[0]['front_only']:,} / {runs[0]['back_only']:,} | {median['drop_ms']:.0f} "
               f"| {runs[0]['occluded_front']:,} / {runs[0]['occluded_back']:,} / {runs[0]['occluded_dropped']:,} "
               f"| {median['occlusion_ms']:.0f} | {median['aggregate_ms']:.0f} | {median['prepare_ms']:.0f} "
