@@ -33,6 +33,10 @@ glm::vec3 Camera::pixelAndDepthFromWorld(const glm::vec3& world) const {
   return {(ndcX * 0.5f + 0.5f) * float(width), (0.5f - ndcY * 0.5f) * float(height), eyeDepth};
 }
 
+float Camera::pixelSizeAt(float eyeDepth) const {
+  return 2.0f * eyeDepth * std::tan(glm::radians(fovYDegrees) * 0.5f) / float(height);
+}
+
 glm::vec3 Camera::worldFromPixelAndDepth(const glm::vec2& pixel, float eyeDepth) const {
   const float tanHalfY = std::tan(glm::radians(fovYDegrees) * 0.5f);
   const float ndcX = pixel.x / float(width) * 2.0f - 1.0f;

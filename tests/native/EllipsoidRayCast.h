@@ -1,6 +1,9 @@
 #pragma once
 
+#include <algorithm>
 #include <cmath>
+#include <utility>
+#include <vector>
 
 #include <glm/glm.hpp>
 
@@ -33,6 +36,21 @@ inline Chord castRay(const spindrift::EllipsoidInstance& ellipsoid, const glm::d
   chord.entry = closest - halfChord;
   chord.exit = closest + halfChord;
   return chord;
+}
+
+// Nearest entry and farthest exit of a ray over a set of ellipsoids, in units of the direction's length
+// (1e10 and -1e10 where it meets none).
+inline std::pair<double, double> nearestEntryAndFarthestExit(
+    const std::vector<spindrift::EllipsoidInstance>& ellipsoids, const glm::dvec3& origin,
+    const glm::dvec3& direction) {
+  double nearest = 1e10, farthest = -1e10;
+  for (const spindrift::EllipsoidInstance& ellipsoid : ellipsoids) {
+    const Chord chord = castRay(ellipsoid, origin, direction);
+    if (chord.miss < 0.0) continue;
+    nearest = std::min(nearest, chord.entry);
+    farthest = std::max(farthest, chord.exit);
+  }
+  return {nearest, farthest};
 }
 
 }  // namespace ellipsoid_test

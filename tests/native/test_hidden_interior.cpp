@@ -76,18 +76,7 @@ std::vector<glm::dvec3> surfacePoints(const EllipsoidInstance& ellipsoid, int co
   return points;
 }
 
-// Nearest entry and farthest exit of a ray over a set of ellipsoids, in units of the direction's length.
-std::pair<double, double> rayCast(const std::vector<EllipsoidInstance>& ellipsoids, const glm::dvec3& origin,
-                                  const glm::dvec3& direction) {
-  double nearest = 1e10, farthest = -1e10;
-  for (const EllipsoidInstance& ellipsoid : ellipsoids) {
-    const ellipsoid_test::Chord chord = ellipsoid_test::castRay(ellipsoid, origin, direction);
-    if (chord.miss < 0.0) continue;
-    nearest = std::min(nearest, chord.entry);
-    farthest = std::max(farthest, chord.exit);
-  }
-  return {nearest, farthest};
-}
+using ellipsoid_test::nearestEntryAndFarthestExit;
 
 bool contains(const std::vector<EllipsoidInstance>& ellipsoids, const EllipsoidInstance& ellipsoid) {
   for (const EllipsoidInstance& other : ellipsoids)
@@ -162,8 +151,8 @@ TEST(HiddenInterior, RaysFromAnySideMeetTheSameFrontAndBack) {
     direction = glm::normalize(direction);
     const glm::dvec3 target(0.8 + 0.7 * unit(random), 0.8 + 0.7 * unit(random), 0.5 + 0.4 * unit(random));
     const glm::dvec3 origin = target - 5.0 * direction;
-    const auto [allFront, allBack] = rayCast(all, origin, direction);
-    const auto [keptFront, keptBack] = rayCast(kept, origin, direction);
+    const auto [allFront, allBack] = nearestEntryAndFarthestExit(all, origin, direction);
+    const auto [keptFront, keptBack] = nearestEntryAndFarthestExit(kept, origin, direction);
     if (allFront > 1e9) continue;
     ++hits;
     differing += allFront != keptFront || allBack != keptBack;
@@ -187,11 +176,11 @@ void expectLayersSeeWhatAllGive(const std::vector<EllipsoidInstance>& all,
   for (int ray = 0; ray < 4000; ++ray) {
     const glm::dvec3 target = low + (high - low) * glm::dvec3(unit(random), unit(random), unit(random));
     const glm::dvec3 direction = glm::normalize(target - eye);
-    const auto [allFront, allBack] = rayCast(all, eye, direction);
+    const auto [allFront, allBack] = nearestEntryAndFarthestExit(all, eye, direction);
     if (allFront > 1e9) continue;
     ++hits;
-    differing += rayCast(front, eye, direction).first != allFront;
-    differing += rayCast(back, eye, direction).second != allBack;
+    differing += nearestEntryAndFarthestExit(front, eye, direction).first != allFront;
+    differing += nearestEntryAndFarthestExit(back, eye, direction).second != allBack;
   }
   EXPECT_GT(hits, 2500u);
   EXPECT_EQ(differing, 0u) << "of " << 2 * hits << " layer values";

@@ -22,18 +22,7 @@
 namespace spindrift {
 namespace {
 
-// Nearest entry and farthest exit (planar-independent: along the unit ray) over a set of ellipsoids.
-std::pair<double, double> rayCast(const std::vector<EllipsoidInstance>& ellipsoids, const glm::dvec3& origin,
-                                  const glm::dvec3& direction) {
-  double nearest = 1e10, farthest = -1e10;
-  for (const EllipsoidInstance& ellipsoid : ellipsoids) {
-    const ellipsoid_test::Chord chord = ellipsoid_test::castRay(ellipsoid, origin, direction);
-    if (chord.miss < 0.0) continue;
-    nearest = std::min(nearest, chord.entry);
-    farthest = std::max(farthest, chord.exit);
-  }
-  return {nearest, farthest};
-}
+using ellipsoid_test::nearestEntryAndFarthestExit;
 
 // The ray through a pixel's centre (x right, y down), in double precision: a point a metre before the eye in
 // float world coordinates would be off by a float's rounding of the eye's position, 300 m away too much.
@@ -59,11 +48,11 @@ PixelCheck everyPixel(const std::vector<EllipsoidInstance>& all, const std::vect
   for (int y = 0; y < camera.height; ++y)
     for (int x = 0; x < camera.width; ++x) {
       const glm::dvec3 direction = pixelRay(camera, x, y);
-      const auto [allFront, allBack] = rayCast(all, eye, direction);
+      const auto [allFront, allBack] = nearestEntryAndFarthestExit(all, eye, direction);
       if (allFront > 1e9) continue;
       ++check.hits;
-      check.differing += rayCast(front, eye, direction).first != allFront;
-      check.differing += rayCast(back, eye, direction).second != allBack;
+      check.differing += nearestEntryAndFarthestExit(front, eye, direction).first != allFront;
+      check.differing += nearestEntryAndFarthestExit(back, eye, direction).second != allBack;
     }
   return check;
 }

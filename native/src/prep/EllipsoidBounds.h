@@ -24,6 +24,13 @@ inline float largestSingularValue(const EllipsoidInstance& ellipsoid) {
   return std::sqrt(largest);
 }
 
+/// A bound of a linear map's largest stretch, its Frobenius norm: a ball of radius r maps into one of radius
+/// r times this.
+inline float stretchBound(const glm::mat3& linear) {
+  return std::sqrt(glm::dot(linear[0], linear[0]) + glm::dot(linear[1], linear[1]) +
+                   glm::dot(linear[2], linear[2]));
+}
+
 /// The radius of a ball about the centre that lies inside the ellipsoid: its shortest semi-axis, or less.
 inline float inscribedRadius(const EllipsoidInstance& ellipsoid) {
   return 1.0f / largestSingularValue(ellipsoid);

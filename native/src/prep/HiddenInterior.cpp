@@ -13,6 +13,7 @@
 #include <glm/glm.hpp>
 
 #include "prep/EllipsoidBounds.h"
+#include "prep/LayerOrder.h"
 
 namespace spindrift {
 namespace {
@@ -298,9 +299,7 @@ HiddenInteriorResult dropHiddenInterior(std::vector<EllipsoidInstance>& ellipsoi
   ClipBox box;
   if (domain) {
     box.boxFromWorld = glm::inverse(domain->worldFromBox);
-    const glm::mat3 linear(box.boxFromWorld);
-    box.scale = std::sqrt(glm::dot(linear[0], linear[0]) + glm::dot(linear[1], linear[1]) +
-                          glm::dot(linear[2], linear[2]));  // Frobenius: at least the largest stretch.
+    box.scale = stretchBound(glm::mat3(box.boxFromWorld));
     box.low = domain->low;
     box.high = domain->high;
   }
@@ -330,17 +329,13 @@ HiddenInteriorResult dropHiddenInterior(std::vector<EllipsoidInstance>& ellipsoi
     }
   });
 
-  // [front layer only | both | back layer only], each group in the original order; hidden from both: out.
-  std::vector<EllipsoidInstance> frontOnly, both, backOnly;
+  std::vector<char> inFront(count), inBack(count);
   for (std::size_t i = 0; i < count; ++i) {
-    if (hidden[i].front && hidden[i].back) continue;
-    (hidden[i].back ? frontOnly : hidden[i].front ? backOnly : both).push_back(ellipsoids[i]);
+    inFront[i] = !hidden[i].front;
+    inBack[i] = !hidden[i].back;
   }
-  result.dropped = count - frontOnly.size() - both.size() - backOnly.size();
-  result.split = {frontOnly.size(), backOnly.size()};
-  ellipsoids = std::move(frontOnly);
-  ellipsoids.insert(ellipsoids.end(), both.begin(), both.end());
-  ellipsoids.insert(ellipsoids.end(), backOnly.begin(), backOnly.end());
+  result.split = orderByLayers(ellipsoids, inFront, inBack);
+  result.dropped = count - ellipsoids.size();
   result.milliseconds =
       std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
   return result;

@@ -31,10 +31,9 @@ Camera framingCamera(const glm::vec3& position, const LiquidBounds& bounds, int 
   return camera;
 }
 
-// World size of a view's texel at the liquid's centre.
+// World size of a view's texel at the liquid's centre (the views look at it).
 float texelSizeAt(const Camera& camera, const LiquidBounds& bounds) {
-  const float distance = glm::distance(camera.position(), bounds.centre);
-  return 2.0f * distance * std::tan(glm::radians(0.5f * camera.fovYDegrees)) / float(camera.height);
+  return camera.pixelSizeAt(glm::distance(camera.position(), bounds.centre));
 }
 
 }  // namespace
@@ -66,8 +65,7 @@ int lightViewSize(const LiquidBounds& bounds, const Camera& camera, const LightP
   if (!(parameters.texels_per_radius > 0.0f) || !(bounds.radius > 0.0f)) return largest;
   const float nearest =
       std::max(glm::distance(camera.position(), bounds.centre) - bounds.radius, camera.nearClip);
-  const float pixel =
-      2.0f * nearest * std::tan(glm::radians(0.5f * camera.fovYDegrees)) / float(camera.height);
+  const float pixel = camera.pixelSizeAt(nearest);
   // A view frames the bounding sphere with a 2 % margin (framingCamera). The particles' radius bounds the
   // detail a body of many particles has (its bumps are smoothed away); a body of a few large ones curves at
   // its own size, which a view resolves in kDetailTexels.

@@ -12,6 +12,7 @@
 #include <glm/trigonometric.hpp>
 
 #include "prep/EllipsoidBounds.h"
+#include "prep/LayerOrder.h"
 
 namespace spindrift {
 namespace {
@@ -58,7 +59,7 @@ struct ViewGrid {
   std::vector<glm::dvec3> rays;  // unit ray through each pixel centre (x right, y down), camera space
 
   explicit ViewGrid(const Camera& camera) : width(camera.width), height(camera.height) {
-    focal = 0.5f * float(height) / std::tan(glm::radians(0.5f * camera.fovYDegrees));
+    focal = 1.0f / camera.pixelSizeAt(1.0f);
     rays.resize(std::size_t(width) * height);
     for (int y = 0; y < height; ++y)
       for (int x = 0; x < width; ++x)
@@ -114,9 +115,7 @@ OccludedAggregatesResult dropOccludedAggregates(std::vector<EllipsoidInstance>& 
   float boxScale = 1.0f;
   if (domain) {
     boxFromWorld = glm::inverse(domain->worldFromBox);
-    const glm::mat3 linear(boxFromWorld);
-    boxScale = std::sqrt(glm::dot(linear[0], linear[0]) + glm::dot(linear[1], linear[1]) +
-                         glm::dot(linear[2], linear[2]));  // Frobenius: at least the largest stretch.
+    boxScale = stretchBound(glm::mat3(boxFromWorld));
   }
 
   std::vector<ViewedEllipsoid> viewed(count);
@@ -195,19 +194,12 @@ OccludedAggregatesResult dropOccludedAggregates(std::vector<EllipsoidInstance>& 
     }
   });
 
-  // [front layer only | both | back layer only], each group in its previous order; in neither: out.
-  std::vector<EllipsoidInstance> frontOnly, both, backOnly;
   for (std::size_t i = 0; i < count; ++i) {
     result.hiddenFromFront += i < backFrom && !inFront[i];
     result.hiddenFromBack += i >= split.frontOnly && !inBack[i];
-    if (!inFront[i] && !inBack[i]) continue;
-    (inFront[i] && inBack[i] ? both : inFront[i] ? frontOnly : backOnly).push_back(ellipsoids[i]);
   }
-  result.dropped = count - frontOnly.size() - both.size() - backOnly.size();
-  split = {frontOnly.size(), backOnly.size()};
-  ellipsoids = std::move(frontOnly);
-  ellipsoids.insert(ellipsoids.end(), both.begin(), both.end());
-  ellipsoids.insert(ellipsoids.end(), backOnly.begin(), backOnly.end());
+  split = orderByLayers(ellipsoids, inFront, inBack);
+  result.dropped = count - ellipsoids.size();
   result.milliseconds =
       std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
   return result;
