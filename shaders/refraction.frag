@@ -21,9 +21,10 @@ layout(binding = 10) uniform sampler2D environmentMap;
 
 // Counts of rays by what they met, for the frame's stats (see RefractionPass::Statistics).
 layout(std430, binding = 1) buffer RayCounters {
-  uint rayCounters[8];  // 0-3: paths splash>splash, splash>aggregate, aggregate>splash, aggregate>aggregate;
+  uint rayCounters[9];  // 0-3: paths splash>splash, splash>aggregate, aggregate>splash, aggregate>aggregate;
                         // 4: rays with a second body; 5: total internal reflections; 6: liquid pixels;
-                        // 7: marches inside a body that left the screen before its far surface
+                        // 7: marches inside a body that left the screen before its far surface;
+                        // 8: marches inside a body that passed behind a solid hiding it
 };
 
 uniform bool hasSplash;
@@ -129,6 +130,7 @@ struct Crossing {
   int body;
   bool back;   // crossed the body's back boundary
   bool solid;  // that boundary is a solid inside the body (a pool's floor), not the liquid's back surface
+  bool hidden;  // not found: the ray passed behind a solid that hides the body (a tank's near wall)
   vec2 fragCoord;
 };
 
@@ -178,6 +180,7 @@ float refineCrossing(int kind, int body, vec3 origin, vec3 direction, float tA, 
 Crossing crossingAt(int body, vec3 origin, vec3 direction, float t) {
   Crossing crossing;
   crossing.found = true;
+  crossing.hidden = false;
   crossing.body = body;
   crossing.t = t;
   crossing.fragCoord = clamp(fragCoordFromCamera(origin + t * direction), vec2(0.0), frame.viewportSize.xy - 1.0);
@@ -216,11 +219,24 @@ Crossing findExit(vec3 origin, vec3 direction, int body) {
   float t = 0.0;
   Crossing none;
   none.found = false;
+  none.hidden = false;
   none.t = 0.0;
   ivec2 startTexel = texelOf(origin);
+  ivec2 lastTexelInside = startTexel;
   for (int k = 1; k <= ray.samples; ++k) {
     t = screenRaySampleT(ray, k);
     if (inStartTexel(origin, direction, t, startTexel)) continue;
+    ivec2 texel = texelOf(origin + t * direction);
+    if (frontDepth(body, texel) >= kNoSurfaceDepth * 0.5 &&
+        rayEyeDepth(origin, direction, t) > texelFetch(backgroundEyeDepth, texel, 0).r) {
+      // Where the ray is, a solid stands in front of it and the body has no layers: the solid hides the
+      // liquid there (a tank's near wall hides the water below its rim), so where the path ends is not seen.
+      none.hidden = true;
+      none.t = previousT;
+      none.fragCoord = vec2(lastTexelInside) + 0.5;
+      return none;
+    }
+    lastTexelInside = texel;
     float f = crossingFunction(kInsideBody, body, origin, direction, t, false);
     if (f < 0.0) return crossingAt(body, origin, direction, refineCrossing(kInsideBody, body, origin, direction, previousT, previousF, t, f));
     previousT = t;
@@ -236,6 +252,7 @@ Crossing findExit(vec3 origin, vec3 direction, int body) {
 Crossing findEntry(vec3 origin, vec3 direction) {
   Crossing none;
   none.found = false;
+  none.hidden = false;
   ScreenRay ray = screenRay(origin, direction);
   float previousT = 0.0;
   vec2 previousF = vec2(-1e-6);
@@ -330,6 +347,7 @@ void main() {
   bool inside = false;
   int secondBody = -1;
   ivec2 entryPixel = pixel;  // where the path last entered a body, for the thickness of an unseen remainder
+  vec2 hiddenEndTexel = vec2(-1.0);  // the background texel that stands in for an end hidden behind a solid
   vec2 ignoredTexel;
   float ignoredDistance;
   int body, firstBody;
@@ -400,15 +418,25 @@ void main() {
       Crossing exit = findExit(position, direction, body);
       float length = exit.t;  // Where the liquid ends, or where a march that never left it stopped.
       if (!exit.found) {
-        atomicAdd(rayCounters[7], 1u);
-        // The march left the screen inside the liquid. The unseen rest of the path is estimated from the
-        // body's thickness where the path entered it: a path through a body that thick along this direction
-        // is (back - front) / |cos| long, of which `length` was seen.
+        atomicAdd(rayCounters[exit.hidden ? 8 : 7], 1u);
+        // The march left the screen, or passed behind a solid, inside the liquid. The unseen rest of the path
+        // is estimated from the body's thickness where the path entered it: a path through a body that thick
+        // along this direction is (back - front) / |cos| long, of which `length` was seen.
         float thicknessHere = max(backDepth(body, entryPixel) - frontDepth(body, entryPixel), 0.0);
         length = max(length, thicknessHere / max(abs(direction.z), 0.2));
       }
       pathInLiquid += length;
       throughput *= exp(-absorptionPerUnitLength * length);
+      if (exit.hidden) {
+        // A path that goes on behind a solid hiding the liquid (under a tank's rim) ends on a submerged
+        // surface no view shows: it keeps 1 / n^2 of its radiance as a seen one does, and stands in for it
+        // is the background where the path was last seen in the liquid, the container behind the water
+        // (not the solid in front of the path, whose outside faces the camera).
+        position += exit.t * direction;
+        if (!underLiquid) throughput /= indexOfRefraction * indexOfRefraction;
+        hiddenEndTexel = exit.fragCoord;
+        break;
+      }
       if (exit.found && exit.solid) {
         // The path ends on a solid inside the liquid (a pool's floor, a stone under water). Its light leaves
         // the liquid through the surface the path entered by, and radiance divided by the square of the index
@@ -440,9 +468,10 @@ void main() {
     }
   }
   // The last lookup is the background the compositor refracts, when it is one; all else is reflected light.
-  vec2 finalTexel = vec2(-1.0);
-  vec3 finalColour = dot(throughput, throughput) > 0.0 ? colourAlong(position, direction, finalTexel, ignoredDistance)
-                                                      : vec3(0.0);
+  vec2 finalTexel = hiddenEndTexel;
+  vec3 finalColour = hiddenEndTexel.x >= 0.0 ? texelFetch(backgroundColor, ivec2(hiddenEndTexel), 0).rgb
+                     : dot(throughput, throughput) > 0.0 ? colourAlong(position, direction, finalTexel, ignoredDistance)
+                                                          : vec3(0.0);
   bool seesBackground = finalTexel.x >= 0.0;
   imageStore(refractionUvImage, pixel,
              seesBackground ? vec4(finalTexel * frame.viewportSize.zw, 1.0, 0.0) : vec4(0.0));

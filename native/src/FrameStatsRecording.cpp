@@ -39,6 +39,7 @@ void recordRefraction(const RefractionStatistics& rays, LiquidFrameStats& stats)
   stats.raysWithSecondBody = rays.raysWithSecondBody;
   stats.totalInternalReflections = rays.totalInternalReflections;
   stats.exitsOffScreen = rays.exitsOffScreen;
+  stats.exitsBehindSolids = rays.exitsBehindSolids;
   for (int i = 0; i < 4; ++i)
     stats.orders[i] = rays.orders[i];
 }

@@ -63,6 +63,7 @@ nlohmann::json FrameStats::toJson() const {
         {"rays_with_second_body", liquid.raysWithSecondBody},
         {"total_internal_reflections", liquid.totalInternalReflections},
         {"exits_off_screen", liquid.exitsOffScreen},
+        {"exits_behind_solids", liquid.exitsBehindSolids},
         {"camera_in_liquid", liquid.cameraInLiquid},
         {"second_body_orders",
          {{"splash_splash", liquid.orders[0]},

@@ -54,6 +54,9 @@ struct LiquidFrameStats {
   std::size_t totalInternalReflections = 0;
   /// Paths whose march inside a body left the screen; their unseen rest is estimated from the thickness.
   std::size_t exitsOffScreen = 0;
+  /// Paths whose march inside a body passed behind a solid that hides the liquid (a tank's near wall): they
+  /// end on a submerged surface no view shows, their unseen rest estimated from the thickness.
+  std::size_t exitsBehindSolids = 0;
   /// The camera is inside the aggregated body: the frame is seen from under water.
   bool cameraInLiquid = false;
   /// Rays with a second body, by order: splash>splash, splash>aggregate, aggregate>splash,

@@ -27,6 +27,7 @@ struct RefractionStatistics {
   std::uint32_t raysWithSecondBody = 0;  ///< Rays that needed a third refraction.
   std::uint32_t totalInternalReflections = 0;
   std::uint32_t exitsOffScreen = 0;  ///< Marches inside a body that left the screen before its far surface.
+  std::uint32_t exitsBehindSolids = 0;  ///< Marches inside a body that passed behind a solid hiding it.
   /// Second bodies by order: splash>splash, splash>aggregate, aggregate>splash, aggregate>aggregate.
   std::uint32_t orders[4] = {0, 0, 0, 0};
 };

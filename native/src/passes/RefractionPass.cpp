@@ -5,13 +5,17 @@
 #include "passes/FrameUniforms.h"
 
 namespace spindrift {
+namespace {
+// The shader's RayCounters buffer (refraction.frag says what each counts).
+constexpr int kRayCounters = 9;
+}  // namespace
 
 RefractionPass::RefractionPass(const ShaderLibrary& shaders)
     : program_(shaders.program({"fullscreen.vert", "refraction.frag"})),
       emptyVertexArray_(createVertexArray()),
       framebuffer_(createFramebuffer()),
       counters_(createBuffer()) {
-  glNamedBufferStorage(counters_.id(), 8 * sizeof(std::uint32_t), nullptr,
+  glNamedBufferStorage(counters_.id(), kRayCounters * sizeof(std::uint32_t), nullptr,
                        GL_DYNAMIC_STORAGE_BIT | GL_MAP_READ_BIT);
   const float noSurface[4] = {1e10f, 0.0f, 0.0f, 0.0f};
   uploadTexture(emptyLayer_, GL_RGBA32F, 1, 1, 4, noSurface, false);
@@ -44,7 +48,7 @@ LiquidData RefractionPass::run(const std::optional<SurfaceLayers>& splashes,
   }
   glNamedFramebufferDrawBuffers(framebuffer, 6, attachments);
 
-  const std::uint32_t zeros[8] = {};
+  const std::uint32_t zeros[kRayCounters] = {};
   glNamedBufferSubData(counters_.id(), 0, sizeof zeros, zeros);
   glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, counters_.id());
 
@@ -100,7 +104,7 @@ LiquidData RefractionPass::run(const std::optional<SurfaceLayers>& splashes,
 }
 
 RefractionStatistics RefractionPass::statistics() const {
-  std::uint32_t counters[8] = {};
+  std::uint32_t counters[kRayCounters] = {};
   glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);  // The shader's atomic writes must land before the read.
   glGetNamedBufferSubData(counters_.id(), 0, sizeof counters, counters);
   RefractionStatistics statistics;
@@ -110,6 +114,7 @@ RefractionStatistics RefractionPass::statistics() const {
   statistics.totalInternalReflections = counters[5];
   statistics.liquidPixels = counters[6];
   statistics.exitsOffScreen = counters[7];
+  statistics.exitsBehindSolids = counters[8];
   return statistics;
 }
 
