@@ -8,6 +8,8 @@ void recordPreparation(const LiquidPreparation& liquid, const FoamPreparation& f
   stats.liquid.aggregateParticles =
       liquid.aggregates.size() + stats.liquid.hiddenInteriorDropped + stats.liquid.occludedDropped;
   stats.liquid.isotropicInterior = liquid.isotropicInterior;
+  stats.liquid.fullNeighbours = liquid.fullNeighbours;
+  stats.liquid.minNeighboursApplied = liquid.minNeighboursApplied;
   stats.liquid.culled = liquid.culled;
   stats.liquid.splashesAbsorbed = liquid.splashesAbsorbed;
   stats.liquid.neighbourMilliseconds = liquid.neighbourMilliseconds;

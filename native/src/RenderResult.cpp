@@ -48,6 +48,8 @@ nlohmann::json FrameStats::toJson() const {
        {{"splash_particles", liquid.splashParticles},
         {"aggregate_particles", liquid.aggregateParticles},
         {"isotropic_interior", liquid.isotropicInterior},
+        {"full_neighbours", liquid.fullNeighbours},
+        {"min_neighbours_applied", liquid.minNeighboursApplied},
         {"culled", liquid.culled},
         {"splashes_absorbed", liquid.splashesAbsorbed},
         {"hidden_interior_dropped", liquid.hiddenInteriorDropped},

@@ -36,6 +36,10 @@ struct LiquidFrameStats {
   std::size_t splashParticles = 0;     ///< Drawn as spheres.
   std::size_t aggregateParticles = 0;  ///< Shaped as ellipsoids (drawn, or left out as hidden).
   std::size_t isotropicInterior = 0;   ///< Aggregates deep inside the body, drawn without anisotropy.
+  float fullNeighbours = 0.0f;  ///< Neighbours within R of a particle inside the body (90th percentile).
+  /// Yu and Turk's N_epsilon as applied to the frame (liquid.anisotropy_min_neighbours, lowered by
+  /// liquid.anisotropy_min_neighbour_fraction for a coarsely sampled body).
+  float minNeighboursApplied = 0.0f;
   std::size_t culled = 0;              ///< Outside the view frustum.
   std::size_t splashesAbsorbed = 0;    ///< Splashes below Mantaflow's surface: not drawn.
   /// Aggregates left out because they lie inside the union of the others (liquid.drop_hidden_interior).

@@ -167,7 +167,7 @@ AnisotropySettings AnisotropySettings::fromParameters(const LiquidParameters& pa
   AnisotropySettings settings;
   settings.neighbourRadius = parameters.neighbour_radius;
   settings.maxRatio = parameters.anisotropy_max_ratio;
-  settings.minNeighbours = parameters.anisotropy_min_neighbours;
+  settings.minNeighbours = float(parameters.anisotropy_min_neighbours);
   settings.isotropicScale = parameters.anisotropy_isotropic_scale;
   settings.smoothing = parameters.anisotropy_smoothing;
   settings.maxEllipsoidScale = parameters.max_ellipsoid_scale;
@@ -185,7 +185,7 @@ ParticleShape shapeFromMoments(const NeighbourMoments& moments, float radius,
   // The particle's own weight (1) keeps weightSum positive.
   const glm::vec3 meanOffset = moments.weightedOffset / moments.weightSum;
   shape.centreOffset = settings.smoothing * neighbourhood * meanOffset;
-  if (moments.neighbourCount < settings.minNeighbours) return shape;
+  if (float(moments.neighbourCount) < settings.minNeighbours) return shape;
 
   const float inverseWeight = 1.0f / moments.weightSum;
   const glm::vec3& m = meanOffset;

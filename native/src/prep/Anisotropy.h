@@ -17,7 +17,7 @@ namespace spindrift {
 struct AnisotropySettings {
   float neighbourRadius = 2.5f;  ///< The neighbourhood radius R, in particle radii.
   float maxRatio = 4.0f;         ///< k_r.
-  int minNeighbours = 25;        ///< N_epsilon.
+  float minNeighbours = 25.0f;   ///< N_epsilon as applied to the frame (appliedMinNeighbours).
   float isotropicScale = 0.5f;   ///< k_n, in particle radii.
   float smoothing = 0.0f;        ///< lambda.
   float maxEllipsoidScale = 1.2f;

@@ -11,6 +11,7 @@
 #include <glm/mat3x3.hpp>
 #include <glm/matrix.hpp>
 
+#include "prep/FullNeighbourhood.h"
 #include "prep/LiquidStages.h"
 #include "prep/MantaflowSurface.h"
 #include "prep/ViewFrustum.h"
@@ -249,6 +250,10 @@ LiquidPreparation prepareLiquid(const Particles& particles, const Camera& camera
     }
   }
   AnisotropySettings settings = AnisotropySettings::fromParameters(parameters);
+  // N_epsilon from the whole frame's particles, not the view's, so every view shapes a particle alike.
+  preparation.fullNeighbours = fullNeighbourCount(particles, parameters.neighbour_radius);
+  settings.minNeighbours = appliedMinNeighbours(parameters, preparation.fullNeighbours);
+  preparation.minNeighboursApplied = settings.minNeighbours;
   settings.eye = camera.position();
   settings.meshSurface = meshSurface;
   const ParticleShapes shapes = shapeParticles(grid, settings);

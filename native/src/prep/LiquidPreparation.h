@@ -36,6 +36,8 @@ struct LiquidPreparation {
   LayerSplit aggregateLayers;                 ///< Which aggregates each depth layer draws.
   std::size_t culled = 0;                     ///< Outside the view frustum (they still count as neighbours).
   std::size_t isotropicInterior = 0;  ///< Aggregates deep inside the body, drawn as spheres without PCA.
+  float fullNeighbours = 0.0f;        ///< A particle inside the body has this many neighbours within R.
+  float minNeighboursApplied = 0.0f;  ///< N_epsilon as applied: fewer neighbours make a sphere of k_n r.
   /// Splashes not drawn because Mantaflow's surface passes below them (liquid.mesh_kernel_radius > 0).
   std::size_t splashesAbsorbed = 0;
   /// For the ray-marched surface (liquid.surface = raymarch; empty otherwise): every liquid candidate, drawn
