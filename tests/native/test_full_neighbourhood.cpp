@@ -22,8 +22,8 @@ Particles lattice(int side) {
   for (int i = 0; i < side; ++i)
     for (int j = 0; j < side; ++j)
       for (int k = 0; k < side; ++k)
-        particles.append(glm::vec3(float(i), float(j), float(k)) * kSpacing, kRadius, ParticleKind::Liquid, 0.0f,
-                         {});
+        particles.append(glm::vec3(float(i), float(j), float(k)) * kSpacing, kRadius, ParticleKind::Liquid,
+                         0.0f, {});
   return particles;
 }
 
@@ -56,7 +56,9 @@ TEST(FullNeighbourhood, ALatticesInteriorHoldsItsFullNeighbourhood) {
 TEST(FullNeighbourhood, SampledCountMatchesBruteForceOnAJitteredBody) {
   Particles particles;
   unsigned state = 12345;
-  const auto next = [&state] { return float((state = state * 1664525u + 1013904223u) >> 8) / float(1 << 24); };
+  const auto next = [&state] {
+    return float((state = state * 1664525u + 1013904223u) >> 8) / float(1 << 24);
+  };
   for (int n = 0; n < 6000; ++n)  // a ball of water, 0.5 across, particles 0.8 r apart on average
     for (;;) {
       const glm::vec3 p(next() - 0.5f, next() - 0.5f, next() - 0.5f);
@@ -120,7 +122,8 @@ TEST(FullNeighbourhood, ALatticesFacesAreFlatEllipsoidsNotSmallSpheres) {
   EXPECT_EQ(absolute.minNeighboursApplied, 25.0f);
   int spheres = 0;
   for (const EllipsoidInstance& instance : absolute.aggregates)
-    spheres += std::abs(instance.centreAndBoundingRadius.w - parameters.anisotropy_isotropic_scale * kRadius) < 1e-6f;
+    spheres += std::abs(instance.centreAndBoundingRadius.w -
+                        parameters.anisotropy_isotropic_scale * kRadius) < 1e-6f;
   EXPECT_GE(spheres, 6 * 64) << "every face particle is a sphere of k_n r";
 }
 

@@ -17,16 +17,17 @@ using namespace liquid_test;
 namespace {
 
 constexpr int kWidth = 160, kHeight = 120;
-constexpr float kWallX = 1.1f;       // the tank's near wall: the plane x = 1.1 from the floor up to kWallTop
-constexpr float kWallTop = 0.6f;     // the water stands at 0.4 (a lattice up to 0.35, radius 0.05)
-const glm::vec3 kWallColour{1, 0, 0};    // red outside
+constexpr float kWallX = 1.1f;    // the tank's near wall: the plane x = 1.1 from the floor up to kWallTop
+constexpr float kWallTop = 0.6f;  // the water stands at 0.4 (a lattice up to 0.35, radius 0.05)
+const glm::vec3 kWallColour{1, 0, 0};   // red outside
 const glm::vec3 kFloorColour{0, 1, 0};  // the tank's floor, and the ground beyond, green
 
 // Eye depth of the first solid each pixel's centre ray meets: the wall where the ray crosses x = kWallX below
 // its top (when there is a wall), else the floor (z = 0); and whether it is the wall.
 std::pair<float, bool> solidAt(const Camera& camera, int column, int row, bool wall = true) {
   const glm::vec3 eye = camera.position();
-  const glm::vec3 step = camera.worldFromPixelAndDepth({column + 0.5f, row + 0.5f}, 1.0f) - eye;  // per unit depth
+  const glm::vec3 step =
+      camera.worldFromPixelAndDepth({column + 0.5f, row + 0.5f}, 1.0f) - eye;  // per unit depth
   if (wall && step.x < 0.0f) {
     const float depth = (kWallX - eye.x) / step.x;
     const float height = eye.z + depth * step.z;
@@ -43,12 +44,16 @@ Scene tankScene(const TempDirectory& directory, bool wall) {
   const Camera camera = scene.camera;
   writeBackgroundExr(
       scene.background.image, kWidth, kHeight,
-      [&](int column, int row) { return solidAt(camera, column, row, wall).second ? kWallColour : kFloorColour; },
+      [&](int column, int row) {
+        return solidAt(camera, column, row, wall).second ? kWallColour : kFloorColour;
+      },
       [&](int column, int row) { return solidAt(camera, column, row, wall).first; });
   return scene;
 }
 
-Particles pool() { return particlesOf(block({-1.0f, -1.0f, 0.05f}, {1.0f, 1.0f, 0.35f}, 0.05f), 0.05f); }
+Particles pool() {
+  return particlesOf(block({-1.0f, -1.0f, 0.05f}, {1.0f, 1.0f, 0.35f}, 0.05f), 0.05f);
+}
 
 }  // namespace
 
@@ -61,15 +66,16 @@ TEST(GLLiquidHiddenPaths, APathBehindATanksWallEndsOnTheSubmergedFloorNotOnTheWa
   scene.parameters.liquid.absorption_rgb = {0.0f, 0.0f, 0.0f};  // so the floor's green is not absorbed away
   const RenderResult result = renderer().renderParticles(scene, pool(), 1);
   expectAllChannelsFinite(result);
-  EXPECT_GT(result.stats.liquid.exitsBehindSolids, 100u) << "no path went behind the wall: the scene is wrong";
+  EXPECT_GT(result.stats.liquid.exitsBehindSolids, 100u)
+      << "no path went behind the wall: the scene is wrong";
 
   int liquidPixels = 0, readsBackground = 0;
   for (int row = 0; row < kHeight; ++row)
     for (int column = 0; column < kWidth; ++column) {
       if (at(*result.layer("liquid"), kWidth, column, row, 3) <= 0.0f) continue;
       ++liquidPixels;
-      // The refracted light (all but what the surface reflects: the water's rounded near edge does reflect the
-      // wall, as it should).
+      // The refracted light (all but what the surface reflects: the water's rounded near edge does reflect
+      // the wall, as it should).
       const float refracted = at(*result.layer("liquid"), kWidth, column, row, 0) -
                               at(*result.layer("reflection"), kWidth, column, row, 0);
       EXPECT_LT(refracted, 1e-3f) << column << ", " << row;
@@ -77,7 +83,8 @@ TEST(GLLiquidHiddenPaths, APathBehindATanksWallEndsOnTheSubmergedFloorNotOnTheWa
       ++readsBackground;
       // refraction_uv is (0, 0) at the bottom left; rows of the layers count from the top.
       const int lookedUpColumn = int(at(*result.layer("refraction_uv"), kWidth, column, row, 0) * kWidth);
-      const int lookedUpRow = kHeight - 1 - int(at(*result.layer("refraction_uv"), kWidth, column, row, 1) * kHeight);
+      const int lookedUpRow =
+          kHeight - 1 - int(at(*result.layer("refraction_uv"), kWidth, column, row, 1) * kHeight);
       EXPECT_FALSE(solidAt(scene.camera, lookedUpColumn, lookedUpRow).second)
           << column << ", " << row << " looks up the wall at " << lookedUpColumn << ", " << lookedUpRow;
     }

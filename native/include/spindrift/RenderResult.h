@@ -40,8 +40,8 @@ struct LiquidFrameStats {
   /// Yu and Turk's N_epsilon as applied to the frame (liquid.anisotropy_min_neighbours, lowered by
   /// liquid.anisotropy_min_neighbour_fraction for a coarsely sampled body).
   float minNeighboursApplied = 0.0f;
-  std::size_t culled = 0;              ///< Outside the view frustum.
-  std::size_t splashesAbsorbed = 0;    ///< Splashes below Mantaflow's surface: not drawn.
+  std::size_t culled = 0;            ///< Outside the view frustum.
+  std::size_t splashesAbsorbed = 0;  ///< Splashes below Mantaflow's surface: not drawn.
   /// Aggregates left out because they lie inside the union of the others (liquid.drop_hidden_interior).
   std::size_t hiddenInteriorDropped = 0;         ///< Aggregates hidden from both depth layers: not drawn.
   std::size_t hiddenInteriorFrontLayerOnly = 0;  ///< Their far half hidden: drawn into the front layer only.
