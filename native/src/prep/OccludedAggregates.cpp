@@ -17,39 +17,72 @@
 namespace spindrift {
 namespace {
 
-// Margins for the rounding between this test and the impostor pass's float ray casts. A covering ball is
-// shrunk and a bounding sphere grown by kRadiusMargin of its radius (and a ray's distance to a centre is
-// trusted to kDirectionMargin of the centre's distance: a float ray direction's error); where a chord ends is
-// trusted to kChordMargin of the radius (a grazing ray's end is ill-conditioned) and kDistanceMargin of the
-// distance.
+// Margins for the rounding between this test and the impostor pass's float ray casts. A covering ellipsoid is
+// shrunk and a possibly drawn one grown by kRadiusMargin of each semi-axis (and a ray's distance to a centre
+// is trusted to kDirectionMargin of the centre's distance: a float ray direction's error); where a chord ends
+// is trusted to kChordMargin of the bounding radius (a grazing ray's end is ill-conditioned) and
+// kDistanceMargin of the distance.
 constexpr double kRadiusMargin = 1e-3;
 constexpr double kDirectionMargin = 1e-6;
 constexpr double kChordMargin = 1e-2;
 constexpr double kDistanceMargin = 1e-5;
 
-// One ellipsoid as this view sees it: where a pixel's ray meets its bounding sphere (it may be drawn there,
-// no nearer than the sphere's entry and no farther than its exit) and its inscribed ball (it is drawn there,
-// entering no later than the ball's entry and leaving no earlier than the ball's exit).
+// An ellipsoid in camera space, {x : |M (x - c)| <= 1}: the rows of M and M c.
+struct CameraEllipsoid {
+  glm::dvec3 rows[3];
+  glm::dvec3 scaledCentre{0.0};
+};
+
+// Where a unit ray from the eye enters and leaves an ellipsoid; false when it misses. In the ellipsoid's unit
+// space the ray is t d - M c with d = M r, and it meets the unit sphere where |t d - M c| = 1: the
+// discriminant is |d|^2 - |M c x d|^2, the form that stays exact for a ball hundreds of radii away (a sun's
+// view), where the plain quadratic's terms cancel. Distances along the ray: for one pixel every ellipsoid is
+// compared on the same ray, so they order as planar depths do.
+bool chord(const CameraEllipsoid& ellipsoid, const glm::dvec3& ray, double& entry, double& exit) {
+  const glm::dvec3 d(glm::dot(ellipsoid.rows[0], ray), glm::dot(ellipsoid.rows[1], ray),
+                     glm::dot(ellipsoid.rows[2], ray));
+  const glm::dvec3 offset = glm::cross(ellipsoid.scaledCentre, d);
+  const double lengthSquared = glm::dot(d, d);
+  const double missing = lengthSquared - glm::dot(offset, offset);
+  if (!(missing >= 0.0) || !(lengthSquared > 0.0)) return false;
+  const double along = glm::dot(ellipsoid.scaledCentre, d), half = std::sqrt(missing);
+  entry = (along - half) / lengthSquared;
+  exit = (along + half) / lengthSquared;
+  return true;
+}
+
+// One ellipsoid as this view sees it: grown by the margins, where a pixel's ray meets it (it may be drawn
+// there, no nearer than that entry and no farther than that exit); shrunk by them, where it certainly is
+// (entering no later and leaving no earlier).
 struct ViewedEllipsoid {
-  glm::dvec3 centre{0.0};  // camera space
-  double bounding = 0.0;   // radii, with their margins
-  double inscribed = 0.0;
+  CameraEllipsoid grown, shrunk;
   double chordMargin = 0.0;
-  glm::ivec2 reachLow{0}, reachHigh{-1};  // pixel rectangles (inclusive) of the sphere and the ball
+  glm::ivec2 reachLow{0}, reachHigh{-1};  // pixel rectangles (inclusive) of the grown and the shrunk one
   glm::ivec2 coverLow{0}, coverHigh{-1};
   bool valid = false;  // whole between the near and far planes
 };
 
-// Where a unit ray from the eye enters and leaves a ball; false when it misses. Distances along the ray: for
-// one pixel every ellipsoid is compared on the same ray, so they order as planar depths do.
-bool chord(const glm::dvec3& centre, double radius, const glm::dvec3& ray, double& entry, double& exit) {
-  const glm::dvec3 offset = glm::cross(centre, ray);  // |c x r|: the ray's distance from the centre
-  const double missing = radius * radius - glm::dot(offset, offset);
-  if (!(missing >= 0.0)) return false;
-  const double along = glm::dot(centre, ray), half = std::sqrt(missing);
-  entry = along - half;
-  exit = along + half;
-  return true;
+// The ellipsoid scaled about its centre by `scale`, in camera space.
+CameraEllipsoid cameraEllipsoid(const EllipsoidInstance& ellipsoid, const glm::dmat3& cameraFromWorld,
+                                const glm::dvec3& centre, double scale) {
+  CameraEllipsoid result;
+  for (int k = 0; k < 3; ++k) {
+    result.rows[k] = cameraFromWorld * glm::dvec3(glm::vec3(ellipsoid.inverseAxesRows[k])) / scale;
+    result.scaledCentre[k] = glm::dot(result.rows[k], centre);
+  }
+  return result;
+}
+
+// Half the extent of an ellipsoid along each camera axis (the box about its centre that holds it): along a
+// unit e it reaches |M^-T e|, and M^-T = M (M^T M)^-1 is M with each row divided by its squared length,
+// the rows being orthogonal.
+glm::dvec3 cameraHalfExtents(const CameraEllipsoid& ellipsoid) {
+  glm::dvec3 squared(0.0);
+  for (int k = 0; k < 3; ++k) {
+    const glm::dvec3 axis = ellipsoid.rows[k] / glm::dot(ellipsoid.rows[k], ellipsoid.rows[k]);
+    squared += axis * axis;
+  }
+  return glm::sqrt(squared);
 }
 
 struct ViewGrid {
@@ -68,14 +101,15 @@ struct ViewGrid {
   }
   const glm::dvec3& ray(int x, int y) const { return rays[std::size_t(y) * width + x]; }
 
-  // The pixels whose centres may see a ball (camera space, wholly in front of the eye): its bounding box's
+  // The pixels whose centres may see a box about `centre` (camera space, wholly in front of the eye): its
   // corners projected, which bound its projection.
-  void rectangle(const glm::vec3& centre, float radius, glm::ivec2& low, glm::ivec2& high) const {
+  void rectangle(const glm::vec3& centre, const glm::vec3& halfExtents, glm::ivec2& low,
+                 glm::ivec2& high) const {
     glm::vec2 least(std::numeric_limits<float>::max()), most(std::numeric_limits<float>::lowest());
     for (int corner = 0; corner < 8; ++corner) {
       const glm::vec3 point =
-          centre +
-          radius * glm::vec3(corner & 1 ? 1.0f : -1.0f, corner & 2 ? 1.0f : -1.0f, corner & 4 ? 1.0f : -1.0f);
+          centre + halfExtents * glm::vec3(corner & 1 ? 1.0f : -1.0f, corner & 2 ? 1.0f : -1.0f,
+                                           corner & 4 ? 1.0f : -1.0f);
       const glm::vec2 pixel(0.5f * width + focal * point.x / -point.z,
                             0.5f * height - focal * point.y / -point.z);
       least = glm::min(least, pixel);
@@ -111,6 +145,7 @@ OccludedAggregatesResult dropOccludedAggregates(std::vector<EllipsoidInstance>& 
   if (count == 0 || camera.width <= 0 || camera.height <= 0) return result;
   const ViewGrid grid(camera);
   const glm::mat4 cameraFromWorld = camera.cameraFromWorld();
+  const glm::dmat3 rotation = glm::dmat3(glm::mat3(cameraFromWorld));
   glm::mat4 boxFromWorld(1.0f);
   float boxScale = 1.0f;
   if (domain) {
@@ -129,15 +164,17 @@ OccludedAggregatesResult dropOccludedAggregates(std::vector<EllipsoidInstance>& 
         continue;
       ViewedEllipsoid& view = viewed[i];
       view.valid = true;
-      view.centre = glm::dvec3(centre);
+      // Every semi-axis grown, or shrunk, by kRadiusMargin of itself and by the slack at least.
       const double slack = kDirectionMargin * double(distance);
-      view.bounding = double(radius) * (1.0 + kRadiusMargin) + slack;
+      const double shortest = double(inscribedRadius(ellipsoids[i]));
+      view.grown = cameraEllipsoid(ellipsoids[i], rotation, glm::dvec3(centre),
+                                   1.0 + kRadiusMargin + slack / shortest);
       view.chordMargin = kChordMargin * double(radius) + kDistanceMargin * double(distance);
-      grid.rectangle(centre, float(view.bounding), view.reachLow, view.reachHigh);
-      const double inscribed = double(inscribedRadius(ellipsoids[i])) * (1.0 - kRadiusMargin) - slack;
-      if (!(inscribed > 0.0)) continue;
-      view.inscribed = inscribed;
-      grid.rectangle(centre, float(inscribed), view.coverLow, view.coverHigh);
+      grid.rectangle(centre, glm::vec3(cameraHalfExtents(view.grown)), view.reachLow, view.reachHigh);
+      const double shrink = 1.0 - kRadiusMargin - slack / shortest;
+      if (!(shrink > 0.0)) continue;
+      view.shrunk = cameraEllipsoid(ellipsoids[i], rotation, glm::dvec3(centre), shrink);
+      grid.rectangle(centre, glm::vec3(cameraHalfExtents(view.shrunk)), view.coverLow, view.coverHigh);
       const bool unclipped = !domain || insideBox(ellipsoids[i], *domain, boxFromWorld, boxScale);
       coversFront[i] = unclipped;
       coversBack[i] =
@@ -146,7 +183,7 @@ OccludedAggregatesResult dropOccludedAggregates(std::vector<EllipsoidInstance>& 
   });
 
   // How far along each pixel's ray the front layer's surface lies at most, and the back layer's at least:
-  // each covering ellipsoid bounds them by its inscribed ball's chord. In bands of rows, so that each pixel
+  // each covering ellipsoid bounds them by its shrunk self's chord. In bands of rows, so that each pixel
   // is written by one thread.
   const std::size_t pixels = std::size_t(grid.width) * grid.height;
   std::vector<double> frontAtMost(pixels, std::numeric_limits<double>::infinity());
@@ -161,7 +198,7 @@ OccludedAggregatesResult dropOccludedAggregates(std::vector<EllipsoidInstance>& 
       for (int y = std::max(view.coverLow.y, firstRow); y <= std::min(view.coverHigh.y, lastRow); ++y)
         for (int x = view.coverLow.x; x <= view.coverHigh.x; ++x) {
           double entry, exit;
-          if (!chord(view.centre, view.inscribed, grid.ray(x, y), entry, exit)) continue;
+          if (!chord(view.shrunk, grid.ray(x, y), entry, exit)) continue;
           const std::size_t pixel = std::size_t(y) * grid.width + x;
           if (coversFront[i]) frontAtMost[pixel] = std::min(frontAtMost[pixel], entry + view.chordMargin);
           if (coversBack[i]) backAtLeast[pixel] = std::max(backAtLeast[pixel], exit - view.chordMargin);
@@ -169,9 +206,9 @@ OccludedAggregatesResult dropOccludedAggregates(std::vector<EllipsoidInstance>& 
     }
   });
 
-  // An ellipsoid is hidden from a layer when at every pixel where its bounding sphere may be drawn, another
-  // ellipsoid's surface is certainly nearer than the sphere's entry (front) or farther than its exit (back).
-  // Its own ball never hides it: the ball's chord lies inside the sphere's, and the margins only widen that.
+  // An ellipsoid is hidden from a layer when at every pixel where it may be drawn, another ellipsoid's
+  // surface is certainly nearer than its grown self's entry (front) or farther than its exit (back). Its own
+  // shrunk self never hides it: that chord lies inside the grown one's, and the margins only widen that.
   const std::size_t backFrom = count - split.backOnly;
   std::vector<char> inFront(count), inBack(count);
   tbb::parallel_for(tbb::blocked_range<std::size_t>(0, count), [&](const tbb::blocked_range<std::size_t>& r) {
@@ -184,7 +221,7 @@ OccludedAggregatesResult dropOccludedAggregates(std::vector<EllipsoidInstance>& 
       for (int y = view.reachLow.y; y <= view.reachHigh.y && (hiddenFront || hiddenBack); ++y)
         for (int x = view.reachLow.x; x <= view.reachHigh.x && (hiddenFront || hiddenBack); ++x) {
           double entry, exit;
-          if (!chord(view.centre, view.bounding, grid.ray(x, y), entry, exit)) continue;
+          if (!chord(view.grown, grid.ray(x, y), entry, exit)) continue;
           const std::size_t pixel = std::size_t(y) * grid.width + x;
           hiddenFront = hiddenFront && frontAtMost[pixel] < entry - view.chordMargin;
           hiddenBack = hiddenBack && backAtLeast[pixel] > exit + view.chordMargin;
