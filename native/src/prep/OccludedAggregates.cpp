@@ -59,7 +59,8 @@ struct ViewedEllipsoid {
   double chordMargin = 0.0;
   glm::ivec2 reachLow{0}, reachHigh{-1};  // pixel rectangles (inclusive) of the grown and the shrunk one
   glm::ivec2 coverLow{0}, coverHigh{-1};
-  bool valid = false;  // whole between the near and far planes
+  glm::ivec2 centrePixel{0};  // where its centre projects, clamped to the reach rectangle
+  bool valid = false;         // whole between the near and far planes
 };
 
 // The ellipsoid scaled about its centre by `scale`, in camera space.
@@ -100,6 +101,10 @@ struct ViewGrid {
             glm::dvec3((x + 0.5 - 0.5 * width) / focal, (0.5 * height - (y + 0.5)) / focal, -1.0));
   }
   const glm::dvec3& ray(int x, int y) const { return rays[std::size_t(y) * width + x]; }
+  // The window position (x right, y down) of a camera-space point in front of the eye.
+  glm::vec2 pixelOf(const glm::vec3& point) const {
+    return {0.5f * width + focal * point.x / -point.z, 0.5f * height - focal * point.y / -point.z};
+  }
 
   // The pixels whose centres may see a box about `centre` (camera space, wholly in front of the eye): its
   // corners projected, which bound its projection.
@@ -110,8 +115,7 @@ struct ViewGrid {
       const glm::vec3 point =
           centre + halfExtents * glm::vec3(corner & 1 ? 1.0f : -1.0f, corner & 2 ? 1.0f : -1.0f,
                                            corner & 4 ? 1.0f : -1.0f);
-      const glm::vec2 pixel(0.5f * width + focal * point.x / -point.z,
-                            0.5f * height - focal * point.y / -point.z);
+      const glm::vec2 pixel = pixelOf(point);
       least = glm::min(least, pixel);
       most = glm::max(most, pixel);
     }
@@ -171,6 +175,9 @@ OccludedAggregatesResult dropOccludedAggregates(std::vector<EllipsoidInstance>& 
                                    1.0 + kRadiusMargin + slack / shortest);
       view.chordMargin = kChordMargin * double(radius) + kDistanceMargin * double(distance);
       grid.rectangle(centre, glm::vec3(cameraHalfExtents(view.grown)), view.reachLow, view.reachHigh);
+      const glm::vec2 centrePixel = glm::clamp(grid.pixelOf(centre), glm::vec2(-2.0f),
+                                               glm::vec2(float(grid.width), float(grid.height)) + 2.0f);
+      view.centrePixel = glm::clamp(glm::ivec2(glm::floor(centrePixel)), view.reachLow, view.reachHigh);
       const double shrink = 1.0 - kRadiusMargin - slack / shortest;
       if (!(shrink > 0.0)) continue;
       view.shrunk = cameraEllipsoid(ellipsoids[i], rotation, glm::dvec3(centre), shrink);
@@ -218,14 +225,20 @@ OccludedAggregatesResult dropOccludedAggregates(std::vector<EllipsoidInstance>& 
       const ViewedEllipsoid& view = viewed[i];
       if (!view.valid) continue;
       bool hiddenFront = inFront[i], hiddenBack = inBack[i];
+      const auto test = [&](int x, int y) {
+        double entry, exit;
+        if (!chord(view.grown, grid.ray(x, y), entry, exit)) return;
+        const std::size_t pixel = std::size_t(y) * grid.width + x;
+        hiddenFront = hiddenFront && frontAtMost[pixel] < entry - view.chordMargin;
+        hiddenBack = hiddenBack && backAtLeast[pixel] > exit + view.chordMargin;
+      };
+      // The centre first: an ellipsoid that wins pixels mostly wins the one its centre projects to, and then
+      // the rest of its rectangle need not be read.
+      if (glm::all(glm::lessThanEqual(view.reachLow, view.reachHigh)))
+        test(view.centrePixel.x, view.centrePixel.y);
       for (int y = view.reachLow.y; y <= view.reachHigh.y && (hiddenFront || hiddenBack); ++y)
-        for (int x = view.reachLow.x; x <= view.reachHigh.x && (hiddenFront || hiddenBack); ++x) {
-          double entry, exit;
-          if (!chord(view.grown, grid.ray(x, y), entry, exit)) continue;
-          const std::size_t pixel = std::size_t(y) * grid.width + x;
-          hiddenFront = hiddenFront && frontAtMost[pixel] < entry - view.chordMargin;
-          hiddenBack = hiddenBack && backAtLeast[pixel] > exit + view.chordMargin;
-        }
+        for (int x = view.reachLow.x; x <= view.reachHigh.x && (hiddenFront || hiddenBack); ++x)
+          test(x, y);
       if (hiddenFront) inFront[i] = 0;
       if (hiddenBack) inBack[i] = 0;
     }
