@@ -33,17 +33,19 @@ struct CameraEllipsoid {
   glm::dvec3 scaledCentre{0.0};
 };
 
-// Where a unit ray from the eye enters and leaves an ellipsoid; false when it misses. In the ellipsoid's unit
-// space the ray is t d - M c with d = M r, and it meets the unit sphere where |t d - M c| = 1: the
-// discriminant is |d|^2 - |M c x d|^2, the form that stays exact for a ball hundreds of radii away (a sun's
-// view), where the plain quadratic's terms cancel. Distances along the ray: for one pixel every ellipsoid is
-// compared on the same ray, so they order as planar depths do.
-bool chord(const CameraEllipsoid& ellipsoid, const glm::dvec3& ray, double& entry, double& exit) {
+// Where a unit ray from the eye enters and leaves the ellipsoid scaled about its centre by `scale`; false
+// when it misses. In the ellipsoid's unit space the ray is t d - M c with d = M r, and it meets the sphere of
+// radius `scale` where |t d - M c| = scale: the discriminant is scale^2 |d|^2 - |M c x d|^2, the form that
+// stays exact for a ball hundreds of radii away (a sun's view), where the plain quadratic's terms cancel.
+// Distances along the ray: for one pixel every ellipsoid is compared on the same ray, so they order as planar
+// depths do.
+bool chord(const CameraEllipsoid& ellipsoid, double scale, const glm::dvec3& ray, double& entry,
+           double& exit) {
   const glm::dvec3 d(glm::dot(ellipsoid.rows[0], ray), glm::dot(ellipsoid.rows[1], ray),
                      glm::dot(ellipsoid.rows[2], ray));
   const glm::dvec3 offset = glm::cross(ellipsoid.scaledCentre, d);
   const double lengthSquared = glm::dot(d, d);
-  const double missing = lengthSquared - glm::dot(offset, offset);
+  const double missing = scale * scale * lengthSquared - glm::dot(offset, offset);
   if (!(missing >= 0.0) || !(lengthSquared > 0.0)) return false;
   const double along = glm::dot(ellipsoid.scaledCentre, d), half = std::sqrt(missing);
   entry = (along - half) / lengthSquared;
@@ -55,7 +57,8 @@ bool chord(const CameraEllipsoid& ellipsoid, const glm::dvec3& ray, double& entr
 // there, no nearer than that entry and no farther than that exit); shrunk by them, where it certainly is
 // (entering no later and leaving no earlier).
 struct ViewedEllipsoid {
-  CameraEllipsoid grown, shrunk;
+  CameraEllipsoid ellipsoid;
+  double grown = 1.0, shrunk = 0.0;  // the scales about its centre
   double chordMargin = 0.0;
   glm::ivec2 reachLow{0}, reachHigh{-1};  // pixel rectangles (inclusive) of the grown and the shrunk one
   glm::ivec2 coverLow{0}, coverHigh{-1};
@@ -63,12 +66,12 @@ struct ViewedEllipsoid {
   bool valid = false;         // whole between the near and far planes
 };
 
-// The ellipsoid scaled about its centre by `scale`, in camera space.
+// The ellipsoid in camera space.
 CameraEllipsoid cameraEllipsoid(const EllipsoidInstance& ellipsoid, const glm::dmat3& cameraFromWorld,
-                                const glm::dvec3& centre, double scale) {
+                                const glm::dvec3& centre) {
   CameraEllipsoid result;
   for (int k = 0; k < 3; ++k) {
-    result.rows[k] = cameraFromWorld * glm::dvec3(glm::vec3(ellipsoid.inverseAxesRows[k])) / scale;
+    result.rows[k] = cameraFromWorld * glm::dvec3(glm::vec3(ellipsoid.inverseAxesRows[k]));
     result.scaledCentre[k] = glm::dot(result.rows[k], centre);
   }
   return result;
@@ -171,17 +174,17 @@ OccludedAggregatesResult dropOccludedAggregates(std::vector<EllipsoidInstance>& 
       // Every semi-axis grown, or shrunk, by kRadiusMargin of itself and by the slack at least.
       const double slack = kDirectionMargin * double(distance);
       const double shortest = double(inscribedRadius(ellipsoids[i]));
-      view.grown = cameraEllipsoid(ellipsoids[i], rotation, glm::dvec3(centre),
-                                   1.0 + kRadiusMargin + slack / shortest);
+      view.ellipsoid = cameraEllipsoid(ellipsoids[i], rotation, glm::dvec3(centre));
+      const glm::dvec3 halfExtents = cameraHalfExtents(view.ellipsoid);
+      view.grown = 1.0 + kRadiusMargin + slack / shortest;
       view.chordMargin = kChordMargin * double(radius) + kDistanceMargin * double(distance);
-      grid.rectangle(centre, glm::vec3(cameraHalfExtents(view.grown)), view.reachLow, view.reachHigh);
+      grid.rectangle(centre, glm::vec3(view.grown * halfExtents), view.reachLow, view.reachHigh);
       const glm::vec2 centrePixel = glm::clamp(grid.pixelOf(centre), glm::vec2(-2.0f),
                                                glm::vec2(float(grid.width), float(grid.height)) + 2.0f);
       view.centrePixel = glm::clamp(glm::ivec2(glm::floor(centrePixel)), view.reachLow, view.reachHigh);
-      const double shrink = 1.0 - kRadiusMargin - slack / shortest;
-      if (!(shrink > 0.0)) continue;
-      view.shrunk = cameraEllipsoid(ellipsoids[i], rotation, glm::dvec3(centre), shrink);
-      grid.rectangle(centre, glm::vec3(cameraHalfExtents(view.shrunk)), view.coverLow, view.coverHigh);
+      view.shrunk = 1.0 - kRadiusMargin - slack / shortest;
+      if (!(view.shrunk > 0.0)) continue;
+      grid.rectangle(centre, glm::vec3(view.shrunk * halfExtents), view.coverLow, view.coverHigh);
       const bool unclipped = !domain || insideBox(ellipsoids[i], *domain, boxFromWorld, boxScale);
       coversFront[i] = unclipped;
       coversBack[i] =
@@ -202,10 +205,17 @@ OccludedAggregatesResult dropOccludedAggregates(std::vector<EllipsoidInstance>& 
     for (std::size_t i = 0; i < count; ++i) {
       const ViewedEllipsoid& view = viewed[i];
       if (!coversFront[i] && !coversBack[i]) continue;
+      // A row's rays lie in one plane through the eye, which cuts the ellipsoid in one convex piece: the rays
+      // that meet it are one run of pixels, and the row ends at the first miss after a hit (a rounding miss
+      // there only leaves a pixel uncovered, which keeps the test conservative).
       for (int y = std::max(view.coverLow.y, firstRow); y <= std::min(view.coverHigh.y, lastRow); ++y)
-        for (int x = view.coverLow.x; x <= view.coverHigh.x; ++x) {
+        for (int x = view.coverLow.x, hits = 0; x <= view.coverHigh.x; ++x) {
           double entry, exit;
-          if (!chord(view.shrunk, grid.ray(x, y), entry, exit)) continue;
+          if (!chord(view.ellipsoid, view.shrunk, grid.ray(x, y), entry, exit)) {
+            if (hits > 0) break;
+            continue;
+          }
+          ++hits;
           const std::size_t pixel = std::size_t(y) * grid.width + x;
           if (coversFront[i]) frontAtMost[pixel] = std::min(frontAtMost[pixel], entry + view.chordMargin);
           if (coversBack[i]) backAtLeast[pixel] = std::max(backAtLeast[pixel], exit - view.chordMargin);
@@ -227,7 +237,7 @@ OccludedAggregatesResult dropOccludedAggregates(std::vector<EllipsoidInstance>& 
       bool hiddenFront = inFront[i], hiddenBack = inBack[i];
       const auto test = [&](int x, int y) {
         double entry, exit;
-        if (!chord(view.grown, grid.ray(x, y), entry, exit)) return;
+        if (!chord(view.ellipsoid, view.grown, grid.ray(x, y), entry, exit)) return;
         const std::size_t pixel = std::size_t(y) * grid.width + x;
         hiddenFront = hiddenFront && frontAtMost[pixel] < entry - view.chordMargin;
         hiddenBack = hiddenBack && backAtLeast[pixel] > exit + view.chordMargin;
