@@ -222,22 +222,21 @@ Crossing findExit(vec3 origin, vec3 direction, int body) {
   none.hidden = false;
   none.t = 0.0;
   ivec2 startTexel = texelOf(origin);
-  ivec2 lastTexelInside = startTexel;
   for (int k = 1; k <= ray.samples; ++k) {
     t = screenRaySampleT(ray, k);
     if (inStartTexel(origin, direction, t, startTexel)) continue;
+    float f = crossingFunction(kInsideBody, body, origin, direction, t, false);
     ivec2 texel = texelOf(origin + t * direction);
-    if (frontDepth(body, texel) >= kNoSurfaceDepth * 0.5 &&
+    if (f < 0.0 && frontDepth(body, texel) >= kNoSurfaceDepth * 0.5 &&
         rayEyeDepth(origin, direction, t) > texelFetch(backgroundEyeDepth, texel, 0).r) {
       // Where the ray is, a solid stands in front of it and the body has no layers: the solid hides the
       // liquid there (a tank's near wall hides the water below its rim), so where the path ends is not seen.
+      // (Where the body has no layers the crossing function is negative, so this is checked only there.)
       none.hidden = true;
       none.t = previousT;
-      none.fragCoord = vec2(lastTexelInside) + 0.5;
+      none.fragCoord = vec2(texelOf(origin + previousT * direction)) + 0.5;
       return none;
     }
-    lastTexelInside = texel;
-    float f = crossingFunction(kInsideBody, body, origin, direction, t, false);
     if (f < 0.0) return crossingAt(body, origin, direction, refineCrossing(kInsideBody, body, origin, direction, previousT, previousF, t, f));
     previousT = t;
     previousF = f;

@@ -62,8 +62,7 @@ struct ViewedEllipsoid {
   double chordMargin = 0.0;
   glm::ivec2 reachLow{0}, reachHigh{-1};  // pixel rectangles (inclusive) of the grown and the shrunk one
   glm::ivec2 coverLow{0}, coverHigh{-1};
-  glm::ivec2 centrePixel{0};  // where its centre projects, clamped to the reach rectangle
-  bool valid = false;         // whole between the near and far planes
+  bool valid = false;  // whole between the near and far planes
 };
 
 // The ellipsoid in camera space.
@@ -179,9 +178,6 @@ OccludedAggregatesResult dropOccludedAggregates(std::vector<EllipsoidInstance>& 
       view.grown = 1.0 + kRadiusMargin + slack / shortest;
       view.chordMargin = kChordMargin * double(radius) + kDistanceMargin * double(distance);
       grid.rectangle(centre, glm::vec3(view.grown * halfExtents), view.reachLow, view.reachHigh);
-      const glm::vec2 centrePixel = glm::clamp(grid.pixelOf(centre), glm::vec2(-2.0f),
-                                               glm::vec2(float(grid.width), float(grid.height)) + 2.0f);
-      view.centrePixel = glm::clamp(glm::ivec2(glm::floor(centrePixel)), view.reachLow, view.reachHigh);
       view.shrunk = 1.0 - kRadiusMargin - slack / shortest;
       if (!(view.shrunk > 0.0)) continue;
       grid.rectangle(centre, glm::vec3(view.shrunk * halfExtents), view.coverLow, view.coverHigh);
@@ -205,17 +201,10 @@ OccludedAggregatesResult dropOccludedAggregates(std::vector<EllipsoidInstance>& 
     for (std::size_t i = 0; i < count; ++i) {
       const ViewedEllipsoid& view = viewed[i];
       if (!coversFront[i] && !coversBack[i]) continue;
-      // A row's rays lie in one plane through the eye, which cuts the ellipsoid in one convex piece: the rays
-      // that meet it are one run of pixels, and the row ends at the first miss after a hit (a rounding miss
-      // there only leaves a pixel uncovered, which keeps the test conservative).
       for (int y = std::max(view.coverLow.y, firstRow); y <= std::min(view.coverHigh.y, lastRow); ++y)
-        for (int x = view.coverLow.x, hits = 0; x <= view.coverHigh.x; ++x) {
+        for (int x = view.coverLow.x; x <= view.coverHigh.x; ++x) {
           double entry, exit;
-          if (!chord(view.ellipsoid, view.shrunk, grid.ray(x, y), entry, exit)) {
-            if (hits > 0) break;
-            continue;
-          }
-          ++hits;
+          if (!chord(view.ellipsoid, view.shrunk, grid.ray(x, y), entry, exit)) continue;
           const std::size_t pixel = std::size_t(y) * grid.width + x;
           if (coversFront[i]) frontAtMost[pixel] = std::min(frontAtMost[pixel], entry + view.chordMargin);
           if (coversBack[i]) backAtLeast[pixel] = std::max(backAtLeast[pixel], exit - view.chordMargin);
@@ -235,20 +224,14 @@ OccludedAggregatesResult dropOccludedAggregates(std::vector<EllipsoidInstance>& 
       const ViewedEllipsoid& view = viewed[i];
       if (!view.valid) continue;
       bool hiddenFront = inFront[i], hiddenBack = inBack[i];
-      const auto test = [&](int x, int y) {
-        double entry, exit;
-        if (!chord(view.ellipsoid, view.grown, grid.ray(x, y), entry, exit)) return;
-        const std::size_t pixel = std::size_t(y) * grid.width + x;
-        hiddenFront = hiddenFront && frontAtMost[pixel] < entry - view.chordMargin;
-        hiddenBack = hiddenBack && backAtLeast[pixel] > exit + view.chordMargin;
-      };
-      // The centre first: an ellipsoid that wins pixels mostly wins the one its centre projects to, and then
-      // the rest of its rectangle need not be read.
-      if (glm::all(glm::lessThanEqual(view.reachLow, view.reachHigh)))
-        test(view.centrePixel.x, view.centrePixel.y);
       for (int y = view.reachLow.y; y <= view.reachHigh.y && (hiddenFront || hiddenBack); ++y)
-        for (int x = view.reachLow.x; x <= view.reachHigh.x && (hiddenFront || hiddenBack); ++x)
-          test(x, y);
+        for (int x = view.reachLow.x; x <= view.reachHigh.x && (hiddenFront || hiddenBack); ++x) {
+          double entry, exit;
+          if (!chord(view.ellipsoid, view.grown, grid.ray(x, y), entry, exit)) continue;
+          const std::size_t pixel = std::size_t(y) * grid.width + x;
+          hiddenFront = hiddenFront && frontAtMost[pixel] < entry - view.chordMargin;
+          hiddenBack = hiddenBack && backAtLeast[pixel] > exit + view.chordMargin;
+        }
       if (hiddenFront) inFront[i] = 0;
       if (hiddenBack) inBack[i] = 0;
     }
