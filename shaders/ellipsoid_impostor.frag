@@ -13,10 +13,11 @@ uniform bool backFaces;
 // so liquid pressed against the domain's walls ends in the flat face Mantaflow's mesh closes it with.
 uniform bool clipToDomain;
 uniform mat4 domainFromWorld;
+uniform mat4 domainFromCamera;  // domainFromWorld x the view's worldFromCamera, once per draw
 uniform vec3 domainLow;
 uniform vec3 domainHigh;
 
-flat in vec3 vCameraCentre;
+flat in vec3 vUnitSphereCamera;
 flat in mat3 vInverseAxesCamera;
 
 layout(location = 0) out float outEyeDepth;
@@ -27,7 +28,7 @@ void main() {
   // In the ellipsoid's unit-sphere space the ray is o + t d with o = -A^-1 c. Solving around the closest
   // approach t0 = -(o.d)/(d.d) keeps the discriminant accurate thousands of radii away, where the textbook
   // b^2 - ac cancels catastrophically.
-  vec3 origin = -(vInverseAxesCamera * vCameraCentre);
+  vec3 origin = vUnitSphereCamera;
   vec3 unitDirection = vInverseAxesCamera * direction;
   float a = dot(unitDirection, unitDirection);
   float closest = -dot(origin, unitDirection) / a;
@@ -47,7 +48,6 @@ void main() {
   vec3 boxNormal = vec3(0.0);
   bool onBox = false;
   if (clipToDomain) {
-    mat4 domainFromCamera = domainFromWorld * frame.worldFromCamera;
     vec3 boxOrigin = (domainFromCamera * vec4(0.0, 0.0, 0.0, 1.0)).xyz;
     vec3 boxDirection = mat3(domainFromCamera) * direction;
     vec3 inverse = 1.0 / boxDirection;

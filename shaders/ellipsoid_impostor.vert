@@ -20,7 +20,8 @@ layout(std430, binding = 0) readonly buffer Ellipsoids {
 uniform bool backFaces;
 uniform int firstEllipsoid;  // This layer draws ellipsoids [firstEllipsoid, firstEllipsoid + count).
 
-flat out vec3 vCameraCentre;
+// The camera in the ellipsoid's unit-sphere space, -A^-1 c: every fragment's ray starts there.
+flat out vec3 vUnitSphereCamera;
 flat out mat3 vInverseAxesCamera;  // maps camera-space offsets from the centre to the unit sphere
 
 void main() {
@@ -31,7 +32,7 @@ void main() {
                                          ellipsoid.inverseAxesRows[2].xyz));
   // x_camera = R x_world + t, so the camera-space inverse is the world inverse followed by R^T.
   vInverseAxesCamera = inverseAxesWorld * transpose(mat3(frame.cameraFromWorld));
-  vCameraCentre = centre;
+  vUnitSphereCamera = -(vInverseAxesCamera * centre);
 
   // Tight bounds: the unit sphere maps to clip space by T = clipFromCamera [A c; 0 1]. A clip-space plane
   // x - s w = 0 touches the ellipsoid where (r1 - s r4) D (r1 - s r4) = 0 with D = diag(1, 1, 1, -1) and r

@@ -20,7 +20,7 @@ SurfaceLayers LightDepthLayers::run(const LightPreparation& light, const Camera&
   lightUniforms_.update(light.view.camera, 0);
   const BackgroundData noBackground{noSolids_, noSolids_, nullptr, glm::vec3(0.0f), nullptr};
   const SurfaceLayers drawn =
-      impostors_.run(light.liquid.aggregates, light.liquid.aggregateLayers, noBackground, size, size);
+      impostors_.run(light.liquid.aggregates, light.liquid.aggregateLayers, noBackground, light.view.camera);
   const auto restoreViews = [&] {
     lightUniforms_.update(light.view.camera, 2);
     cameraUniforms_.update(camera, 0);

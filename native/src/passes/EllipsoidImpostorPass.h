@@ -16,11 +16,11 @@ namespace spindrift {
 class EllipsoidImpostorPass {
  public:
   explicit EllipsoidImpostorPass(const ShaderLibrary& shaders);
-  /// `split` says which ellipsoids each layer draws (all of them by default); `domain`, when not null,
-  /// clips the surfaces to a Mantaflow domain's box.
+  /// `split` says which ellipsoids each layer draws (all of them by default); `view` is the camera whose
+  /// frame block is bound (binding 0); `domain`, when not null, clips the surfaces to a Mantaflow domain's
+  /// box.
   SurfaceLayers run(const std::vector<EllipsoidInstance>& ellipsoids, const LayerSplit& split,
-                    const BackgroundData& background, int width, int height,
-                    const DomainBox* domain = nullptr);
+                    const BackgroundData& background, const Camera& view, const DomainBox* domain = nullptr);
 
  private:
   struct Target {
@@ -30,7 +30,7 @@ class EllipsoidImpostorPass {
     Texture2D depthBuffer;
   };
   void drawLayer(Target& target, bool backFaces, GLint first, GLsizei count, const BackgroundData& background,
-                 int width, int height, const DomainBox* domain);
+                 const Camera& view, const DomainBox* domain);
 
   ProgramObject program_;
   VertexArrayObject emptyVertexArray_;
