@@ -2,37 +2,28 @@
 // Draws each liquid particle's ellipsoid as a screen rectangle that bounds its exact projection (Sigg et al.
 // 2006, section 3.2), or, where that does not exist (an ellipsoid reaching the camera plane), as a
 // camera-facing quad around its bounding sphere's silhouette; the fragment shader ray-casts the exact
-// ellipsoid. A flattened ellipsoid seen edge-on covers a fraction of its bounding sphere's square, and every
-// fragment of the quad costs a ray cast. Four vertices per particle (gl_VertexID / 4 names it), drawn as two
+// ellipsoid (lib/ellipsoid_ray.glsl). A flattened ellipsoid seen edge-on covers a fraction of its bounding
+// sphere's square, and every fragment of the quad costs a ray cast. Four vertices per particle (gl_VertexID / 4 names it), drawn as two
 // indexed triangles rather than one instance each: llvmpipe pays per instance, and the lights' views of a
 // thick body drew 1.8 times faster so (docs/frame-cost.md).
 #include "lib/frame.glsl"
+#include "lib/ellipsoid_ray.glsl"
 
-struct Ellipsoid {
-  vec4 centreAndBoundingRadius;  // world centre, radius of a containing sphere
-  vec4 inverseAxesRows[3];       // rows of the world-space inverse axes matrix
-};
-
-layout(std430, binding = 0) readonly buffer Ellipsoids {
-  Ellipsoid ellipsoids[];
-};
-
-uniform bool backFaces;
 uniform int firstEllipsoid;  // This layer draws ellipsoids [firstEllipsoid, firstEllipsoid + count).
 
 // The camera in the ellipsoid's unit-sphere space, -A^-1 c: every fragment's ray starts there.
 flat out vec3 vUnitSphereCamera;
 flat out mat3 vInverseAxesCamera;  // maps camera-space offsets from the centre to the unit sphere
+flat out uint vEllipsoid;          // its index in the list
 
 void main() {
-  Ellipsoid ellipsoid = ellipsoids[firstEllipsoid + (gl_VertexID >> 2)];
+  vEllipsoid = uint(firstEllipsoid + (gl_VertexID >> 2));
+  Ellipsoid ellipsoid = ellipsoids[vEllipsoid];
   vec3 centre = (frame.cameraFromWorld * vec4(ellipsoid.centreAndBoundingRadius.xyz, 1.0)).xyz;
   float radius = ellipsoid.centreAndBoundingRadius.w;
-  mat3 inverseAxesWorld = transpose(mat3(ellipsoid.inverseAxesRows[0].xyz, ellipsoid.inverseAxesRows[1].xyz,
-                                         ellipsoid.inverseAxesRows[2].xyz));
-  // x_camera = R x_world + t, so the camera-space inverse is the world inverse followed by R^T.
-  vInverseAxesCamera = inverseAxesWorld * transpose(mat3(frame.cameraFromWorld));
-  vUnitSphereCamera = -(vInverseAxesCamera * centre);
+  // The normal resolve (ellipsoid_normals.frag) derives both with the same functions.
+  vInverseAxesCamera = inverseAxesInCamera(ellipsoid);
+  vUnitSphereCamera = cameraInUnitSphere(vInverseAxesCamera, centre);
 
   // Tight bounds: the unit sphere maps to clip space by T = clipFromCamera [A c; 0 1]. A clip-space plane
   // x - s w = 0 touches the ellipsoid where (r1 - s r4) D (r1 - s r4) = 0 with D = diag(1, 1, 1, -1) and r

@@ -114,3 +114,87 @@ TEST(GLImpostorBounds, TightRectanglesLoseNoPixelOfAnyEllipsoid) {
   EXPECT_LE(frontMismatch, compared / 500) << frontMismatch << " of " << compared;
   EXPECT_LE(backMismatch, compared / 500) << backMismatch << " of " << compared;
 }
+
+// The normal resolve (ellipsoid_normals.frag) repeats the ray cast of each pixel's winning ellipsoid only:
+// every pixel's normal must be the analytic outward normal, M^T M (x - c) normalised, of the ellipsoid that a
+// double- precision CPU ray cast finds nearest (front layer) or farthest (back layer) there.
+TEST(GLImpostorBounds, EachPixelHasTheNormalOfTheEllipsoidThatHoldsIt) {
+  Scene scene;
+  scene.camera =
+      Camera::lookAt(160, 120, 40.0f, {0.0f, -1.3f, 0.35f}, {0.0f, 0.0f, 0.0f}, {0.0f, 0.0f, 1.0f});
+  scene.camera.nearClip = 0.05f;
+  scene.camera.farClip = 20.0f;
+  const Particles particles = wavySheet();
+  const std::vector<EllipsoidInstance> ellipsoids =
+      prepareLiquid(particles, scene.camera, scene.parameters.liquid).aggregates;
+
+  Renderer renderer;
+  renderer.setIntermediateLayers(true);
+  renderer.setLayers({"depth"});
+  const RenderResult result = renderer.renderParticles(scene, particles, 1);
+  const ImageLayer* layers[2] = {result.layer("aggregate_front_normal"),
+                                 result.layer("aggregate_back_normal")};
+  ASSERT_NE(layers[0], nullptr);
+  ASSERT_NE(layers[1], nullptr);
+
+  const int width = scene.camera.width, height = scene.camera.height;
+  const glm::dvec3 origin = glm::dvec3(scene.camera.position());
+  std::size_t compared = 0, wrong = 0, missing = 0;
+  for (int row = 0; row < height; ++row)
+    for (int column = 0; column < width; ++column) {
+      const glm::dvec3 direction =
+          glm::dvec3(scene.camera.worldFromPixelAndDepth({column + 0.5f, row + 0.5f}, 1.0f)) - origin;
+      // The winners of both layers, and how close the runners-up came (a near tie may go either way in
+      // float).
+      double best[2] = {1e10, -1e10}, runnerUp[2] = {1e10, -1e10};
+      const EllipsoidInstance* winner[2] = {nullptr, nullptr};
+      bool grazing = false;
+      for (const EllipsoidInstance& ellipsoid : ellipsoids) {
+        const ellipsoid_test::Chord chord = ellipsoid_test::castRay(ellipsoid, origin, direction);
+        grazing = grazing || std::abs(chord.miss) < 2e-3;
+        if (chord.miss < 0.0) continue;
+        if (chord.entry < best[0]) {
+          runnerUp[0] = best[0];
+          best[0] = chord.entry;
+          winner[0] = &ellipsoid;
+        } else {
+          runnerUp[0] = std::min(runnerUp[0], chord.entry);
+        }
+        if (chord.exit > best[1]) {
+          runnerUp[1] = best[1];
+          best[1] = chord.exit;
+          winner[1] = &ellipsoid;
+        } else {
+          runnerUp[1] = std::max(runnerUp[1], chord.exit);
+        }
+      }
+      const std::size_t pixel = std::size_t(row) * width + column;
+      for (int layer = 0; layer < 2; ++layer) {
+        const float* stored = &layers[layer]->pixels[3 * pixel];
+        for (int c = 0; c < 3; ++c)
+          ASSERT_TRUE(std::isfinite(stored[c]));
+        if (!winner[layer] || grazing ||
+            std::abs(runnerUp[layer] - best[layer]) < 1e-4 * std::abs(best[layer]))
+          continue;
+        const EllipsoidInstance& ellipsoid = *winner[layer];
+        const glm::dmat3 inverseAxes = glm::transpose(glm::dmat3(glm::dvec3(ellipsoid.inverseAxesRows[0]),
+                                                                 glm::dvec3(ellipsoid.inverseAxesRows[1]),
+                                                                 glm::dvec3(ellipsoid.inverseAxesRows[2])));
+        const glm::dvec3 point = origin + best[layer] * direction;
+        const glm::dvec3 expected = glm::normalize(glm::transpose(inverseAxes) * inverseAxes *
+                                                   (point - glm::dvec3(ellipsoid.centreAndBoundingRadius)));
+        const glm::dvec3 drawn(stored[0], stored[1], stored[2]);
+        ++compared;
+        if (glm::length(drawn) < 0.5) {
+          ++missing;
+          continue;
+        }
+        // Half-float storage keeps a normal to about 0.1 degrees.
+        wrong += glm::dot(glm::normalize(drawn), expected) < std::cos(glm::radians(1.0));
+      }
+    }
+  RecordProperty("compared_pixels", int(compared));
+  EXPECT_GT(compared, 4000u) << "both layers of the sheet fill much of the view";
+  EXPECT_EQ(missing, 0u) << "pixels with a surface but no normal";
+  EXPECT_LE(wrong, compared / 500) << wrong << " of " << compared << " normals off by more than 1 degree";
+}

@@ -3,10 +3,14 @@
 #include <glm/mat4x4.hpp>
 #include <glm/matrix.hpp>
 
+#include "passes/FrameUniforms.h"
+
 namespace spindrift {
 
 EllipsoidImpostorPass::EllipsoidImpostorPass(const ShaderLibrary& shaders)
     : program_(shaders.program({"ellipsoid_impostor.vert", "ellipsoid_impostor.frag"})),
+      normalsProgram_(shaders.program({"fullscreen.vert", "ellipsoid_normals.frag"})),
+      resolveFramebuffer_(createFramebuffer()),
       emptyVertexArray_(createVertexArray()),
       ellipsoidBuffer_(createBuffer()) {
   front_.framebuffer = createFramebuffer();
@@ -43,28 +47,54 @@ SurfaceLayers EllipsoidImpostorPass::run(const std::vector<EllipsoidInstance>& e
   return {{front_.eyeDepth, front_.normal}, {back_.eyeDepth, back_.normal}};
 }
 
+namespace {
+
+// The uniforms of lib/ellipsoid_ray.glsl, which the impostor and the normal resolve programs share. The
+// impostor program computes no normal, so the compiler drops domainFromWorld from it: a uniform a program
+// lacks is skipped (location -1), where uniformLocation would throw.
+void setRayUniforms(GLuint program, bool backFaces, const Camera& view, const DomainBox* domain) {
+  const auto location = [program](const char* name) { return glGetUniformLocation(program, name); };
+  glProgramUniform1i(program, location("backFaces"), backFaces ? 1 : 0);
+  glProgramUniform1i(program, location("clipToDomain"), domain ? 1 : 0);
+  if (!domain) return;
+  const glm::mat4 domainFromWorld = glm::inverse(domain->worldFromBox);
+  glProgramUniformMatrix4fv(program, location("domainFromWorld"), 1, GL_FALSE, &domainFromWorld[0][0]);
+  // A product every fragment would otherwise repeat: on llvmpipe about 14 % of the impostor pass.
+  const glm::mat4 domainFromCamera = domainFromWorld * view.worldFromCamera;
+  glProgramUniformMatrix4fv(program, location("domainFromCamera"), 1, GL_FALSE, &domainFromCamera[0][0]);
+  glProgramUniform3fv(program, location("domainLow"), 1, &domain->low[0]);
+  glProgramUniform3fv(program, location("domainHigh"), 1, &domain->high[0]);
+}
+
+}  // namespace
+
 void EllipsoidImpostorPass::drawLayer(Target& target, bool backFaces, GLint first, GLsizei count,
                                       const BackgroundData& background, const Camera& view,
                                       const DomainBox* domain) {
   const int width = view.width, height = view.height;
   ensureTexture(target.eyeDepth, GL_R32F, width, height);
+  ensureTexture(target.winner, GL_R32UI, width, height);
   ensureTexture(target.normal, GL_RGBA16F, width, height);
   ensureTexture(target.depthBuffer, GL_DEPTH_COMPONENT32F, width, height);
   const GLuint framebuffer = target.framebuffer.id();
   glNamedFramebufferTexture(framebuffer, GL_COLOR_ATTACHMENT0, target.eyeDepth.id(), 0);
-  glNamedFramebufferTexture(framebuffer, GL_COLOR_ATTACHMENT1, target.normal.id(), 0);
+  glNamedFramebufferTexture(framebuffer, GL_COLOR_ATTACHMENT1, target.winner.id(), 0);
   glNamedFramebufferTexture(framebuffer, GL_DEPTH_ATTACHMENT, target.depthBuffer.id(), 0);
   const GLenum attachments[] = {GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1};
   glNamedFramebufferDrawBuffers(framebuffer, 2, attachments);
 
   const float noSurface[4] = {1e10f, 0.0f, 0.0f, 0.0f};
-  const float noNormal[4] = {0.0f, 0.0f, 0.0f, 0.0f};
+  const GLuint noWinner[4] = {0, 0, 0, 0};
   // The front layer keeps the nearest surface, the back layer the farthest: opposite tests, opposite clears.
   const float clearDepth = backFaces ? 0.0f : 1.0f;
   glClearNamedFramebufferfv(framebuffer, GL_COLOR, 0, noSurface);
-  glClearNamedFramebufferfv(framebuffer, GL_COLOR, 1, noNormal);
+  glClearNamedFramebufferuiv(framebuffer, GL_COLOR, 1, noWinner);
   glClearNamedFramebufferfv(framebuffer, GL_DEPTH, 0, &clearDepth);
-  if (count <= 0) return;
+  if (count <= 0) {
+    const float noNormal[4] = {0.0f, 0.0f, 0.0f, 0.0f};
+    glClearTexImage(target.normal.id(), 0, GL_RGBA, GL_FLOAT, noNormal);
+    return;
+  }
 
   glBindFramebuffer(GL_FRAMEBUFFER, framebuffer);
   glViewport(0, 0, width, height);
@@ -73,20 +103,8 @@ void EllipsoidImpostorPass::drawLayer(Target& target, bool backFaces, GLint firs
   glDepthMask(GL_TRUE);
   glDisable(GL_BLEND);
   glUseProgram(program_.id());
-  glUniform1i(uniformLocation(program_.id(), "backFaces"), backFaces ? 1 : 0);
+  setRayUniforms(program_.id(), backFaces, view, domain);
   glUniform1i(uniformLocation(program_.id(), "firstEllipsoid"), first);
-  glUniform1i(uniformLocation(program_.id(), "clipToDomain"), domain ? 1 : 0);
-  if (domain) {
-    const glm::mat4 domainFromWorld = glm::inverse(domain->worldFromBox);
-    glUniformMatrix4fv(uniformLocation(program_.id(), "domainFromWorld"), 1, GL_FALSE,
-                       &domainFromWorld[0][0]);
-    // A product every fragment would otherwise repeat: on llvmpipe about 14 % of the pass.
-    const glm::mat4 domainFromCamera = domainFromWorld * view.worldFromCamera;
-    glUniformMatrix4fv(uniformLocation(program_.id(), "domainFromCamera"), 1, GL_FALSE,
-                       &domainFromCamera[0][0]);
-    glUniform3fv(uniformLocation(program_.id(), "domainLow"), 1, &domain->low[0]);
-    glUniform3fv(uniformLocation(program_.id(), "domainHigh"), 1, &domain->high[0]);
-  }
   glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, ellipsoidBuffer_.id());
   glBindTextureUnit(0, background.eyeDepth.id());
   glBindVertexArray(emptyVertexArray_.id());
@@ -96,6 +114,15 @@ void EllipsoidImpostorPass::drawLayer(Target& target, bool backFaces, GLint firs
   glDepthFunc(GL_LESS);
   checkGlError(backFaces ? "drawing back faces of liquid particles"
                          : "drawing front faces of liquid particles");
+
+  // The normals of the winning ellipsoids only.
+  const GLuint normals = normalsProgram_.id();
+  glUseProgram(normals);
+  setRayUniforms(normals, backFaces, view, domain);
+  bindColorTargets(resolveFramebuffer_.id(), {&target.normal});
+  glBindTextureUnit(0, target.winner.id());
+  drawFullscreenTriangle(emptyVertexArray_.id());
+  checkGlError("resolving the liquid particles' normals");
 }
 
 }  // namespace spindrift

@@ -12,7 +12,9 @@
 namespace spindrift {
 
 /// Ray-casts ellipsoid impostors (Sigg et al. 2006) into a front and a back depth layer with exact per-pixel
-/// depth and analytic normals: the liquid paper's section 4.2. Spheres are ellipsoids with equal axes.
+/// depth and analytic normals: the liquid paper's section 4.2. Spheres are ellipsoids with equal axes. The
+/// draw keeps each pixel's winning ellipsoid, and a full-screen resolve computes the normals of the winners
+/// only (on llvmpipe every fragment of the draw pays for its whole shader; docs/frame-cost.md).
 class EllipsoidImpostorPass {
  public:
   explicit EllipsoidImpostorPass(const ShaderLibrary& shaders);
@@ -26,13 +28,16 @@ class EllipsoidImpostorPass {
   struct Target {
     FramebufferObject framebuffer;
     Texture2D eyeDepth;
-    Texture2D normal;
+    Texture2D winner;  ///< R32UI: the index + 1 of the ellipsoid that holds the pixel's surface, 0 if none.
+    Texture2D normal;  ///< Resolved from the winners after the draw.
     Texture2D depthBuffer;
   };
   void drawLayer(Target& target, bool backFaces, GLint first, GLsizei count, const BackgroundData& background,
                  const Camera& view, const DomainBox* domain);
 
   ProgramObject program_;
+  ProgramObject normalsProgram_;  // the normal resolve: the winners' ray casts repeated, one per pixel
+  FramebufferObject resolveFramebuffer_;
   VertexArrayObject emptyVertexArray_;
   BufferObject ellipsoidBuffer_;
   std::size_t ellipsoidBufferBytes_ = 0;
