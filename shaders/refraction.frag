@@ -317,10 +317,6 @@ vec3 colourAlong(vec3 origin, vec3 direction, out vec2 backgroundTexel, out floa
   return hasEnvironment ? texture(environmentMap, equirectangularUvFromDirection(worldDirection)).rgb : fallbackColor;
 }
 
-// Depth is tested before the shader runs: outside the camera's liquid, the pass's mask (refraction_mask.frag)
-// rejects the pixel, whose outputs the pass cleared to what the early return below writes.
-layout(early_fragment_tests) in;
-
 void main() {
   ivec2 pixel = ivec2(gl_FragCoord.xy);
   vec3 viewDirection = normalize(cameraRayFromFragCoord(gl_FragCoord.xy));

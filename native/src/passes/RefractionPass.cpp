@@ -12,7 +12,6 @@ constexpr int kRayCounters = 9;
 
 RefractionPass::RefractionPass(const ShaderLibrary& shaders)
     : program_(shaders.program({"fullscreen.vert", "refraction.frag"})),
-      maskProgram_(shaders.program({"fullscreen.vert", "refraction_mask.frag"})),
       emptyVertexArray_(createVertexArray()),
       framebuffer_(createFramebuffer()),
       counters_(createBuffer()) {
@@ -48,15 +47,6 @@ LiquidData RefractionPass::run(const std::optional<SurfaceLayers>& splashes,
     glNamedFramebufferTexture(framebuffer, attachments[i], outputs[i]->id(), 0);
   }
   glNamedFramebufferDrawBuffers(framebuffer, 6, attachments);
-  ensureTexture(liquidMask_, GL_DEPTH_COMPONENT32F, width, height);
-  glNamedFramebufferTexture(framebuffer, GL_DEPTH_ATTACHMENT, liquidMask_.id(), 0);
-  // A pixel the mask rejects keeps these: what the shader writes where there is no liquid.
-  const float zero[4] = {0.0f, 0.0f, 0.0f, 0.0f}, noSurface[4] = {1e10f, 0.0f, 0.0f, 0.0f}, far = 1.0f;
-  for (int i = 0; i < 6; ++i)
-    glClearNamedFramebufferfv(framebuffer, GL_COLOR, i, outputs[i] == &frontDepth_ ? noSurface : zero);
-  for (const Texture2D* image : {&refractionUv_, &transmittance_, &reflection_})
-    glClearTexImage(image->id(), 0, GL_RGBA, GL_FLOAT, zero);
-  glClearNamedFramebufferfv(framebuffer, GL_DEPTH, 0, &far);
 
   const std::uint32_t zeros[kRayCounters] = {};
   glNamedBufferSubData(counters_.id(), 0, sizeof zeros, zeros);
@@ -64,13 +54,8 @@ LiquidData RefractionPass::run(const std::optional<SurfaceLayers>& splashes,
 
   glBindFramebuffer(GL_FRAMEBUFFER, framebuffer);
   glViewport(0, 0, width, height);
+  glDisable(GL_DEPTH_TEST);
   glDisable(GL_BLEND);
-  // Under water every pixel refracts; otherwise only those the mask marks (depth 0 < the triangle's 0.5).
-  if (cameraInLiquid)
-    glDisable(GL_DEPTH_TEST);
-  else
-    drawLiquidMask(splashes, aggregates);
-  glDepthMask(GL_FALSE);
   const GLuint program = program_.id();
   glUseProgram(program);
   auto layerTexture = [&](const std::optional<SurfaceLayers>& layers, bool back, bool normal) {
@@ -110,33 +95,12 @@ LiquidData RefractionPass::run(const std::optional<SurfaceLayers>& splashes,
   glUniform1f(uniformLocation(program, "stepPixels"), parameters.trace_step_pixels);
   glUniform1i(uniformLocation(program, "maxSteps"), parameters.trace_max_steps);
   drawFullscreenTriangle(emptyVertexArray_.id());
-  glDisable(GL_DEPTH_TEST);
-  glDepthMask(GL_TRUE);
   // The image stores must land before the split layers are sampled or read back.
   glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_TEXTURE_UPDATE_BARRIER_BIT |
                   GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
   checkGlError("refracting through the liquid");
   return {color_,       splashColor_,  surfaceClass_,  thickness_, frontDepth_,
           frontNormal_, refractionUv_, transmittance_, reflection_};
-}
-
-void RefractionPass::drawLiquidMask(const std::optional<SurfaceLayers>& splashes,
-                                    const std::optional<SurfaceLayers>& aggregates) {
-  const GLuint mask = maskProgram_.id();
-  glUseProgram(mask);
-  glUniform1i(uniformLocation(mask, "hasSplash"), splashes ? 1 : 0);
-  glUniform1i(uniformLocation(mask, "hasAggregate"), aggregates ? 1 : 0);
-  glBindTextureUnit(0, splashes ? splashes->front.eyeDepth.id() : emptyLayer_.id());
-  glBindTextureUnit(2, aggregates ? aggregates->front.eyeDepth.id() : emptyLayer_.id());
-  glEnable(GL_DEPTH_TEST);
-  glDepthFunc(GL_ALWAYS);
-  glDepthMask(GL_TRUE);
-  // Colour is the refraction's to write; the mask writes depth only.
-  glColorMask(GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);
-  drawFullscreenTriangle(emptyVertexArray_.id());
-  glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
-  glDepthFunc(GL_GREATER);
-  checkGlError("marking the pixels that refract");
 }
 
 RefractionStatistics RefractionPass::statistics() const {

@@ -30,11 +30,7 @@ class RefractionPass {
   RefractionStatistics statistics() const;
 
  private:
-  void drawLiquidMask(const std::optional<SurfaceLayers>& splashes,
-                      const std::optional<SurfaceLayers>& aggregates);
-
   ProgramObject program_;
-  ProgramObject maskProgram_;  // which pixels refract: refraction_mask.frag
   VertexArrayObject emptyVertexArray_;
   FramebufferObject framebuffer_;
   BufferObject counters_;
@@ -47,7 +43,6 @@ class RefractionPass {
   Texture2D refractionUv_;
   Texture2D transmittance_;
   Texture2D reflection_;
-  Texture2D liquidMask_;  ///< Depth 0 where the first surface is liquid, 1 elsewhere.
   Texture2D emptyLayer_;  ///< 1x1 "no surface" texture bound in place of an absent layer.
 };
 
