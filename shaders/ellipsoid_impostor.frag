@@ -21,7 +21,8 @@ layout(location = 1) out uint outEllipsoid;  // the ellipsoid's index + 1; 0 whe
 void main() {
   float eyeDepth, nearDepth;
   vec3 unusedNormal;
-  if (!castEllipsoid(gl_FragCoord.xy, vUnitSphereCamera, vInverseAxesCamera, eyeDepth, nearDepth, unusedNormal) ||
+  if (!castEllipsoid(gl_FragCoord.xy, vUnitSphereCamera, vInverseAxesCamera, eyeDepth, nearDepth,
+                     unusedNormal) ||
       nearDepth >= texelFetch(backgroundEyeDepth, ivec2(gl_FragCoord.xy), 0).r)
     discard;
   outEyeDepth = eyeDepth;

@@ -3,9 +3,9 @@
 // 2006, section 3.2), or, where that does not exist (an ellipsoid reaching the camera plane), as a
 // camera-facing quad around its bounding sphere's silhouette; the fragment shader ray-casts the exact
 // ellipsoid (lib/ellipsoid_ray.glsl). A flattened ellipsoid seen edge-on covers a fraction of its bounding
-// sphere's square, and every fragment of the quad costs a ray cast. Four vertices per particle (gl_VertexID / 4 names it), drawn as two
-// indexed triangles rather than one instance each: llvmpipe pays per instance, and the lights' views of a
-// thick body drew 1.8 times faster so (docs/frame-cost.md).
+// sphere's square, and every fragment of the quad costs a ray cast. Four vertices per particle (gl_VertexID
+// / 4 names it), drawn as two indexed triangles rather than one instance each: llvmpipe pays per instance,
+// and the lights' views of a thick body drew 1.8 times faster so (docs/frame-cost.md).
 #include "lib/frame.glsl"
 #include "lib/ellipsoid_ray.glsl"
 

@@ -37,8 +37,8 @@ vec3 cameraInUnitSphere(mat3 inverseAxesCamera, vec3 cameraCentre) {
 // nearest front-facing one, or with backFaces the farthest back-facing one), the eye depth where the ray
 // enters (which the background test needs) and the world outward normal there; false where the pixel has no
 // such surface.
-bool castEllipsoid(vec2 fragCoord, vec3 origin, mat3 inverseAxesCamera, out float eyeDepth, out float nearDepth,
-                   out vec3 worldNormal) {
+bool castEllipsoid(vec2 fragCoord, vec3 origin, mat3 inverseAxesCamera, out float eyeDepth,
+                   out float nearDepth, out vec3 worldNormal) {
   eyeDepth = 0.0;
   nearDepth = 0.0;
   worldNormal = vec3(0.0);

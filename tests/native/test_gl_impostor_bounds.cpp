@@ -70,22 +70,33 @@ Particles wavySheet() {
   return liquid_test::particlesOf(positions, 0.02f);
 }
 
-}  // namespace
-
-TEST(GLImpostorBounds, TightRectanglesLoseNoPixelOfAnyEllipsoid) {
+// The sheet seen at a grazing angle, where the rectangles shrink most.
+Scene grazingView() {
   Scene scene;
   scene.camera =
       Camera::lookAt(160, 120, 40.0f, {0.0f, -1.3f, 0.35f}, {0.0f, 0.0f, 0.0f}, {0.0f, 0.0f, 1.0f});
   scene.camera.nearClip = 0.05f;
   scene.camera.farClip = 20.0f;
+  return scene;
+}
+
+// A frame with the depth layers before smoothing kept (aggregate_front_depth, aggregate_front_normal, ...).
+RenderResult renderIntermediateLayers(const Scene& scene, const Particles& particles) {
+  Renderer renderer;
+  renderer.setIntermediateLayers(true);
+  renderer.setLayers({"depth"});
+  return renderer.renderParticles(scene, particles, 1);
+}
+
+}  // namespace
+
+TEST(GLImpostorBounds, TightRectanglesLoseNoPixelOfAnyEllipsoid) {
+  const Scene scene = grazingView();
   const Particles particles = wavySheet();
   const LiquidPreparation preparation = prepareLiquid(particles, scene.camera, scene.parameters.liquid);
   ASSERT_GT(preparation.aggregates.size(), 1000u);
 
-  Renderer renderer;
-  renderer.setIntermediateLayers(true);
-  renderer.setLayers({"depth"});
-  const RenderResult result = renderer.renderParticles(scene, particles, 1);
+  const RenderResult result = renderIntermediateLayers(scene, particles);
   const ImageLayer* front = result.layer("aggregate_front_depth");
   const ImageLayer* back = result.layer("aggregate_back_depth");
   ASSERT_NE(front, nullptr);
@@ -117,21 +128,14 @@ TEST(GLImpostorBounds, TightRectanglesLoseNoPixelOfAnyEllipsoid) {
 
 // The normal resolve (ellipsoid_normals.frag) repeats the ray cast of each pixel's winning ellipsoid only:
 // every pixel's normal must be the analytic outward normal, M^T M (x - c) normalised, of the ellipsoid that a
-// double- precision CPU ray cast finds nearest (front layer) or farthest (back layer) there.
+// double-precision CPU ray cast finds nearest (front layer) or farthest (back layer) there.
 TEST(GLImpostorBounds, EachPixelHasTheNormalOfTheEllipsoidThatHoldsIt) {
-  Scene scene;
-  scene.camera =
-      Camera::lookAt(160, 120, 40.0f, {0.0f, -1.3f, 0.35f}, {0.0f, 0.0f, 0.0f}, {0.0f, 0.0f, 1.0f});
-  scene.camera.nearClip = 0.05f;
-  scene.camera.farClip = 20.0f;
+  const Scene scene = grazingView();
   const Particles particles = wavySheet();
   const std::vector<EllipsoidInstance> ellipsoids =
       prepareLiquid(particles, scene.camera, scene.parameters.liquid).aggregates;
 
-  Renderer renderer;
-  renderer.setIntermediateLayers(true);
-  renderer.setLayers({"depth"});
-  const RenderResult result = renderer.renderParticles(scene, particles, 1);
+  const RenderResult result = renderIntermediateLayers(scene, particles);
   const ImageLayer* layers[2] = {result.layer("aggregate_front_normal"),
                                  result.layer("aggregate_back_normal")};
   ASSERT_NE(layers[0], nullptr);
