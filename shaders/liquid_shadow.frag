@@ -12,11 +12,15 @@
 #include "lib/depth_layer.glsl"
 #include "lib/optics.glsl"
 #include "lib/light_view.glsl"
+#include "lib/background_normal.glsl"
 
 layout(binding = 0) uniform sampler2D backgroundEyeDepth;
 layout(binding = 1) uniform sampler2D lightFrontDepth;
 layout(binding = 2) uniform sampler2D lightBackDepth;
 layout(binding = 3) uniform sampler2D lightFrontNormal;
+layout(binding = 4) uniform sampler2D skyOcclusion;  // sky mode: sky_occlusion.frag's samples
+
+uniform int skyOcclusionScale;   // sky mode: pixels per sample of skyOcclusion along each axis; 0: none
 
 uniform bool skyMode;            // write the sky light a point keeps instead of a light's shadow
 uniform bool transmitStraight;   // no caustic pass: the shadow keeps the light that crosses the liquid
@@ -57,18 +61,37 @@ vec3 shadowThroughTexel(ivec2 texel, vec3 world, float pointDepth) {
   return (1.0 - fresnel) * exits * exp(-absorptionPerUnitLength * pathLength);
 }
 
-// The background's world normal at a pixel, from its depth (the smaller one-sided differences, as the liquid's
-// depth normals take them), facing the camera; zero where a neighbour is missing along an axis.
-vec3 backgroundNormal(ivec2 pixel, float eyeDepth) {
-  vec3 alongX, alongY;
-  if (!smallerOneSidedDifference(backgroundEyeDepth, pixel, ivec2(1, 0), eyeDepth, alongX) ||
-      !smallerOneSidedDifference(backgroundEyeDepth, pixel, ivec2(0, 1), eyeDepth, alongY))
-    return vec3(0.0);
-  vec3 normal = cross(alongX, alongY);
-  if (!(dot(normal, normal) > 0.0)) return vec3(0.0);
-  normal = normalize(normal);
-  if (dot(normal, cameraRayFromFragCoord(vec2(pixel) + 0.5)) > 0.0) normal = -normal;
-  return mat3(frame.worldFromCamera) * normal;
+// Sky mode: the sky light a point keeps past liquid other than the body it lies in (sky_occlusion.frag), from
+// the four nearest samples, each weighted bilinearly and by how far it lies off the point's tangent plane, in
+// pixel widths at the point's depth: a solid's edge does not blend the floor behind it with the solid in
+// front, nor a crease the two faces that meet there.
+vec3 keptPastOtherLiquid(ivec2 pixel, float eyeDepth) {
+  if (skyOcclusionScale == 0) return vec3(1.0);
+  vec3 world = worldPositionFromFragCoord(vec2(pixel) + 0.5, eyeDepth);
+  vec3 normal = backgroundNormal(backgroundEyeDepth, pixel, eyeDepth);
+  float pixelWidth = 2.0 * frame.tanHalfFov.y * eyeDepth * frame.viewportSize.w;
+  // Sample (i, j) lies at the centre of pixel (scale i + scale / 2, scale j + scale / 2).
+  vec2 position = vec2(pixel - skyOcclusionScale / 2) / float(skyOcclusionScale);
+  ivec2 base = ivec2(floor(position));
+  vec2 blend = position - vec2(base);
+  ivec2 last = textureSize(skyOcclusion, 0) - 1;
+  vec3 sum = vec3(0.0);
+  float weightSum = 0.0;
+  for (int j = 0; j < 2; ++j)
+    for (int i = 0; i < 2; ++i) {
+      ivec2 index = clamp(base + ivec2(i, j), ivec2(0), last);
+      vec4 sample_ = texelFetch(skyOcclusion, index, 0);
+      if (!hasSurface(sample_.a)) continue;
+      vec2 samplePixel = vec2(min(index * skyOcclusionScale + skyOcclusionScale / 2, ivec2(frame.viewportSize.xy) - 1));
+      vec3 offset = worldPositionFromFragCoord(samplePixel + 0.5, sample_.a) - world;
+      // Without a normal (a lone pixel), the distance itself.
+      float offPlane = (dot(normal, normal) > 0.0 ? abs(dot(offset, normal)) : length(offset)) / pixelWidth;
+      float bilinear = (i == 0 ? 1.0 - blend.x : blend.x) * (j == 0 ? 1.0 - blend.y : blend.y);
+      float weight = (bilinear + 1e-3) / (1.0 + offPlane * offPlane * offPlane * offPlane);
+      sum += weight * sample_.rgb;
+      weightSum += weight;
+    }
+  return weightSum > 0.0 ? sum / weightSum : vec3(1.0);  // only samples of the sky around a lone point
 }
 
 void main() {
@@ -79,7 +102,7 @@ void main() {
   vec3 world = worldPositionFromFragCoord(gl_FragCoord.xy, eyeDepth);
   float weight = skyMode ? 1.0 : lightWeightAt(world);
   if (!skyMode) {
-    float cosine = max(dot(backgroundNormal(ivec2(gl_FragCoord.xy), eyeDepth), -lightTravelAt(world)), 0.0);
+    float cosine = max(dot(backgroundNormal(backgroundEyeDepth, ivec2(gl_FragCoord.xy), eyeDepth), -lightTravelAt(world)), 0.0);
     outLampDiffuse = vec4(lightIrradianceAt(world) * cosine / 3.14159265358979 * lightColor, 0.0);
   }
   vec2 texel = lightTexelFromWorld(world);
@@ -93,5 +116,6 @@ void main() {
     vec3 s01 = shadowThroughTexel(base + ivec2(0, 1), world, pointDepth), s11 = shadowThroughTexel(base + ivec2(1, 1), world, pointDepth);
     shadow = mix(mix(s00, s10, blend.x), mix(s01, s11, blend.x), blend.y);
   }
+  if (skyMode) shadow *= keptPastOtherLiquid(ivec2(gl_FragCoord.xy), eyeDepth);
   outShadow = skyMode ? vec4(shadow, 1.0) : vec4(weight * shadow, weight);
 }

@@ -18,6 +18,8 @@ const char* passName(Pass pass) {
       return "liquid_shadow";
     case Pass::Caustics:
       return "caustics";
+    case Pass::SkyOcclusion:
+      return "sky_occlusion";
     case Pass::LitBackground:
       return "lit_background";
     case Pass::SplashDepthLayers:
@@ -85,6 +87,9 @@ FramePlan planFrame(const FrameContents& contents) {
                          : !contents.caustics          ? "light.caustics is off"
                          : contents.causticLights == 0 ? "no sun or spot light sees the liquid"
                                                        : nullptr);
+  decide(Pass::SkyOcclusion, noLight                                ? noLight
+                             : contents.skyOcclusionDirections == 0 ? "light.sky_occlusion_directions is 0"
+                                                                    : nullptr);
   decide(Pass::LitBackground, noLight);
   decide(Pass::SplashDepthLayers, !splashes      ? "no splash particles in view"
                                   : !layersShown ? noLiquidOutput

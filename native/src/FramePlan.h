@@ -16,6 +16,7 @@ enum class Pass {
   LightDepthLayers,
   LiquidShadow,
   Caustics,
+  SkyOcclusion,
   LitBackground,
   SplashDepthLayers,
   AggregateDepthLayers,
@@ -54,6 +55,7 @@ struct FrameContents {
   std::size_t lightsSeeingLiquid = 0;  ///< Lights whose view of the liquid is drawn.
   std::size_t causticLights = 0;       ///< Of those, suns and spots (point lights cast no caustics).
   bool caustics = true;                ///< light.caustics.
+  int skyOcclusionDirections = 16;     ///< light.sky_occlusion_directions.
   bool lightLayersWanted = true;       ///< Any of liquid_shadow, caustics, liquid_sky (`--layers`).
 };
 

@@ -3,11 +3,15 @@
 namespace spindrift {
 
 LiquidLighting::LiquidLighting(const ShaderLibrary& shaders)
-    : layers_(shaders), shadow_(shaders), caustics_(shaders), litBackground_(shaders) {}
+    : layers_(shaders),
+      shadow_(shaders),
+      skyOcclusion_(shaders),
+      caustics_(shaders),
+      litBackground_(shaders) {}
 
 LitBackgroundData LiquidLighting::run(const LightingPreparation& lights, const Camera& camera,
                                       const BackgroundData& background, float particleRadius,
-                                      const Parameters& parameters, PassTimer& timer) {
+                                      const Parameters& parameters, bool occludeSky, PassTimer& timer) {
   const int width = camera.width, height = camera.height;
   shadow_.begin(width, height);
   caustics_.begin(width, height);
@@ -36,8 +40,14 @@ LitBackgroundData LiquidLighting::run(const LightingPreparation& lights, const C
       unsmoothed.smoothing = "none";
       layers.emplace(layers_.run(*lights.sky, camera, particleRadius, unsmoothed));
     }
+    std::optional<SkyOcclusionData> occlusion;
+    if (occludeSky) {
+      ScopedPassTimer timed(timer, "sky_occlusion");
+      occlusion.emplace(
+          skyOcclusion_.run(*layers, lights.sky->view, lights.bounds, background, parameters, width, height));
+    }
     ScopedPassTimer timed(timer, "submerged_sky");
-    shadow_.setSky(*layers, background, parameters.liquid, particleRadius);
+    shadow_.setSky(*layers, background, parameters.liquid, particleRadius, occlusion ? &*occlusion : nullptr);
   }
   ScopedPassTimer timed(timer, "lit_background");
   return litBackground_.run(background, shadow_.result(), caustics_.result(), parameters.light, width,

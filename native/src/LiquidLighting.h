@@ -8,24 +8,28 @@
 #include "passes/CausticPass.h"
 #include "passes/LiquidShadowPass.h"
 #include "passes/LitBackgroundPass.h"
+#include "passes/SkyOcclusionPass.h"
 #include "prep/LightViews.h"
 
 namespace spindrift {
 
 /// Light through the liquid onto the background, for every light that sees the liquid: the liquid's depth
 /// layers from the light, its shadow, its caustics (suns and spots, with light.caustics), the sky light
-/// submerged points keep, and the background lit accordingly. Each step is timed as its own pass. Which of
-/// them a frame runs is FramePlan's choice; this runs them when the plan has the lit background.
+/// points keep below the liquid and past it, and the background lit accordingly. Each step is timed as its
+/// own pass. Which of them a frame runs is FramePlan's choice; this runs them when the plan has the lit
+/// background.
 class LiquidLighting {
  public:
   explicit LiquidLighting(const ShaderLibrary& shaders);
+  /// `occludeSky`: the plan runs the sky occlusion (points outside the liquid lose the sky light it takes).
   LitBackgroundData run(const LightingPreparation& lights, const Camera& camera,
                         const BackgroundData& background, float particleRadius, const Parameters& parameters,
-                        PassTimer& timer);
+                        bool occludeSky, PassTimer& timer);
 
  private:
   LightDepthLayers layers_;
   LiquidShadowPass shadow_;
+  SkyOcclusionPass skyOcclusion_;
   CausticPass caustics_;
   LitBackgroundPass litBackground_;
 };

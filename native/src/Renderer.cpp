@@ -310,6 +310,7 @@ RenderResult Renderer::renderPrepared(const Scene& scene, const Particles& parti
   contents.lightsSeeingLiquid = lighting.lights.size();
   contents.causticLights = causticLights(lighting);
   contents.caustics = scene.parameters.light.caustics;
+  contents.skyOcclusionDirections = scene.parameters.light.sky_occlusion_directions;
   contents.lightLayersWanted = layers.wantsLightLayers();
   const FramePlan plan = planFrame(contents);
   stats.skipped = plan.skipped;
@@ -343,7 +344,8 @@ RenderResult Renderer::renderPrepared(const Scene& scene, const Particles& parti
     // refracts or shows the background; LiquidLighting times its passes per light.
     std::optional<LitBackgroundData> lit;
     if (plan.runs(Pass::LitBackground))
-      lit.emplace(pipeline.lighting.run(lighting, camera, unlit, radius, scene.parameters, pipeline.timer));
+      lit.emplace(pipeline.lighting.run(lighting, camera, unlit, radius, scene.parameters,
+                                        plan.runs(Pass::SkyOcclusion), pipeline.timer));
     const BackgroundData background = lit ? lit->background : unlit;
     std::optional<SurfaceLayers> splashes, aggregates;
     if (plan.runs(Pass::SplashDepthLayers)) {

@@ -72,7 +72,7 @@ def ensure_renders(samples, background_samples):
                        check=True)
 
 
-LIGHT_PASS_NAMES = ("light_depth_layers", "liquid_shadow", "caustics", "sky_depth_layers", "submerged_sky",
+LIGHT_PASS_NAMES = ("light_depth_layers", "liquid_shadow", "caustics", "sky_depth_layers", "sky_occlusion", "submerged_sky",
                     "lit_background")
 
 

@@ -28,7 +28,7 @@ const std::vector<std::string> kFoamPasses = {"foam_scene_depth", "foam_depth", 
                                               "foam_intensity",   "foam_occlusion", "foam_blur"};
 
 const std::vector<std::string> kLightPasses = {"light_depth_layers", "liquid_shadow", "caustics",
-                                               "lit_background"};
+                                               "sky_occlusion", "lit_background"};
 
 TEST(FramePlan, FullFrameRunsEveryPassInRecipeOrder) {
   FrameContents contents{100, 1000, 50, "plane_fit"};
@@ -39,13 +39,25 @@ TEST(FramePlan, FullFrameRunsEveryPassInRecipeOrder) {
   contents.causticLights = 1;
   contents.caustics = true;
   const FramePlan plan = planFrame(contents);
-  const std::vector<std::string> expected = {
-      "background",         "occluder_depth",      "liquid_mesh_depth",
-      "light_depth_layers", "liquid_shadow",       "caustics",
-      "lit_background",     "splash_depth_layers", "aggregate_depth_layers",
-      "smoothing",          "refraction",          "foam_scene_depth",
-      "foam_depth",         "foam_thickness",      "foam_intensity",
-      "foam_occlusion",     "foam_blur",           "composite"};
+  const std::vector<std::string> expected = {"background",
+                                             "occluder_depth",
+                                             "liquid_mesh_depth",
+                                             "light_depth_layers",
+                                             "liquid_shadow",
+                                             "caustics",
+                                             "sky_occlusion",
+                                             "lit_background",
+                                             "splash_depth_layers",
+                                             "aggregate_depth_layers",
+                                             "smoothing",
+                                             "refraction",
+                                             "foam_scene_depth",
+                                             "foam_depth",
+                                             "foam_thickness",
+                                             "foam_intensity",
+                                             "foam_occlusion",
+                                             "foam_blur",
+                                             "composite"};
   EXPECT_EQ(names(plan.passes), expected);
   EXPECT_TRUE(plan.skipped.empty());
 }
@@ -53,7 +65,7 @@ TEST(FramePlan, FullFrameRunsEveryPassInRecipeOrder) {
 TEST(FramePlan, EmptyFrameRunsBackgroundAndCompositeOnly) {
   const FramePlan plan = planFrame({0, 0, 0, "plane_fit"});
   EXPECT_EQ(names(plan.passes), (std::vector<std::string>{"background", "composite"}));
-  ASSERT_EQ(plan.skipped.size(), 16u);
+  ASSERT_EQ(plan.skipped.size(), 17u);
   EXPECT_EQ(plan.skipped.front().name, "occluder_depth");
   EXPECT_EQ(reasonFor(plan, "occluder_depth"), "no occluders");
   EXPECT_EQ(reasonFor(plan, "liquid_mesh_depth"), "no liquid mesh");
@@ -112,8 +124,14 @@ TEST(FramePlan, LightsRunTheLightPasses) {
   for (const std::string& pass : kLightPasses)
     EXPECT_EQ(reasonFor(unseen, pass), "no light sees the liquid");
   const FramePlan withCaustics = planFrame(withLights(1, 1, 1, true));
-  for (Pass pass : {Pass::LightDepthLayers, Pass::LiquidShadow, Pass::Caustics, Pass::LitBackground})
+  for (Pass pass :
+       {Pass::LightDepthLayers, Pass::LiquidShadow, Pass::Caustics, Pass::SkyOcclusion, Pass::LitBackground})
     EXPECT_TRUE(withCaustics.runs(pass)) << passName(pass);
+  FrameContents noSkyOcclusion = withLights(1, 1, 1, true);
+  noSkyOcclusion.skyOcclusionDirections = 0;
+  const FramePlan withoutSky = planFrame(noSkyOcclusion);
+  EXPECT_TRUE(withoutSky.runs(Pass::LitBackground));
+  EXPECT_EQ(reasonFor(withoutSky, "sky_occlusion"), "light.sky_occlusion_directions is 0");
 }
 
 // --layers: the light passes run for the light layers alone, and not when nothing reads the lit background.
@@ -121,7 +139,8 @@ TEST(FramePlan, LightPassesFollowTheLayerSelection) {
   FrameContents lightOnly = withLights(1, 1, 1, true);
   lightOnly.compositeWanted = lightOnly.liquidLayersWanted = lightOnly.foamLayersWanted = false;
   const FramePlan plan = planFrame(lightOnly);
-  for (Pass pass : {Pass::LightDepthLayers, Pass::LiquidShadow, Pass::Caustics, Pass::LitBackground})
+  for (Pass pass :
+       {Pass::LightDepthLayers, Pass::LiquidShadow, Pass::Caustics, Pass::SkyOcclusion, Pass::LitBackground})
     EXPECT_TRUE(plan.runs(pass)) << passName(pass);
   EXPECT_FALSE(plan.runs(Pass::Refraction));
   FrameContents nothing = lightOnly;
@@ -166,8 +185,9 @@ TEST(FramePlan, EveryPassIsEitherRunOrSkippedExactlyOnce) {
             }
             std::sort(all.begin(), all.end());
             EXPECT_EQ(std::adjacent_find(all.begin(), all.end()), all.end());
-            EXPECT_EQ(all.size(), 18u);
+            EXPECT_EQ(all.size(), 19u);
             // A pass runs only when what it reads runs.
+            if (plan.runs(Pass::SkyOcclusion)) EXPECT_TRUE(plan.runs(Pass::LitBackground));
             if (plan.runs(Pass::Smoothing)) EXPECT_TRUE(plan.runs(Pass::AggregateDepthLayers));
             if (plan.runs(Pass::FoamSceneDepth) && (splash || aggregate))
               EXPECT_TRUE(plan.runs(Pass::Refraction));

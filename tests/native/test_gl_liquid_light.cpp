@@ -1,6 +1,5 @@
 // Light through the liquid onto the background (docs/liquid.md, "Light through the liquid"): GL tests on
-// llvmpipe against closed-form optics and CPU ray traces computed here. The camera looks straight down at a
-// floor (z = 0), so a floor pixel's position is known exactly and its background depth is the camera height.
+// llvmpipe against closed-form optics and CPU ray traces computed here, on FloorLightScenes.h's floor.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -10,69 +9,14 @@
 #include <glm/gtc/constants.hpp>
 
 #include "BackgroundFiles.h"
+#include "FloorLightScenes.h"
 #include "LiquidTestScenes.h"
 #include "OpticsReference.h"
 #include "TempDirectory.h"
 
 using namespace spindrift;
 using namespace liquid_test;
-
-namespace {
-
-constexpr int kWidth = 160, kHeight = 120;
-constexpr float kCameraHeight = 6.0f;
-constexpr float kFovY = 40.0f;
-
-// The floor's size on the screen: world units per pixel.
-double floorPixelSize(double cameraHeight = kCameraHeight) {
-  return 2.0 * cameraHeight * std::tan(glm::radians(kFovY * 0.5)) / kHeight;
-}
-
-// World (x, y) of a floor pixel's centre (row 0 at the top; +y up the image).
-glm::dvec2 floorPoint(int column, int row, double cameraHeight = kCameraHeight) {
-  const double pixel = floorPixelSize(cameraHeight);
-  return {(column + 0.5 - kWidth * 0.5) * pixel, (kHeight * 0.5 - row - 0.5) * pixel};
-}
-
-Scene floorScene(const TempDirectory& directory, float cameraHeight = kCameraHeight) {
-  Scene scene;
-  scene.camera = Camera::lookAt(kWidth, kHeight, kFovY, {0.0f, 0.0f, cameraHeight}, {0.0f, 0.0f, 0.0f},
-                                {0.0f, 1.0f, 0.0f});
-  scene.background.image = directory.path() / "floor.exr";
-  writeBackgroundExr(
-      scene.background.image, kWidth, kHeight, [](int, int) { return glm::vec3(0.5f); },
-      [cameraHeight](int, int) { return cameraHeight; });
-  return scene;
-}
-
-Light sunAlong(const glm::vec3& direction, float strength = 3.0f) {
-  Light sun;
-  sun.type = Light::Type::Sun;
-  sun.direction = glm::normalize(direction);
-  sun.strength = strength;
-  return sun;
-}
-
-// The direct-light multiplier of a floor pixel: what the liquid leaves of the light plus what it refracts.
-double directMultiplier(const RenderResult& result, int column, int row, int channel) {
-  return at(*result.layer("liquid_shadow"), kWidth, column, row, channel) +
-         at(*result.layer("caustics"), kWidth, column, row, channel);
-}
-
-// A slab of water, the lattice of particles filling [low, high] with overlapping spheres.
-Particles slabParticles(const glm::vec3& low, const glm::vec3& high) {
-  return particlesOf(block(low, high, 0.05f), 0.05f);
-}
-
-// The drawn slab's top and bottom heights: its top measured by the camera's depth layer at the image centre,
-// its bottom the mirror image of the top about the lattice's middle plane (the lattice is symmetric), so the
-// light's optics are checked against the drawn geometry.
-std::pair<double, double> slabTopAndBottom(const RenderResult& result, float cameraHeight, double middle) {
-  const double top = cameraHeight - at(*result.layer("depth"), kWidth, kWidth / 2, kHeight / 2, 0);
-  return {top, 2.0 * middle - top};
-}
-
-}  // namespace
+using namespace floor_light;
 
 // A sun at 40 degrees through a floating slab: the floor under the slab's middle keeps
 // exp(-sigma t / cos theta_t) (1 - F)^2 of the light, within 1 %. (At 40 degrees the light that enters the
@@ -272,19 +216,6 @@ TEST(GLLiquidLight, SphereFocusesTheSunWhereARayTraceDoes) {
   EXPECT_EQ(renderedNarrowest, tracedNarrowest);
 }
 
-namespace {
-
-bool skipped(const RenderResult& result, const std::string& pass, std::string* reason = nullptr) {
-  for (const SkippedPass& skip : result.stats.skipped)
-    if (skip.name == pass) {
-      if (reason) *reason = skip.reason;
-      return true;
-    }
-  return false;
-}
-
-}  // namespace
-
 // Without lights nothing is shadowed: the light passes are skipped, the stats say why, and the background is
 // composited as it is.
 TEST(GLLiquidLight, NoLightNoShadowPasses) {
@@ -441,8 +372,8 @@ void writeFloorWithLightPasses(const std::filesystem::path& path, float eyeDepth
 // shadows where the camera sees no liquid in front of it.
 // Cycles counts the world's light as direct light too (DiffDir holds the sky's share as well as the lamps'):
 // only the lamps' share, the light a sun of known strength gives the floor (E cos / pi), is scaled by the
-// shadow and caustics; the rest is sky light, which a point outside the liquid keeps. A strong sun (share 1,
-// clamped) and one that gives half of DiffDir.
+// shadow and caustics; the rest is sky light, which liquid_sky scales (here the floating slab takes part of
+// the floor's sky). A strong sun (share 1, clamped) and one that gives half of DiffDir.
 TEST(GLLiquidLight, LitBackgroundScalesTheLampsShareOfTheDirectLight) {
   TempDirectory directory;
   const float passes[6][3] = {{0.6f, 0.5f, 0.4f}, {0.2f, 0.25f, 0.3f},   {0.7f, 0.6f, 0.5f},
@@ -489,8 +420,9 @@ TEST(GLLiquidLight, LitBackgroundScalesTheLampsShareOfTheDirectLight) {
               (passes[2][c] * passes[1][c] + passes[5][c] * passes[4][c]) * (1 - sky);
           EXPECT_NEAR(at(*withPasses.layer("composite"), kWidth, column, row, c), expected, 2e-4);
           const double plainShadow = directMultiplier(withoutPasses, column, row, c);
+          const double plainSky = at(*withoutPasses.layer("liquid_sky"), kWidth, column, row, c);
           EXPECT_NEAR(at(*withoutPasses.layer("composite"), kWidth, column, row, c),
-                      0.5 * (fraction * plainShadow + (1 - fraction)), 1e-4);
+                      0.5 * (fraction * plainShadow + (1 - fraction) * plainSky), 1e-4);
         }
       }
     EXPECT_GT(compared, 40) << "shadowed floor pixels with no liquid in front";

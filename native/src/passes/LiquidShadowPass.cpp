@@ -34,9 +34,13 @@ void LiquidShadowPass::addLight(const Light& light, const SurfaceLayers& layers,
 }
 
 void LiquidShadowPass::setSky(const SurfaceLayers& layers, const BackgroundData& background,
-                              const LiquidParameters& parameters, float particleRadius) {
+                              const LiquidParameters& parameters, float particleRadius,
+                              const SkyOcclusionData* occlusion) {
   glProgramUniform1f(program_.id(), uniformLocation(program_.id(), "submergedTolerance"),
                      2.0f * particleRadius);
+  glProgramUniform1i(program_.id(), uniformLocation(program_.id(), "skyOcclusionScale"),
+                     occlusion ? occlusion->scale : 0);
+  glBindTextureUnit(4, occlusion ? occlusion->kept.id() : 0);
   bindColorTargets(framebuffer_.id(), {&skyKept_});
   draw(layers, background, parameters, true, true);
 }

@@ -11,8 +11,9 @@
 namespace spindrift {
 
 /// The liquid's shadow from each light on the background points (shaders/liquid_shadow.frag), and the sky
-/// light that points below the liquid's surface keep. `begin` clears the sums; the light's view must be
-/// bound at binding 2 (LightDepthLayers) when `addLight` or `setSky` runs.
+/// light that points keep: below the liquid's surface, and past other liquid (SkyOcclusionPass's samples).
+/// `begin` clears the sums; the light's view must be bound at binding 2 (LightDepthLayers) when `addLight` or
+/// `setSky` runs.
 class LiquidShadowPass {
  public:
   explicit LiquidShadowPass(const ShaderLibrary& shaders);
@@ -20,9 +21,10 @@ class LiquidShadowPass {
   /// `transmitStraight`: no caustic pass carries the light through the liquid, so the shadow does.
   void addLight(const Light& light, const SurfaceLayers& layers, const BackgroundData& background,
                 const LiquidParameters& parameters, bool transmitStraight);
-  /// `particleRadius`: points up to two radii below the liquid's drawn bottom still lie in it.
+  /// `particleRadius`: points up to two radii below the liquid's drawn bottom still lie in it. `occlusion`:
+  /// the sky occlusion's samples, or null when it did not run.
   void setSky(const SurfaceLayers& layers, const BackgroundData& background,
-              const LiquidParameters& parameters, float particleRadius);
+              const LiquidParameters& parameters, float particleRadius, const SkyOcclusionData* occlusion);
   LiquidShadowData result() const { return {shadowSum_, skyKept_, lampDiffuse_}; }
 
  private:

@@ -134,6 +134,7 @@ LightingPreparation prepareLighting(const Particles& particles, const Camera& ca
   LightingPreparation preparation;
   if (lights.empty()) return preparation;
   const LiquidBounds bounds = liquidBounds(particles, parameters.liquid);
+  preparation.bounds = bounds;
   if (bounds.radius == 0.0f) {
     preparation.skipped.push_back("no liquid particles");
     return preparation;

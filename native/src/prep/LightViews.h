@@ -62,6 +62,7 @@ struct LightPreparation {
 struct LightingPreparation {
   std::vector<LightPreparation> lights;
   std::optional<LightPreparation> sky;
+  LiquidBounds bounds;  ///< What every view frames.
   std::vector<std::string> skipped;
   int viewSize = 0;  ///< Side in texels of every view (lightViewSize).
   double milliseconds = 0.0;

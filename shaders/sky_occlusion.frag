@@ -1,0 +1,123 @@
+#version 450 core
+// How much sky and bounced light a background point keeps when liquid stands between it and part of its sky:
+// the floor beside a block of water, under a floating ball, the wall of a tank above its water line. Drawn at
+// a reduced resolution (one sample per `scale` x `scale` pixels, at the block's central pixel), since the
+// result varies over the liquid's size, and upsampled by liquid_shadow.frag in sky mode.
+// Light from the sky and the surroundings is taken as uniform: the point keeps the mean, over a fixed set of
+// cosine-weighted directions around its normal, of what each direction's straight path lets through: Fresnel
+// at every crossing of the liquid's surface (water's hemispherical mean each way) and Beer-Lambert over its
+// length in the liquid. The liquid is the sky view's (straight down) depth layers: a point lies in it when it
+// is between the front and back layer of its column. A path ends at a solid (a point behind the background's
+// depth, as the camera sees it, by less than `solidThickness`). A point that lies in the liquid itself loses
+// the light of the liquid above it in liquid_shadow.frag: its own body is not counted again here.
+// Output: (kept light per channel, the sample's eye depth) for the depth-aware upsampling.
+#include "lib/frame.glsl"
+#include "lib/depth_layer.glsl"
+#include "lib/optics.glsl"
+#include "lib/light_view.glsl"
+#include "lib/background_normal.glsl"
+
+layout(binding = 0) uniform sampler2D backgroundEyeDepth;
+layout(binding = 1) uniform sampler2D skyFrontDepth;
+layout(binding = 2) uniform sampler2D skyBackDepth;
+
+uniform int scale;                  // full-resolution pixels per sample along each axis
+uniform int directionCount;         // cosine-weighted directions per sample
+uniform vec4 liquidBounds;          // centre, radius: a sphere around all the liquid
+uniform float shortestStep;         // world length: about a texel of the sky view
+uniform float submergedTolerance;   // how far below the liquid's drawn bottom a point still lies in it
+uniform float solidThickness;       // world depth behind a solid's visible surface that counts as inside it
+uniform vec3 absorptionPerUnitLength;
+
+layout(location = 0) out vec4 outKept;
+
+const int kMaxStepsPerDirection = 32;
+const float kHemisphericalFresnel = 0.066;  // water's Fresnel reflectance averaged over a cosine-weighted sky
+const float kGoldenAngle = 2.39996323;
+
+// Whether a world point lies in the liquid as the sky view sees it (`tolerance` below its drawn bottom too).
+bool inLiquid(vec3 world, float tolerance) {
+  vec2 texel = lightTexelFromWorld(world);
+  if (!insideLightView(texel)) return false;
+  float front = texelFetch(skyFrontDepth, ivec2(texel), 0).r;
+  if (front >= 0.5 * kNoSurfaceDepth) return false;
+  float depth = lightEyeDepthOf(world);
+  return depth >= front && depth <= texelFetch(skyBackDepth, ivec2(texel), 0).r + tolerance;
+}
+
+// Whether a world point lies inside a solid of the background, as far as the camera's view can tell.
+bool inSolid(vec3 world) {
+  vec3 camera = (frame.cameraFromWorld * vec4(world, 1.0)).xyz;
+  if (camera.z >= 0.0) return false;
+  vec2 fragCoord = fragCoordFromCamera(camera);
+  if (!onScreen(fragCoord)) return false;
+  float behind = -camera.z - texelFetch(backgroundEyeDepth, ivec2(fragCoord), 0).r;
+  return behind > shortestStep && behind < solidThickness;
+}
+
+// A right-handed basis around a unit normal (Duff et al. 2017).
+mat3 basisAround(vec3 normal) {
+  float sign = normal.z >= 0.0 ? 1.0 : -1.0;
+  float a = -1.0 / (sign + normal.z);
+  float b = normal.x * normal.y * a;
+  return mat3(vec3(1.0 + sign * normal.x * normal.x * a, sign * b, -sign * normal.x),
+              vec3(b, sign + normal.y * normal.y * a, -normal.y), normal);
+}
+
+// What one direction's straight path from `origin` lets through. `skipOwnBody`: the path starts in the
+// liquid, whose light loss liquid_shadow.frag counts; the stretch up to where it first leaves is skipped.
+vec3 keptAlong(vec3 origin, vec3 direction, bool skipOwnBody) {
+  vec3 toCentre = liquidBounds.xyz - origin;
+  float along = dot(toCentre, direction);
+  float missSquared = dot(toCentre, toCentre) - along * along;
+  float halfChordSquared = liquidBounds.w * liquidBounds.w - missSquared;
+  if (halfChordSquared <= 0.0) return vec3(1.0);
+  float halfChord = sqrt(halfChordSquared);
+  float start = max(along - halfChord, 0.0), end = along + halfChord;
+  if (end <= start) return vec3(1.0);
+  int steps = int(clamp(ceil((end - start) / shortestStep), 1.0, float(kMaxStepsPerDirection)));
+  float stepLength = (end - start) / float(steps);
+  float lengthInLiquid = 0.0;
+  int crossings = 0;
+  bool wasIn = false, skipping = skipOwnBody;
+  for (int i = 0; i < steps; ++i) {
+    vec3 point = origin + direction * (start + (float(i) + 0.5) * stepLength);
+    if (inSolid(point)) break;
+    if (skipping) {
+      // A floor the liquid rests on lies within its drawn bottom's undulation: that gap is the body's too.
+      skipping = inLiquid(point, submergedTolerance);
+      if (skipping) continue;
+    }
+    bool isIn = inLiquid(point, 0.0);
+    if (isIn) {
+      lengthInLiquid += stepLength;
+      crossings += wasIn ? 0 : 2;  // in and out again
+    }
+    wasIn = isIn;
+  }
+  return pow(1.0 - kHemisphericalFresnel, float(crossings)) * exp(-absorptionPerUnitLength * lengthInLiquid);
+}
+
+void main() {
+  ivec2 pixel = min(ivec2(gl_FragCoord.xy) * scale + scale / 2, ivec2(frame.viewportSize.xy) - 1);
+  float eyeDepth = texelFetch(backgroundEyeDepth, pixel, 0).r;
+  outKept = vec4(1.0, 1.0, 1.0, eyeDepth);
+  if (!hasSurface(eyeDepth)) return;
+  vec3 world = worldPositionFromFragCoord(vec2(pixel) + 0.5, eyeDepth);
+  vec3 normal = backgroundNormal(backgroundEyeDepth, pixel, eyeDepth);
+  if (dot(normal, normal) == 0.0) normal = vec3(0.0, 0.0, 1.0);  // a lone pixel: taken as floor
+  mat3 basis = basisAround(normalize(normal));
+  // Off the surface, so the first steps do not find the solid the point lies on.
+  vec3 origin = world + basis[2] * shortestStep;
+  bool submerged = inLiquid(world, submergedTolerance);
+  vec3 kept = vec3(0.0);
+  for (int i = 0; i < directionCount; ++i) {
+    // Malley's method: points spread evenly over the unit disc (a golden-angle spiral), lifted onto the
+    // hemisphere, are cosine-distributed.
+    float radiusSquared = (float(i) + 0.5) / float(directionCount);
+    float angle = float(i) * kGoldenAngle;
+    vec3 local = vec3(sqrt(radiusSquared) * vec2(cos(angle), sin(angle)), sqrt(1.0 - radiusSquared));
+    kept += keptAlong(origin, basis * local, submerged);
+  }
+  outKept = vec4(kept / float(directionCount), eyeDepth);
+}
