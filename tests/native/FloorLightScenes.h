@@ -66,7 +66,8 @@ inline Particles slabParticles(const glm::vec3& low, const glm::vec3& high) {
 // The drawn slab's top and bottom heights: its top measured by the camera's depth layer at the image centre,
 // its bottom the mirror image of the top about the lattice's middle plane (the lattice is symmetric), so the
 // light's optics are checked against the drawn geometry.
-inline std::pair<double, double> slabTopAndBottom(const RenderResult& result, float cameraHeight, double middle) {
+inline std::pair<double, double> slabTopAndBottom(const RenderResult& result, float cameraHeight,
+                                                  double middle) {
   const double top = cameraHeight - at(*result.layer("depth"), kWidth, kWidth / 2, kHeight / 2, 0);
   return {top, 2.0 * middle - top};
 }

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <random>
 
 #include <glm/geometric.hpp>
@@ -20,9 +21,12 @@ Camera testCamera() {
   return Camera::lookAt(64, 64, 60.0f, {0, -10, 0}, {0, 0, 0}, {0, 0, 1});
 }
 
+// Yu and Turk's shapes as they are: liquid.reach_radius's growth is tested on its own
+// (ReachRadiusPutsAFlatFaceWhereTheParticlesSpheresReach).
 LiquidParameters layers(const char* mode) {
   LiquidParameters parameters;
   parameters.layers = mode;
+  parameters.reach_radius = false;
   return parameters;
 }
 
@@ -331,6 +335,59 @@ TEST(LiquidPreparation, MergedLayersPutEverythingInAggregates) {
   EXPECT_TRUE(merged.splashes.empty());
   EXPECT_EQ(merged.aggregates.size(), particles.size());
   EXPECT_EQ(merged.isotropicInterior, split.isotropicInterior);
+}
+
+// liquid.reach_radius: a block on a lattice 1.33 r apart (a Blender particle grid's spacing). Yu and Turk's
+// shapes flatten the top face's particles along +z, so without the growth the face stands well inside the
+// particles' spheres; grown until each anisotropic aggregate's shortest semi-axis reaches r, it stands r
+// above the top particles' centres, as their spheres do. No aggregate is grown past the bound the frustum and
+// the lights' views allow for (largestSurfaceOffset), and interior spheres keep radius r.
+TEST(LiquidPreparation, ReachRadiusPutsAFlatFaceWhereTheParticlesSpheresReach) {
+  Particles particles;
+  const int side = 12;
+  const float spacing = 1.33f;
+  addBlock(particles, {0, 0, 0}, side, spacing);
+  const float topCentres = 0.5f * float(side - 1) * spacing * kRadius;
+  const auto faceAboveCentres = [&](const LiquidPreparation& preparation) {
+    float top = -1e30f;
+    for (const EllipsoidInstance& aggregate : preparation.aggregates) {
+      const glm::vec3 centre(aggregate.centreAndBoundingRadius);
+      if (std::abs(centre.x) > 2.0f * spacing * kRadius || std::abs(centre.y) > 2.0f * spacing * kRadius)
+        continue;
+      const Axes axes = axesOf(aggregate);
+      float support = 0.0f;  // how far the ellipsoid reaches along +z
+      for (int k = 0; k < 3; ++k)
+        support += std::pow(axes.semiAxes[k] * axes.directions[k].z, 2.0f);
+      top = std::max(top, centre.z + std::sqrt(support));
+    }
+    return (top - topCentres) / kRadius;
+  };
+  LiquidParameters parameters = layers("split");
+  const LiquidPreparation yuAndTurk = prepareLiquid(particles, testCamera(), parameters);
+  parameters.reach_radius = true;
+  const LiquidPreparation reached = prepareLiquid(particles, testCamera(), parameters);
+  expectWellFormed(reached);
+  ASSERT_EQ(reached.aggregates.size(), yuAndTurk.aggregates.size());
+  std::printf("flat face above the top centres: %.3f r as Yu and Turk shape it, %.3f r reached\n",
+              faceAboveCentres(yuAndTurk), faceAboveCentres(reached));
+  EXPECT_LT(faceAboveCentres(yuAndTurk), 0.6f);
+  EXPECT_NEAR(faceAboveCentres(reached), 1.0f, 0.02f);
+  const float largest = std::max(1.0f, parameters.max_ellipsoid_scale) + largestSurfaceOffset(parameters);
+  std::size_t grownPastYuAndTurk = 0;
+  for (const EllipsoidInstance& aggregate : reached.aggregates) {
+    const Axes axes = axesOf(aggregate);
+    const float shortest = std::min({axes.semiAxes.x, axes.semiAxes.y, axes.semiAxes.z});
+    const float longest = std::max({axes.semiAxes.x, axes.semiAxes.y, axes.semiAxes.z});
+    // The block's corners have too few neighbours: spheres of k_n r, not grown.
+    if (std::abs(longest - shortest) < 1e-6f &&
+        std::abs(longest - parameters.anisotropy_isotropic_scale * kRadius) < 1e-6f)
+      continue;
+    EXPECT_GE(shortest, kRadius * 0.9999f);
+    EXPECT_LE(longest, largest * kRadius * 1.0001f);
+    grownPastYuAndTurk += longest > parameters.max_ellipsoid_scale * kRadius * 1.0001f;
+  }
+  EXPECT_GT(grownPastYuAndTurk, 0u);
+  EXPECT_EQ(reached.isotropicInterior, yuAndTurk.isotropicInterior);
 }
 
 }  // namespace

@@ -100,6 +100,10 @@ float flatSurfaceAboveTopLayer(float surfaceOffset, float meshKernelRadius = 0.0
   LiquidParameters parameters;
   parameters.surface_offset = surfaceOffset;
   parameters.mesh_kernel_radius = meshKernelRadius;
+  // The derivation's Spindrift surface is Yu and Turk's shapes as they are: a Mantaflow source's own
+  // (mesh_kernel_radius > 0) is never grown to the particle radius, and its offset (1.9 r) exceeds that
+  // growth.
+  parameters.reach_radius = false;
   const Camera camera = Camera::lookAt(64, 64, 60.0f, {0, 0, 20}, {0, 0, 0}, {0, 1, 0});
   const LiquidPreparation preparation = prepareLiquid(particles, camera, parameters);
   float top = -1e30f;

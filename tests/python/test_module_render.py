@@ -138,7 +138,10 @@ def test_liquid_is_the_background_through_the_refraction_uv_times_transmittance_
     uv, transmittance, reflection = (layer(result, name) for name in ("refraction_uv", "transmittance", "reflection"))
     covered = liquid[..., 3] > 0
     looks_up = uv[..., 2] == 1.0
-    assert covered.sum() > 500 and looks_up[covered].mean() > 0.9
+    # Most final rays read the background (78 % since the ball's faces reach its particles' radius,
+    # liquid.reach_radius: more of its rim's rays leave upwards, into the sky quarter), so the identity below is
+    # checked on most pixels.
+    assert covered.sum() > 500 and looks_up[covered].mean() > 0.7
     assert not looks_up[~covered].any(), "refraction UV flagged outside the liquid"
     assert set(np.unique(uv[..., 2])) <= {0.0, 1.0}
     assert ((transmittance >= 0) & (transmittance <= 1)).all()

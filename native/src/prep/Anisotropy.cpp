@@ -163,6 +163,20 @@ float offsetToMantaflowSurface(const NeighbourGrid& grid, std::size_t i, const P
 
 }  // namespace
 
+float reachRadiusOffset(const ParticleShape& shape, float radius) {
+  const float shortest = std::min(shape.semiAxes.x, std::min(shape.semiAxes.y, shape.semiAxes.z));
+  return std::max(1.0f - shortest / radius, 0.0f);
+}
+
+float largestSurfaceOffset(const LiquidParameters& parameters) {
+  // The shortest semi-axis is at least 1 / k_r of the longest, which is at least k_n r.
+  const float reach =
+      parameters.reach_radius && !(parameters.mesh_kernel_radius > 0.0f)
+          ? 1.0f - parameters.anisotropy_isotropic_scale / std::max(parameters.anisotropy_max_ratio, 1.0f)
+          : 0.0f;
+  return std::max(parameters.surface_offset, reach);
+}
+
 AnisotropySettings AnisotropySettings::fromParameters(const LiquidParameters& parameters) {
   AnisotropySettings settings;
   settings.neighbourRadius = parameters.neighbour_radius;
@@ -172,6 +186,7 @@ AnisotropySettings AnisotropySettings::fromParameters(const LiquidParameters& pa
   settings.smoothing = parameters.anisotropy_smoothing;
   settings.maxEllipsoidScale = parameters.max_ellipsoid_scale;
   settings.surfaceOffset = parameters.surface_offset;
+  settings.reachRadius = parameters.reach_radius;
   settings.needDensity = parameters.layers != "merged";
   return settings;
 }
@@ -273,6 +288,8 @@ ParticleShapes shapeParticles(const NeighbourGrid& grid, const AnisotropySetting
             if (settings.meshSurface && shape.kind == ShapeKind::Anisotropic &&
                 facesEye(cloud, i, moments, settings))
               offset = offsetToMantaflowSurface(grid, i, shape, centre, settings);
+            else if (!settings.meshSurface && settings.reachRadius && shape.kind == ShapeKind::Anisotropic)
+              offset = std::max(offset, reachRadiusOffset(shape, radius));
             shapes.instances[i] = ellipsoidInstance(centre, shape.axes, shape.semiAxes + offset * radius);
             shapes.offsets[i] = offset;
             if (!settings.needDensity) continue;

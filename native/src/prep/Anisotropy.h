@@ -22,6 +22,9 @@ struct AnisotropySettings {
   float smoothing = 0.0f;        ///< lambda.
   float maxEllipsoidScale = 1.2f;
   float surfaceOffset = 0.0f;  ///< Every drawn semi-axis is grown by this, in particle radii.
+  /// liquid.reach_radius: without meshSurface, an anisotropic particle is grown until its shortest semi-axis
+  /// is at least r (by at least surfaceOffset).
+  bool reachRadius = true;
   /// Mantaflow's surface over these particles (liquid.mesh_kernel_radius > 0): an anisotropic particle's
   /// offset is then its own, what makes its ellipsoid reach that surface, at most surfaceOffset. Its searches
   /// are remembered for the frame's other views.
@@ -71,6 +74,15 @@ constexpr float kRestCovariance = 0.15f;
 ParticleShape shapeFromMoments(const NeighbourMoments& moments, float radius,
                                const AnisotropySettings& settings);
 
+/// liquid.reach_radius: what an anisotropic shape is grown by, in radii, so that its shortest semi-axis
+/// reaches r. A surface particle's ellipsoid is flattened along the surface's normal (its shortest axis), so
+/// a flat face of the body then stands where the particles' spheres reach.
+float reachRadiusOffset(const ParticleShape& shape, float radius);
+
+/// The most any aggregate is grown by, in radii: liquid.surface_offset, or what liquid.reach_radius can add
+/// (the shortest semi-axis is at least k_n r / k_r). For bounds that must hold every drawn ellipsoid.
+float largestSurfaceOffset(const LiquidParameters& parameters);
+
 /// The ellipsoid instance of a shape: the inverse of the axes matrix (rotation times diag(semi-axes)) is
 /// diag(1 / semi-axes) times the transposed rotation, so its rows are the principal directions divided by
 /// their semi-axes.
@@ -86,7 +98,7 @@ struct ParticleShapes {
   /// unit-free. Zero when the settings do not need densities.
   std::vector<float> densities;
   /// The surface offset each instance was grown by, in radii (liquid.surface_offset, or the per-particle
-  /// offset to Mantaflow's surface).
+  /// offset to Mantaflow's surface or to the particle's radius, liquid.reach_radius).
   std::vector<float> offsets;
 };
 

@@ -7,6 +7,7 @@
 #include <glm/geometric.hpp>
 #include <glm/trigonometric.hpp>
 
+#include "prep/Anisotropy.h"
 #include "prep/HiddenInterior.h"
 
 namespace spindrift {
@@ -52,9 +53,11 @@ LiquidBounds liquidBounds(const Particles& particles, const LiquidParameters& pa
   LiquidBounds bounds;
   if (largestRadius == 0.0f) return bounds;
   bounds.centre = 0.5f * (low + high);
-  // Anisotropy smoothing can move a drawn centre by up to lambda times the neighbourhood.
-  const float reach = std::max(1.0f, parameters.max_ellipsoid_scale) * largestRadius +
-                      parameters.anisotropy_smoothing * parameters.neighbour_radius * largestRadius;
+  // A drawn ellipsoid reaches its grown longest semi-axis from its centre, and anisotropy smoothing can move
+  // that centre by up to lambda times the neighbourhood.
+  const float reach =
+      (std::max(1.0f, parameters.max_ellipsoid_scale) + largestSurfaceOffset(parameters)) * largestRadius +
+      parameters.anisotropy_smoothing * parameters.neighbour_radius * largestRadius;
   bounds.radius = 0.5f * glm::length(high - low) + reach;
   bounds.particleRadius = largestRadius;
   return bounds;

@@ -11,6 +11,7 @@
 #include <glm/mat3x3.hpp>
 #include <glm/matrix.hpp>
 
+#include "prep/Anisotropy.h"
 #include "prep/FullNeighbourhood.h"
 #include "prep/LiquidStages.h"
 #include "prep/MantaflowSurface.h"
@@ -43,6 +44,7 @@ LiquidCandidates selectLiquidCandidates(const Particles& particles, const Camera
   const ViewFrustum frustum(camera);
   const std::size_t count = particles.size();
   std::vector<std::uint8_t> roles(count, kIneligible);
+  const float largestOffset = largestSurfaceOffset(parameters);
   tbb::parallel_for(
       tbb::blocked_range<std::size_t>(0, count), [&](const tbb::blocked_range<std::size_t>& block) {
         for (std::size_t i = block.begin(); i != block.end(); ++i) {
@@ -51,13 +53,12 @@ LiquidCandidates selectLiquidCandidates(const Particles& particles, const Camera
           if (particles.kinds[i] != ParticleKind::Liquid || !(radius > 0.0f) || !std::isfinite(radius) ||
               !std::isfinite(position.x + position.y + position.z))
             continue;
-          // A drawn instance reaches at most max_ellipsoid_scale r from its centre, which
-          // smoothing moves by at most lambda R from the particle; its neighbours lie within R
-          // more.
+          // A drawn instance reaches at most max_ellipsoid_scale r from its centre, grown by its surface
+          // offset, which smoothing moves by at most lambda R from the particle; its neighbours lie within
+          // R more.
           const float neighbourhood = parameters.neighbour_radius * radius;
-          const float drawnReach =
-              (std::max(1.0f, parameters.max_ellipsoid_scale) + parameters.surface_offset) * radius +
-              parameters.anisotropy_smoothing * neighbourhood;
+          const float drawnReach = (std::max(1.0f, parameters.max_ellipsoid_scale) + largestOffset) * radius +
+                                   parameters.anisotropy_smoothing * neighbourhood;
           const glm::vec3 centre = frustum.cameraFromWorld(position);
           if (frustum.reachedBySphere(centre, drawnReach))
             roles[i] = kVisible;
