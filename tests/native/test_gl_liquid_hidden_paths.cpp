@@ -65,8 +65,10 @@ TEST(GLLiquidHiddenPaths, APathBehindATanksWallEndsOnTheSubmergedFloorNotOnTheWa
   Scene scene = tankScene(directory, true);
   scene.parameters.liquid.absorption_rgb = {0.0f, 0.0f, 0.0f};  // so the floor's green is not absorbed away
   // The pool as Yu and Turk shape it, its faces about 0.4 r beyond the particles. Grown to the particles'
-  // radius (liquid.reach_radius), 3 of its 600-odd paths, at the pool's two ends, read the wall 40-110 px
-  // away: not yet explained (docs/liquid.md, "Particles reach their radius").
+  // radius (liquid.reach_radius), 3 of its 600-odd paths, at the pool's two ends, leave through its end faces
+  // (this tank has no side walls) into the air behind the near wall and read the wall where they pass behind
+  // it: a path in air that passes behind a solid is not one this test is about (docs/liquid.md, "Particles
+  // reach their radius").
   scene.parameters.liquid.reach_radius = false;
   const RenderResult result = renderer().renderParticles(scene, pool(), 1);
   expectAllChannelsFinite(result);
