@@ -1,10 +1,12 @@
 // Images are written here with OpenImageIO directly, as Blender and image editors would write them, and read
 // back through io/ImageFiles.h.
 
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <filesystem>
 #include <fstream>
+#include <iterator>
 #include <memory>
 #include <optional>
 #include <string>
@@ -207,6 +209,86 @@ TEST_F(ImageFilesTest, MissingOrCorruptFilesThrowErrorsNamingThem) {
     EXPECT_NE(message.find(corrupt.string()), std::string::npos) << message;
     EXPECT_EQ(message.find('\n'), std::string::npos) << message;
   }
+}
+
+std::vector<char> fileBytes(const std::filesystem::path& path) {
+  std::ifstream file(path, std::ios::binary);
+  return std::vector<char>(std::istreambuf_iterator<char>(file), {});
+}
+
+void writeBytes(const std::filesystem::path& path, const std::vector<char>& bytes) {
+  std::ofstream(path, std::ios::binary).write(bytes.data(), std::streamsize(bytes.size()));
+}
+
+// Offset of the size field of the header attribute `name` of type `type`.
+std::size_t attributeSizeOffset(const std::vector<char>& bytes, const std::string& name,
+                                const std::string& type) {
+  const std::string key = name + '\0' + type + '\0';
+  const auto found = std::search(bytes.begin(), bytes.end(), key.begin(), key.end());
+  EXPECT_NE(found, bytes.end()) << name;
+  return std::size_t(found - bytes.begin()) + key.size();
+}
+
+void putInt32(std::vector<char>* bytes, std::size_t at, std::int32_t value) {
+  for (int i = 0; i < 4; ++i)
+    (*bytes)[at + i] = char((std::uint32_t(value) >> (8 * i)) & 0xff);
+}
+
+// The error names the file and says what the header claimed.
+void expectRefused(const std::filesystem::path& path, const std::string& claim) {
+  try {
+    readColorImage(path);
+    FAIL() << path << " was read";
+  } catch (const Error& error) {
+    const std::string message = error.what();
+    EXPECT_NE(message.find(path.string()), std::string::npos) << message;
+    EXPECT_NE(message.find(claim), std::string::npos) << message;
+  }
+}
+
+// OpenEXR 3.1 allocates what a header claims before it finds the file too short (2 GB zero-filled for a
+// string attribute of an 893-byte file, found by fuzz_background_image): such files are refused first.
+TEST_F(ImageFilesTest, RefusesAnExrWhoseHeaderClaimsMoreThanTheFileHolds) {
+  const std::filesystem::path good = directory_ / "good.exr";
+  const std::vector<float> pixels(16 * 8 * 4, 0.5f);
+  writeImage(good, 16, 8, {"R", "G", "B", "A"}, pixels, OIIO::TypeDesc::HALF);
+  {
+    std::unique_ptr<OIIO::ImageOutput> output = OIIO::ImageOutput::create("tiled.exr");
+    OIIO::ImageSpec spec(16, 8, 4, OIIO::TypeDesc::HALF);
+    spec.tile_width = spec.tile_height = 4;
+    spec.attribute("Software", "a string attribute to corrupt");
+    ASSERT_TRUE(output->open((directory_ / "tiled.exr").string(), spec));
+    ASSERT_TRUE(output->write_image(OIIO::TypeFloat, pixels.data()));
+    ASSERT_TRUE(output->close());
+  }
+  EXPECT_EQ(readColorImage(good).pixels, pixels);
+  EXPECT_EQ(readColorImage(directory_ / "tiled.exr").pixels, pixels);
+  const std::vector<char> tiledBytes = fileBytes(directory_ / "tiled.exr");
+
+  std::vector<char> longString = tiledBytes;
+  putInt32(&longString, attributeSizeOffset(longString, "Software", "string"), 0x7ff00000);
+  writeBytes(directory_ / "long_string.exr", longString);
+  expectRefused(directory_ / "long_string.exr", "attribute \"Software\" claims 2146435072 bytes");
+
+  std::vector<char> negative = tiledBytes;
+  putInt32(&negative, attributeSizeOffset(negative, "Software", "string"), -5);
+  writeBytes(directory_ / "negative.exr", negative);
+  expectRefused(directory_ / "negative.exr", "claims -5 bytes");
+
+  // 4x4 tiles over a 16 x 2^24 window: 2^24 offsets of 8 bytes in a file of a few hundred bytes.
+  std::vector<char> tallTiled = tiledBytes;
+  putInt32(&tallTiled, attributeSizeOffset(tallTiled, "dataWindow", "box2i") + 4 + 12, (1 << 24) - 1);
+  writeBytes(directory_ / "tall_tiled.exr", tallTiled);
+  expectRefused(directory_ / "tall_tiled.exr", "chunks");
+
+  std::vector<char> tallScanlines = fileBytes(good);
+  putInt32(&tallScanlines, attributeSizeOffset(tallScanlines, "dataWindow", "box2i") + 4 + 12, 1 << 30);
+  writeBytes(directory_ / "tall_scanlines.exr", tallScanlines);
+  expectRefused(directory_ / "tall_scanlines.exr", "chunks");
+
+  std::vector<char> cut(tiledBytes.begin(), tiledBytes.begin() + 12);  // inside the first name
+  writeBytes(directory_ / "cut.exr", cut);
+  expectRefused(directory_ / "cut.exr", "cut off");
 }
 
 TEST(ImageFilesResize, NearestRepeatsPixelsAndBilinearBlendsThem) {

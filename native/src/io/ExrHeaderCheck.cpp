@@ -1,0 +1,192 @@
+#include "io/ExrHeaderCheck.h"
+
+#include <algorithm>
+#include <cstdint>
+#include <fstream>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "io/OiioErrors.h"
+
+namespace spindrift {
+namespace {
+
+using oiio_errors::fail;
+
+// OpenEXR's layout (openexr.com, "OpenEXR File Layout"): magic, version and flags, then one header (several,
+// ended by an empty one, in a multi-part file) of attributes `name\0 type\0 int32 size, value`, each header
+// ended by an empty name. All integers are little-endian.
+constexpr std::uint32_t kMagic = 20000630;
+constexpr std::uint32_t kTiledFlag = 0x200;
+constexpr std::uint32_t kMultipartFlag = 0x1000;
+constexpr std::size_t kMaxNameBytes = 256;  // OpenEXR's long names: 255 characters and the terminator
+// Headers are a few kilobytes; a larger one is read only this far, and its claims beyond are not checked.
+constexpr std::size_t kMaxHeaderBytes = std::size_t(16) << 20;
+
+// Reads the file's first bytes as they are needed: 64 KiB, doubled while a header goes on, up to 16 MiB.
+class HeaderReader {
+ public:
+  HeaderReader(const std::filesystem::path& path, std::uint64_t fileSize)
+      : path_(path), file_(path, std::ios::binary), fileSize_(fileSize) {}
+
+  std::size_t position() const { return position_; }
+  std::uint64_t bytesLeft() const { return fileSize_ - position_; }
+
+  // Returns nothing when the header goes on beyond what is checked, or the file cannot be read (OpenImageIO
+  // then reports it).
+  std::optional<std::string> name() {
+    for (std::size_t at = position_; at < position_ + kMaxNameBytes; ++at) {
+      if (!holds(at, 1)) {
+        if (!readAll()) return std::nullopt;
+        fail(path_, "the OpenEXR header is cut off");
+      }
+      if (bytes_[at] != 0) continue;
+      std::string text(bytes_.begin() + position_, bytes_.begin() + at);
+      position_ = at + 1;
+      return text;
+    }
+    fail(path_, "an OpenEXR header name is too long");
+  }
+
+  std::optional<std::uint32_t> u32() {
+    if (!holds(position_, 4)) {
+      if (!readAll()) return std::nullopt;
+      fail(path_, "the OpenEXR header is cut off");
+    }
+    const std::uint32_t value = std::uint32_t(i32At(position_));
+    position_ += 4;
+    return value;
+  }
+
+  // Whether bytes [at, at + count) are read, reading more of the file if need be.
+  bool holds(std::uint64_t at, std::uint64_t count) {
+    while (at + count > bytes_.size()) {
+      const std::uint64_t wanted = std::min<std::uint64_t>(
+          {std::max<std::uint64_t>(2 * bytes_.size(), 64 << 10), kMaxHeaderBytes, fileSize_});
+      if (wanted <= bytes_.size()) return false;
+      const std::size_t before = bytes_.size();
+      bytes_.resize(std::size_t(wanted));
+      if (!file_.read(reinterpret_cast<char*>(bytes_.data() + before), std::streamsize(wanted - before))) {
+        bytes_.resize(before);
+        failedRead_ = true;
+        return false;
+      }
+    }
+    return true;
+  }
+
+  std::int32_t i32At(std::size_t at) const {
+    return std::int32_t(std::uint32_t(bytes_[at]) | std::uint32_t(bytes_[at + 1]) << 8 |
+                        std::uint32_t(bytes_[at + 2]) << 16 | std::uint32_t(bytes_[at + 3]) << 24);
+  }
+  unsigned char byteAt(std::size_t at) const { return bytes_[at]; }
+  void skip(std::uint64_t count) { position_ += std::size_t(count); }
+
+ private:
+  // Whether the whole file is read, so that running out of bytes means the header is cut off.
+  bool readAll() const { return !failedRead_ && bytes_.size() == fileSize_; }
+
+  std::filesystem::path path_;
+  std::ifstream file_;
+  std::uint64_t fileSize_;
+  std::vector<unsigned char> bytes_;
+  std::size_t position_ = 0;
+  bool failedRead_ = false;
+};
+
+// What one part's header says about its chunks (its offset table has one 8-byte entry per chunk).
+struct PartLayout {
+  std::int64_t width = 0, height = 0;
+  bool tiled = false;
+  std::int64_t tileWidth = 0, tileHeight = 0;
+  int scanlinesPerChunk = 256;  // the largest any compression uses: the fewest chunks a part can have
+  std::optional<std::int64_t> chunkCount;
+
+  std::int64_t fewestChunks() const {
+    if (chunkCount) return *chunkCount;
+    if (width <= 0 || height <= 0) return 0;  // OpenEXR refuses such a window itself
+    if (tiled) {
+      if (tileWidth <= 0 || tileHeight <= 0) return 0;
+      return ((width + tileWidth - 1) / tileWidth) * ((height + tileHeight - 1) / tileHeight);
+    }
+    return (height + scanlinesPerChunk - 1) / scanlinesPerChunk;
+  }
+};
+
+int scanlinesPerChunk(unsigned compression) {
+  switch (compression) {
+    case 0: case 1: case 2: return 1;  // none, RLE, ZIPS
+    case 3: case 5: return 16;         // ZIP, PXR24
+    case 4: case 6: case 7: case 8: return 32;  // PIZ, B44, B44A, DWAA
+    default: return 256;               // DWAB, and the largest for anything newer
+  }
+}
+
+// Records what `layout` needs from one attribute whose value starts at `at` and is `size` bytes long.
+void noteAttribute(HeaderReader& reader, const std::string& name, const std::string& type, std::size_t at,
+                   std::uint32_t size, PartLayout* layout) {
+  if (name == "dataWindow" && type == "box2i" && size == 16 && reader.holds(at, size)) {
+    layout->width = std::int64_t(reader.i32At(at + 8)) - reader.i32At(at) + 1;
+    layout->height = std::int64_t(reader.i32At(at + 12)) - reader.i32At(at + 4) + 1;
+  } else if (name == "tiles" && type == "tiledesc" && size >= 8 && reader.holds(at, 8)) {
+    layout->tiled = true;
+    layout->tileWidth = std::uint32_t(reader.i32At(at));
+    layout->tileHeight = std::uint32_t(reader.i32At(at + 4));
+  } else if (name == "compression" && type == "compression" && size == 1 && reader.holds(at, 1)) {
+    layout->scanlinesPerChunk = scanlinesPerChunk(reader.byteAt(at));
+  } else if (name == "chunkCount" && type == "int" && size == 4 && reader.holds(at, 4)) {
+    layout->chunkCount = std::max(0, reader.i32At(at));
+  } else if (name == "type" && type == "string" && size >= 1 && reader.holds(at, 1)) {
+    layout->tiled = layout->tiled || reader.byteAt(at) == 't';  // "tiledimage" in a multi-part file
+  }
+}
+
+}  // namespace
+
+void checkExrHeaderClaims(const std::filesystem::path& path) {
+  std::error_code error;
+  const std::uint64_t fileSize = std::filesystem::file_size(path, error);
+  if (error) return;  // OpenImageIO reports what it cannot read
+  HeaderReader reader(path, fileSize);
+  if (!reader.holds(0, 8)) return;
+  if (reader.u32() != kMagic) return;
+  const std::uint32_t flags = reader.u32().value_or(0);
+  const bool multipart = (flags & kMultipartFlag) != 0;
+  std::int64_t chunks = 0;
+  for (;;) {
+    PartLayout layout;
+    layout.tiled = !multipart && (flags & kTiledFlag) != 0;
+    int attributes = 0;
+    for (;; ++attributes) {
+      const std::optional<std::string> name = reader.name();
+      if (!name) return;
+      if (name->empty()) break;
+      const std::optional<std::string> type = reader.name();
+      const std::optional<std::uint32_t> size = type ? reader.u32() : std::nullopt;
+      if (!size) return;
+      if (std::int32_t(*size) < 0 || *size > reader.bytesLeft()) {
+        fail(path, "the OpenEXR header's attribute \"" + *name + "\" claims " +
+                       std::to_string(std::int32_t(*size)) + " bytes, and the file has " +
+                       std::to_string(reader.bytesLeft()) + " left");
+      }
+      if (*type == "preview" && reader.holds(reader.position(), 8)) {
+        const std::uint64_t pixels = std::uint64_t(std::uint32_t(reader.i32At(reader.position()))) *
+                                     std::uint32_t(reader.i32At(reader.position() + 4));
+        if (*size < 8 || pixels > (*size - 8) / 4) fail(path, "the OpenEXR preview image is larger than its attribute");
+      }
+      noteAttribute(reader, *name, *type, reader.position(), *size, &layout);
+      reader.skip(*size);
+    }
+    // An empty header ends a multi-part file's list of headers; a single-part file has one header.
+    if (multipart && attributes == 0) break;
+    chunks += std::min<std::int64_t>(layout.fewestChunks(), std::int64_t(1) << 40);
+    if (std::uint64_t(chunks) * 8 > fileSize) {
+      fail(path, "the OpenEXR header claims at least " + std::to_string(chunks) +
+                     " chunks, more than the file's " + std::to_string(fileSize) + " bytes can index");
+    }
+    if (!multipart) break;
+  }
+}
+
+}  // namespace spindrift
