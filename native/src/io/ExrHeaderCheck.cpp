@@ -116,10 +116,20 @@ struct PartLayout {
 
 int scanlinesPerChunk(unsigned compression) {
   switch (compression) {
-    case 0: case 1: case 2: return 1;  // none, RLE, ZIPS
-    case 3: case 5: return 16;         // ZIP, PXR24
-    case 4: case 6: case 7: case 8: return 32;  // PIZ, B44, B44A, DWAA
-    default: return 256;               // DWAB, and the largest for anything newer
+    case 0:
+    case 1:
+    case 2:
+      return 1;  // none, RLE, ZIPS
+    case 3:
+    case 5:
+      return 16;  // ZIP, PXR24
+    case 4:
+    case 6:
+    case 7:
+    case 8:
+      return 32;  // PIZ, B44, B44A, DWAA
+    default:
+      return 256;  // DWAB, and the largest for anything newer
   }
 }
 
@@ -173,7 +183,8 @@ void checkExrHeaderClaims(const std::filesystem::path& path) {
       if (*type == "preview" && reader.holds(reader.position(), 8)) {
         const std::uint64_t pixels = std::uint64_t(std::uint32_t(reader.i32At(reader.position()))) *
                                      std::uint32_t(reader.i32At(reader.position() + 4));
-        if (*size < 8 || pixels > (*size - 8) / 4) fail(path, "the OpenEXR preview image is larger than its attribute");
+        if (*size < 8 || pixels > (*size - 8) / 4)
+          fail(path, "the OpenEXR preview image is larger than its attribute");
       }
       noteAttribute(reader, *name, *type, reader.position(), *size, &layout);
       reader.skip(*size);
