@@ -1,6 +1,7 @@
 #version 450 core
 // Foam pass 6 (paper 2.4): the shadow zeta from multi-pass screen-space ambient occlusion with Halton samples,
-// and the irradiance I from the environment, per foam pixel.
+// and the irradiance I from the environment, per foam pixel, or per block of foam.occlusion_block pixels a
+// side, estimated at the block's nearest foam pixel (foam_occlusion_upsample.frag spreads it to the rest).
 #include "lib/frame.glsl"
 #include "lib/environment.glsl"
 #include "lib/foam_environment.glsl"
@@ -16,9 +17,9 @@ layout(binding = 6) uniform sampler2D irradianceMap;
 layout(std430, binding = 0) readonly buffer HaltonSamples {
   vec4 haltonSamples[];
 };
-// 0: foam pixels, 1: SSAO samples taken (nu summed over passes), for the frame's stats.
+// 0: foam pixels, 1: SSAO samples taken (nu summed over passes), 2: estimates made, for the frame's stats.
 layout(std430, binding = 1) buffer OcclusionCounters {
-  uint occlusionCounters[2];
+  uint occlusionCounters[3];
 };
 
 uniform float initialRadiusFactor;    // AOInitSRFac
@@ -31,8 +32,9 @@ uniform float maxOcclusionDistance;   // AOMaxOcclDist
 uniform float liquidOpacity;          // a_i of a liquid occluder
 uniform vec3 shadowShape;             // AOShScale, AOShExp, AOShOffset
 uniform bool useIrradianceMap;
+uniform int blockSize;                // full-resolution pixels along each side of what one invocation estimates
 
-layout(location = 0) out float outShadow;
+layout(location = 0) out vec2 outShadow;  // zeta, and the eye depth it was estimated at
 layout(location = 1) out vec4 outIrradiance;
 
 // delta of one occluder at eye depth `occluderDepth` for the fragment at `fragmentDepth`: the quadratic
@@ -43,15 +45,27 @@ float occlusionRange(float fragmentDepth, float occluderDepth) {
 }
 
 void main() {
-  ivec2 pixel = ivec2(gl_FragCoord.xy);
-  outShadow = 0.0;
+  outShadow = vec2(0.0, kNoSurfaceDepth);
   outIrradiance = vec4(0.0);
-  if (texelFetch(foamIntensity, pixel, 0).r <= 0.0) return;
-  vec2 depthAndSearchRadius = texelFetch(foamDepth, pixel, 0).rg;
-  float depth = depthAndSearchRadius.x;
-  float searchRadius = depthAndSearchRadius.y;
+  // The block's nearest foam pixel: foam in front shadows what lies behind it, not the other way round.
+  ivec2 pixel = ivec2(-1);
+  float depth = kNoSurfaceDepth;
+  uint foamPixels = 0u;
+  for (int y = 0; y < blockSize; ++y)
+    for (int x = 0; x < blockSize; ++x) {
+      ivec2 candidate = ivec2(gl_FragCoord.xy) * blockSize + ivec2(x, y);
+      if (any(greaterThanEqual(candidate, ivec2(frame.viewportSize.xy)))) continue;
+      if (texelFetch(foamIntensity, candidate, 0).r <= 0.0) continue;
+      ++foamPixels;
+      float candidateDepth = texelFetch(foamDepth, candidate, 0).r;
+      if (candidateDepth < depth) {
+        depth = candidateDepth;
+        pixel = candidate;
+      }
+    }
   if (depth >= kNoSurfaceDepth * 0.5) return;
-  vec3 position = cameraRayFromFragCoord(gl_FragCoord.xy) * depth;
+  float searchRadius = texelFetch(foamDepth, pixel, 0).g;
+  vec3 position = cameraRayFromFragCoord(vec2(pixel) + 0.5) * depth;
   vec3 worldNormal = normalize(texelFetch(foamNormal, pixel, 0).xyz);
   vec3 cameraNormal = mat3(frame.cameraFromWorld) * worldNormal;
   float worldPerSearchRadius = frame.tanHalfFov.y * depth;  // h is relative to half the screen's height
@@ -110,10 +124,11 @@ void main() {
       occlusion += lambda * delta * min(opacity, 1.0);
     }
   }
-  atomicAdd(occlusionCounters[0], 1u);
+  atomicAdd(occlusionCounters[0], foamPixels);
   atomicAdd(occlusionCounters[1], samplesTaken);
+  atomicAdd(occlusionCounters[2], 1u);
   float omega = weights > 0.0 ? occlusion / weights : 0.0;
-  outShadow = clamp(pow(omega * shadowShape.x, shadowShape.y) + shadowShape.z, 0.0, 1.0);
+  outShadow = vec2(clamp(pow(omega * shadowShape.x, shadowShape.y) + shadowShape.z, 0.0, 1.0), depth);
   if (useIrradianceMap)
     irradiance = texture(irradianceMap, equirectangularUvFromDirection(worldNormal)).rgb;
   else

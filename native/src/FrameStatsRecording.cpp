@@ -48,6 +48,7 @@ void recordRefraction(const RefractionStatistics& rays, LiquidFrameStats& stats)
 
 void recordFoamOcclusion(const FoamOcclusionStatistics& occlusion, FoamFrameStats& stats) {
   stats.foamPixels = occlusion.foamPixels;
+  stats.occlusionEstimates = occlusion.estimates;
   stats.aoSamplesPerPixel = occlusion.foamPixels ? double(occlusion.samples) / occlusion.foamPixels : 0.0;
 }
 

@@ -80,6 +80,7 @@ nlohmann::json FrameStats::toJson() const {
         {"bubble_particles", foam.bubbleParticles},
         {"culled", foam.culled},
         {"foam_pixels", foam.foamPixels},
+        {"occlusion_estimates", foam.occlusionEstimates},
         {"ao_samples_per_pixel", foam.aoSamplesPerPixel}}},
       {"light",
        {{"lights", light.lights},

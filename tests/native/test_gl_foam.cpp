@@ -172,11 +172,10 @@ TEST(GLFoam, FoamBelowLiquidSurfaceFadesWithDepth) {
   }
 }
 
-TEST(GLFoam, ConcaveBowlIsDarkerThanRim) {
-  Scene scene = sceneLookingDown(161, 3.0f);
-  scene.background.color = glm::vec3(1.0f);  // a white environment lights the foam: I_final = 1
+// Surface foam in a hemispherical bowl of radius 0.3 (rim at z = 0, bottom at z = -0.3) in a flat field out
+// to 0.7.
+Particles bowlOfFoam() {
   Particles particles;
-  // A hemispherical bowl of radius 0.3 (rim at z = 0, bottom at z = -0.3) in a flat field out to 0.7.
   const float bowlRadius = 0.3f;
   for (const glm::vec3& point : liquid_test::block({-0.7f, -0.7f, 0.0f}, {0.7f, 0.7f, 0.0f}, 0.015f)) {
     const float distance = std::hypot(point.x, point.y);
@@ -184,6 +183,13 @@ TEST(GLFoam, ConcaveBowlIsDarkerThanRim) {
     const float z = distance < bowlRadius ? -std::sqrt(bowlRadius * bowlRadius - distance * distance) : 0.0f;
     particles.append({point.x, point.y, z}, 0.03f, ParticleKind::Foam, 0.0f, glm::vec3(0.0f));
   }
+  return particles;
+}
+
+TEST(GLFoam, ConcaveBowlIsDarkerThanRim) {
+  Scene scene = sceneLookingDown(161, 3.0f);
+  scene.background.color = glm::vec3(1.0f);  // a white environment lights the foam: I_final = 1
+  const Particles particles = bowlOfFoam();
   const RenderResult result = renderer().renderParticles(scene, particles, 1);
   expectFiniteFoam(result);
   const double bowlShadow = meanOverRing(result, scene, "foam_shadow", 0, 0.0f, 0.12f, 3.3f);
@@ -197,6 +203,55 @@ TEST(GLFoam, ConcaveBowlIsDarkerThanRim) {
   EXPECT_GT(bowlShadow, 1.5 * rimShadow);
   EXPECT_GT(bowlShadow, rimShadow + 0.02);
   EXPECT_LT(bowlColour, rimColour);
+}
+
+// foam.occlusion_block estimates the shadow and irradiance once per block, at its nearest foam pixel, and
+// spreads them by depth: the bowl with a sheet of spray 1.5 above it (its edges cross the bowl's foam, at a
+// very different depth), on a 161-pixel frame that blocks of 2 and 4 do not divide, against every pixel's
+// own estimate.
+TEST(GLFoam, OcclusionEstimatedPerBlockFollowsEveryPixelsEstimate) {
+  Scene scene = sceneLookingDown(161, 3.0f);
+  scene.background.color = glm::vec3(1.0f);
+  Particles particles = bowlOfFoam();
+  appendFoam(particles, liquid_test::block({-0.2f, -0.05f, 1.5f}, {0.2f, 0.05f, 1.5f}, 0.01f), 0.015f,
+             ParticleKind::Spray);
+  scene.parameters.foam.occlusion_block = 1;
+  const RenderResult everyPixel = renderer().renderParticles(scene, particles, 1);
+  expectFiniteFoam(everyPixel);
+  EXPECT_EQ(everyPixel.stats.foam.occlusionEstimates, everyPixel.stats.foam.foamPixels);
+  const auto value = [](const RenderResult& result, const char* layer, int x, int y) {
+    return at(*result.layer(layer), result.width, x, y, 0);
+  };
+  for (const int block : {2, 4}) {
+    SCOPED_TRACE("block " + std::to_string(block));
+    scene.parameters.foam.occlusion_block = block;
+    const RenderResult blocks = renderer().renderParticles(scene, particles, 1);
+    expectFiniteFoam(blocks);
+    const FoamFrameStats& stats = blocks.stats.foam;
+    EXPECT_EQ(stats.foamPixels, everyPixel.stats.foam.foamPixels);
+    EXPECT_LT(stats.occlusionEstimates, stats.foamPixels / (block * block) + 2 * 161 / block);
+    EXPECT_LT(stats.aoSamplesPerPixel, everyPixel.stats.foam.aoSamplesPerPixel / (0.5 * block * block));
+    // Every foam pixel has an estimate: under the white sky its irradiance is lit, never left at 0.
+    double sum = 0.0, largest = 0.0;
+    int count = 0;
+    for (int y = 0; y < 161; ++y)
+      for (int x = 0; x < 161; ++x) {
+        if (at(*everyPixel.layer("foam"), 161, x, y, 3) <= 0.0f) continue;
+        EXPECT_GT(value(everyPixel, "foam_irradiance", x, y), 0.5f) << "pixel " << x << ", " << y;
+        EXPECT_GT(value(blocks, "foam_irradiance", x, y), 0.5f) << "pixel " << x << ", " << y;
+        const double difference =
+            std::abs(value(blocks, "foam_shadow", x, y) - value(everyPixel, "foam_shadow", x, y));
+        sum += difference;
+        largest = std::max(largest, difference);
+        ++count;
+      }
+    std::printf(
+        "[ measured ] block %d: %zu estimates for %zu foam pixels; shadow off by %.4f on average, %.4f "
+        "at most\n",
+        block, stats.occlusionEstimates, stats.foamPixels, sum / count, largest);
+    EXPECT_LT(sum / count, 0.01 * block);
+    EXPECT_LT(largest, 0.1);
+  }
 }
 
 TEST(GLFoam, RedEnvironmentTintsFoamFacingIt) {

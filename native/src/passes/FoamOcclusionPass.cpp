@@ -16,6 +16,7 @@ constexpr int kIrradianceMapHeight = 32;
 FoamOcclusionPass::FoamOcclusionPass(const ShaderLibrary& shaders)
     : program_(shaders.program({"fullscreen.vert", "foam_occlusion.frag"})),
       irradianceMapProgram_(shaders.program({"foam_irradiance_map.comp"})),
+      upsampleProgram_(shaders.program({"fullscreen.vert", "foam_occlusion_upsample.frag"})),
       emptyVertexArray_(createVertexArray()),
       framebuffer_(createFramebuffer()),
       haltonSamples_(createBuffer()),
@@ -28,7 +29,7 @@ FoamOcclusionPass::FoamOcclusionPass(const ShaderLibrary& shaders)
   glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, haltonSamples_.id());
   glDispatchCompute(kMaximumSamples / 64, 1, 1);
   glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
-  glNamedBufferStorage(counters_.id(), 2 * sizeof(std::uint32_t), nullptr, GL_DYNAMIC_STORAGE_BIT);
+  glNamedBufferStorage(counters_.id(), 3 * sizeof(std::uint32_t), nullptr, GL_DYNAMIC_STORAGE_BIT);
   checkGlError("making the foam's SSAO samples");
 }
 
@@ -55,12 +56,20 @@ FoamOcclusionData FoamOcclusionPass::run(const FoamSurfaceData& surface, const F
     checkGlError("making the foam's irradiance map");
   }
 
-  ensureTexture(shadow_, GL_R32F, width, height);
+  // Estimates, one per block (the full-resolution textures themselves when a block is one pixel).
+  const int block = parameters.occlusion_block;
+  ensureTexture(shadow_, GL_RG32F, width, height);
   ensureTexture(irradiance_, GL_RGBA16F, width, height);
-  bindColorTargets(framebuffer_.id(), {&shadow_, &irradiance_});
+  if (block > 1) {
+    ensureTexture(blockShadow_, GL_RG32F, (width + block - 1) / block, (height + block - 1) / block);
+    ensureTexture(blockIrradiance_, GL_RGBA16F, (width + block - 1) / block, (height + block - 1) / block);
+  }
+  Texture2D& estimatedShadow = block > 1 ? blockShadow_ : shadow_;
+  Texture2D& estimatedIrradiance = block > 1 ? blockIrradiance_ : irradiance_;
+  bindColorTargets(framebuffer_.id(), {&estimatedShadow, &estimatedIrradiance});
   glDisable(GL_DEPTH_TEST);
   glDisable(GL_BLEND);
-  const std::uint32_t zeros[2] = {0, 0};
+  const std::uint32_t zeros[3] = {0, 0, 0};
   glNamedBufferSubData(counters_.id(), 0, sizeof zeros, zeros);
   const GLuint program = program_.id();
   glUseProgram(program);
@@ -75,6 +84,7 @@ FoamOcclusionData FoamOcclusionPass::run(const FoamSurfaceData& surface, const F
   glUniform1f(uniformLocation(program, "liquidOpacity"), p.ao_liquid_opacity);
   glUniform3f(uniformLocation(program, "shadowShape"), p.shadow_scale, p.shadow_exponent, p.shadow_offset);
   glUniform1i(uniformLocation(program, "useIrradianceMap"), useIrradianceMap ? 1 : 0);
+  glUniform1i(uniformLocation(program, "blockSize"), block);
   bindEnvironment(program, background);
   glBindTextureUnit(0, surface.depthAndSearchRadius.id());
   glBindTextureUnit(1, surface.normal.id());
@@ -86,14 +96,29 @@ FoamOcclusionData FoamOcclusionPass::run(const FoamSurfaceData& surface, const F
   glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, counters_.id());
   drawFullscreenTriangle(emptyVertexArray_.id());
   checkGlError("estimating the foam's shadow and irradiance");
+  if (block > 1) {
+    bindColorTargets(framebuffer_.id(), {&shadow_, &irradiance_});
+    glUseProgram(upsampleProgram_.id());
+    glUniform1i(uniformLocation(upsampleProgram_.id(), "blockSize"), block);
+    glBindTextureUnit(0, blockShadow_.id());
+    glBindTextureUnit(1, blockIrradiance_.id());
+    glBindTextureUnit(2, surface.depthAndSearchRadius.id());
+    glBindTextureUnit(3, intensity.intensity.id());
+    drawFullscreenTriangle(emptyVertexArray_.id());
+    checkGlError("upsampling the foam's shadow and irradiance");
+  }
   return {shadow_, irradiance_};
 }
 
 FoamOcclusionStatistics FoamOcclusionPass::statistics() const {
-  std::uint32_t counters[2] = {0, 0};
+  std::uint32_t counters[3] = {0, 0, 0};
   glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
   glGetNamedBufferSubData(counters_.id(), 0, sizeof counters, counters);
-  return {counters[0], counters[1]};
+  FoamOcclusionStatistics statistics;
+  statistics.foamPixels = counters[0];
+  statistics.samples = counters[1];
+  statistics.estimates = counters[2];
+  return statistics;
 }
 
 }  // namespace spindrift

@@ -15,7 +15,7 @@ namespace spindrift {
 
 /// Multi-pass screen-space ambient occlusion with Halton samples, turned into the shadow zeta, and the
 /// irradiance from the environment by cosine-weighted sample directions or an irradiance map (foam
-/// paper 2.4).
+/// paper 2.4). With foam.occlusion_block > 1 they are estimated once per block of pixels and upsampled.
 class FoamOcclusionPass {
  public:
   /// The largest sample count a pass may take (foam.ao_max_samples' maximum).
@@ -33,11 +33,14 @@ class FoamOcclusionPass {
 
   ProgramObject program_;
   ProgramObject irradianceMapProgram_;
+  ProgramObject upsampleProgram_;
   VertexArrayObject emptyVertexArray_;
   FramebufferObject framebuffer_;
   BufferObject haltonSamples_;
   BufferObject counters_;
   Texture2D irradianceMap_;
+  Texture2D blockShadow_;
+  Texture2D blockIrradiance_;
   Texture2D shadow_;
   Texture2D irradiance_;
 };
