@@ -15,7 +15,7 @@ ROLE_ITEMS = [
 ]
 
 QUALITY_ITEMS = [
-    ("DRAFT", "Draft", "One refraction, one smoothing iteration, one occlusion pass: fastest"),
+    ("DRAFT", "Draft", "One refraction, one smoothing iteration, one occlusion pass per 4x4 block: fastest"),
     ("BALANCED", "Balanced", "Two refractions, two smoothing iterations and occlusion passes"),
     ("FULL", "Full", "The object's own parameters, as the final render uses them"),
 ]

@@ -4,6 +4,7 @@ parameter table, Mantaflow's cache-to-world formula, cameras from projection mat
 Run: /usr/bin/python3 -m pytest -q tests/blender/test_addon_python.py
 """
 
+import ast
 import importlib.util
 import math
 import pathlib
@@ -80,6 +81,22 @@ def test_every_parameter_becomes_a_property_of_its_type():
                 assert keywords["default"] == row["default"]
             if row["type"] == "color":
                 assert keywords["subtype"] == "COLOR" and keywords["size"] == 3
+
+
+def test_viewport_quality_presets_name_parameters_within_their_ranges():
+    """frame.QUALITY_OVERRIDES is applied on top of an object's values: a misspelt or out-of-range key would
+    fail only when an artist picks that preset."""
+    tree = ast.parse((ADDON / "frame.py").read_text())
+    presets = next(ast.literal_eval(node.value) for node in tree.body if isinstance(node, ast.Assign)
+                   and any(getattr(target, "id", None) == "QUALITY_OVERRIDES" for target in node.targets))
+    rows = {(row["group"], row["name"]): row for row in table_from_def()}
+    assert set(presets) == {"DRAFT", "BALANCED", "FULL"}
+    for preset, groups in presets.items():
+        for group, values in groups.items():
+            for name, value in values.items():
+                row = rows.get((group, name))
+                assert row is not None, f"{preset}: {group}.{name} is not a parameter"
+                assert row["min"] <= value <= row["max"], f"{preset}: {group}.{name} = {value}"
 
 
 def test_known_rows_keep_their_defaults():
