@@ -1,7 +1,7 @@
 #version 450 core
 // Foam pass 6 (paper 2.4): the shadow zeta from multi-pass screen-space ambient occlusion with Halton samples,
 // and the irradiance I from the environment, per foam pixel, or per block of foam.occlusion_block pixels a
-// side, estimated at the block's nearest foam pixel (foam_occlusion_upsample.frag spreads it to the rest).
+// side, estimated at one of its foam pixels (foam_occlusion_upsample.frag spreads it to the rest).
 #include "lib/frame.glsl"
 #include "lib/environment.glsl"
 #include "lib/foam_environment.glsl"
@@ -47,10 +47,12 @@ float occlusionRange(float fragmentDepth, float occluderDepth) {
 void main() {
   outShadow = vec2(0.0, kNoSurfaceDepth);
   outIrradiance = vec4(0.0);
-  // The block's nearest foam pixel: foam in front shadows what lies behind it, not the other way round.
+  // The block's foam pixel nearest the mean depth of its foam. (Its nearest foam pixel, the first choice, is
+  // the least occluded: blocks of 2 made the drop example's foam 11 % brighter on average.)
   ivec2 pixel = ivec2(-1);
   float depth = kNoSurfaceDepth;
-  uint foamPixels = 0u;
+  uint foamPixels = 0u, pixelsWithDepth = 0u;
+  float depthSum = 0.0;
   for (int y = 0; y < blockSize; ++y)
     for (int x = 0; x < blockSize; ++x) {
       ivec2 candidate = ivec2(gl_FragCoord.xy) * blockSize + ivec2(x, y);
@@ -58,10 +60,22 @@ void main() {
       if (texelFetch(foamIntensity, candidate, 0).r <= 0.0) continue;
       ++foamPixels;
       float candidateDepth = texelFetch(foamDepth, candidate, 0).r;
-      if (candidateDepth < depth) {
-        depth = candidateDepth;
-        pixel = candidate;
-      }
+      if (candidateDepth >= kNoSurfaceDepth * 0.5) continue;
+      ++pixelsWithDepth;
+      depthSum += candidateDepth;
+    }
+  float meanDepth = pixelsWithDepth > 0u ? depthSum / float(pixelsWithDepth) : kNoSurfaceDepth;
+  float closest = kNoSurfaceDepth;
+  for (int y = 0; y < blockSize; ++y)
+    for (int x = 0; x < blockSize; ++x) {
+      ivec2 candidate = ivec2(gl_FragCoord.xy) * blockSize + ivec2(x, y);
+      if (any(greaterThanEqual(candidate, ivec2(frame.viewportSize.xy)))) continue;
+      if (texelFetch(foamIntensity, candidate, 0).r <= 0.0) continue;
+      float candidateDepth = texelFetch(foamDepth, candidate, 0).r;
+      if (candidateDepth >= kNoSurfaceDepth * 0.5 || !(abs(candidateDepth - meanDepth) < closest)) continue;
+      closest = abs(candidateDepth - meanDepth);
+      depth = candidateDepth;
+      pixel = candidate;
     }
   if (depth >= kNoSurfaceDepth * 0.5) return;
   float searchRadius = texelFetch(foamDepth, pixel, 0).g;

@@ -3,7 +3,7 @@
 // irradiance I of the four nearest block estimates (foam_occlusion.frag), weighted bilinearly and by how far
 // each estimate's depth lies from the pixel's, in units of the pixel's search radius h: foam in front of other
 // foam does not lend it its light, nor a spray droplet the shadow of the surface foam behind it. The block
-// the pixel lies in always has an estimate (its nearest foam pixel), so every foam pixel gets one.
+// the pixel lies in always has an estimate (one of its foam pixels has a depth), so every foam pixel gets one.
 #include "lib/frame.glsl"
 
 layout(binding = 0) uniform sampler2D blockShadow;      // zeta, estimate's eye depth

@@ -55,6 +55,10 @@ def configurations(quick):
     points += [variant("none", smoothing="none")]
     points += [variant(f"max_refractions {n}", max_refractions=n) for n in (1, 2)]
     points += [variant("layers merged", layers="merged"), variant("plane_fit, foam off", foam=False)]
+    # The foam's shadow and irradiance estimated at every foam pixel, as the paper does (the default makes one
+    # estimate per 2 x 2 block, docs/foam.md).
+    label, settings, foam = variant("plane_fit, foam per pixel")
+    points.append((label, {**settings, "foam.occlusion_block": 1}, foam))
     # Each smoothing method without the surface the Mantaflow domain derives (offset and splash sizes): the
     # particles drawn at their radius alone, as every method was before issue 9 (docs/mantaflow-caches.md).
     points += [variant(f"{label}, no offset", surface_offset=0.0, mesh_kernel_radius=0.0, **changes)
