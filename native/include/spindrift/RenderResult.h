@@ -92,11 +92,10 @@ struct FoamFrameStats {
   std::size_t sprayParticles = 0;  ///< In view, by type.
   std::size_t surfaceParticles = 0;
   std::size_t bubbleParticles = 0;
-  std::size_t culled = 0;      ///< Outside the view frustum.
-  std::size_t foamPixels = 0;  ///< Pixels with foam (intensity > 0).
-  std::size_t occlusionEstimates =
-      0;                           ///< SSAO estimates made: foam pixels, or blocks (foam.occlusion_block).
-  double aoSamplesPerPixel = 0.0;  ///< Mean SSAO samples per foam pixel, all passes together.
+  std::size_t culled = 0;              ///< Outside the view frustum.
+  std::size_t foamPixels = 0;          ///< Pixels with foam (intensity > 0).
+  std::size_t occlusionEstimates = 0;  ///< SSAO estimates: foam pixels, or foam.occlusion_block blocks.
+  double aoSamplesPerPixel = 0.0;      ///< Mean SSAO samples per foam pixel, all passes together.
 };
 
 /// What the light through the liquid found in a frame.
