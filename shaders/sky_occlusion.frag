@@ -24,6 +24,8 @@ layout(binding = 2) uniform sampler2D skyBackDepth;
 uniform int scale;                  // full-resolution pixels per sample along each axis
 uniform int directionCount;         // cosine-weighted directions per sample
 uniform vec4 liquidBounds;          // centre, radius: a sphere around all the liquid
+uniform vec3 liquidBoxLow;          // and a box around it, tighter for a flat body (a pool)
+uniform vec3 liquidBoxHigh;
 uniform float shortestStep;         // world length: about a texel of the sky view
 uniform float submergedTolerance;   // how far below the liquid's drawn bottom a point still lies in it
 uniform float solidThickness;       // world depth behind a solid's visible surface that counts as inside it
@@ -73,7 +75,13 @@ vec3 keptAlong(vec3 origin, vec3 direction, bool skipOwnBody) {
   float halfChordSquared = liquidBounds.w * liquidBounds.w - missSquared;
   if (halfChordSquared <= 0.0) return vec3(1.0);
   float halfChord = sqrt(halfChordSquared);
-  float start = max(along - halfChord, 0.0), end = along + halfChord;
+  // The path is marched where it lies in both the sphere and the box.
+  // (A direction along a box face's plane divides by a tiny number rather than by zero: no NaN from 0 x inf.)
+  vec3 inverse = 1.0 / mix(vec3(1e-12), direction, greaterThan(abs(direction), vec3(1e-12)));
+  vec3 toLow = (liquidBoxLow - origin) * inverse, toHigh = (liquidBoxHigh - origin) * inverse;
+  vec3 nearSide = min(toLow, toHigh), farSide = max(toLow, toHigh);
+  float start = max(max(along - halfChord, 0.0), max(nearSide.x, max(nearSide.y, nearSide.z)));
+  float end = min(along + halfChord, min(farSide.x, min(farSide.y, farSide.z)));
   if (end <= start) return vec3(1.0);
   int steps = int(clamp(ceil((end - start) / shortestStep), 1.0, float(kMaxStepsPerDirection)));
   float stepLength = (end - start) / float(steps);

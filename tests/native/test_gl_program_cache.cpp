@@ -1,6 +1,6 @@
 // The program binary cache (gl/ProgramCache): a program loaded from the cache computes what the compiled one
 // does; a changed shader source or driver string recompiles; a corrupt or truncated cache file is ignored and
-// rebuilt; an empty directory turns the cache off.
+// rebuilt; an empty directory turns the cache off. Variants compiled with #defines are programs of their own.
 #include <gtest/gtest.h>
 
 #include <fstream>
@@ -21,7 +21,12 @@ const char* kWriter = R"(#version 450 core
 #include "lib/value.glsl"
 layout(local_size_x = 1) in;
 layout(std430, binding = 0) writeonly buffer Output { float result; };
-void main() { result = kValue; }
+#ifdef DOUBLED
+const float kFactor = 2.0;
+#else
+const float kFactor = 1.0;
+#endif
+void main() { result = kValue * kFactor; }
 )";
 
 const char* kDriver = "Mesa\nllvmpipe (test)\n4.5 (Core Profile) Mesa";
@@ -43,11 +48,12 @@ class GLProgramCache : public ::testing::Test {
   std::filesystem::path cacheDirectory() const { return cache_.path() / "programs"; }
 
   // Builds the program through a fresh library and cache (as a new process would) and runs it.
-  Outcome build(const std::string& driver = kDriver, std::filesystem::path directory = {}) {
+  Outcome build(const std::string& driver = kDriver, std::filesystem::path directory = {},
+                const std::vector<std::string>& defines = {}) {
     if (directory.empty()) directory = cacheDirectory();
     return thread_.run([&] {
       const ShaderLibrary library(shaders_.path(), ProgramCache(directory, driver));
-      const ProgramObject program = library.program({"writer.comp"});
+      const ProgramObject program = library.program({"writer.comp"}, defines);
       BufferObject output = createBuffer();
       glNamedBufferStorage(output.id(), sizeof(float), nullptr, GL_DYNAMIC_STORAGE_BIT);
       glUseProgram(program.id());
@@ -147,4 +153,29 @@ TEST_F(GLProgramCache, EmptyDirectoryTurnsTheCacheOff) {
   });
   EXPECT_EQ(first.counts.compiled, 1);
   EXPECT_TRUE(cacheFiles().empty());
+}
+
+TEST_F(GLProgramCache, DefinesMakeVariantsOfTheirOwnAndKeepTheFilesLineNumbers) {
+  EXPECT_EQ(build().value, 1.5f);
+  const Outcome doubled = build(kDriver, {}, {"DOUBLED"});
+  EXPECT_EQ(doubled.value, 3.0f) << "the define did not reach the shader";
+  EXPECT_EQ(doubled.counts.compiled, 1) << "the variant was taken for the plain program";
+  const Outcome again = build(kDriver, {}, {"DOUBLED"});
+  EXPECT_EQ(again.value, 3.0f);
+  EXPECT_EQ(again.counts.loaded, 1);
+  EXPECT_EQ(build().value, 1.5f);
+
+  // An error on the file's third line is reported there, defines or not.
+  shaders_.write("broken.comp",
+                 "#version 450 core\nlayout(local_size_x = 1) in;\nvoid main() { undeclared = 1; }\n");
+  const std::string message = thread_.run([&] {
+    const ShaderLibrary library(shaders_.path());
+    try {
+      library.program({"broken.comp"}, {"DOUBLED", "ANOTHER"});
+    } catch (const std::exception& error) {
+      return std::string(error.what());
+    }
+    return std::string();
+  });
+  EXPECT_NE(message.find("broken.comp:3"), std::string::npos) << message;
 }

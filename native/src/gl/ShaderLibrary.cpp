@@ -103,12 +103,21 @@ std::string ShaderLibrary::expandedSource(const std::string& file, std::vector<s
   return out.str();
 }
 
-ProgramObject ShaderLibrary::program(const std::vector<std::string>& stageFiles) const {
+ProgramObject ShaderLibrary::program(const std::vector<std::string>& stageFiles,
+                                     const std::vector<std::string>& defines) const {
   std::vector<std::string> sources;
   std::vector<std::vector<std::string>> sourceFiles(stageFiles.size());
   for (std::size_t stage = 0; stage < stageFiles.size(); ++stage) {
+    std::string source = expandedSource(stageFiles[stage], sourceFiles[stage]);
+    // After the #version line; the #line that follows it keeps the numbering of the file's lines.
+    const std::size_t version = source.find("#version");
+    const std::size_t afterVersion = version == std::string::npos ? 0 : source.find('\n', version) + 1;
+    std::string definitions;
+    for (const std::string& name : defines)
+      definitions += "#define " + name + "\n";
+    source.insert(afterVersion, definitions);
     // The file name is part of the key: the same text as another stage type is another program.
-    sources.push_back(stageFiles[stage] + "\n" + expandedSource(stageFiles[stage], sourceFiles[stage]));
+    sources.push_back(stageFiles[stage] + "\n" + source);
   }
   if (ProgramObject cached = cache_.load(sources)) return cached;
   ProgramObject program = compile(stageFiles, sources, sourceFiles);

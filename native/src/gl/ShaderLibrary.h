@@ -23,7 +23,11 @@ class ShaderLibrary {
   explicit ShaderLibrary(std::filesystem::path directory, ProgramCache cache = ProgramCache({}, ""));
 
   /// Compiles and links one program from stage files named by extension: .vert, .geom, .frag, .comp.
-  ProgramObject program(const std::vector<std::string>& stageFiles) const;
+  /// `defines` are #defined in every stage, after #version: a shader compiled in several variants (llvmpipe
+  /// runs both sides of a branch on a uniform, so a mode switched by a uniform costs every mode the others'
+  /// work too; liquid_shadow.frag).
+  ProgramObject program(const std::vector<std::string>& stageFiles,
+                        const std::vector<std::string>& defines = {}) const;
   /// The source of one stage after includes are resolved; `files` receives the name of each source-string
   /// number used in `#line` directives.
   std::string expandedSource(const std::string& file, std::vector<std::string>& files) const;

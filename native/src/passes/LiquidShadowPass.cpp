@@ -6,7 +6,10 @@
 namespace spindrift {
 
 LiquidShadowPass::LiquidShadowPass(const ShaderLibrary& shaders)
-    : program_(shaders.program({"fullscreen.vert", "liquid_shadow.frag"})),
+    : lightProgram_(shaders.program({"fullscreen.vert", "liquid_shadow.frag"})),
+      straightLightProgram_(
+          shaders.program({"fullscreen.vert", "liquid_shadow.frag"}, {"TRANSMIT_STRAIGHT"})),
+      skyProgram_(shaders.program({"fullscreen.vert", "liquid_shadow.frag"}, {"SKY_MODE"})),
       emptyVertexArray_(createVertexArray()),
       framebuffer_(createFramebuffer()) {}
 
@@ -23,44 +26,46 @@ void LiquidShadowPass::begin(int width, int height) {
 void LiquidShadowPass::addLight(const Light& light, const SurfaceLayers& layers,
                                 const BackgroundData& background, const LiquidParameters& parameters,
                                 bool transmitStraight) {
-  setLightUniforms(program_.id(), light);
+  const GLuint program = transmitStraight ? straightLightProgram_.id() : lightProgram_.id();
+  setLightUniforms(program, light);
+  if (transmitStraight) {
+    glProgramUniform1f(program, uniformLocation(program, "indexOfRefraction"), parameters.ior);
+    const glm::vec3 absorption = parameters.absorption * parameters.absorption_rgb;
+    glProgramUniform3fv(program, uniformLocation(program, "absorptionPerUnitLength"), 1, &absorption.x);
+  }
   // Every light adds its weighted shadow and its weight, and the diffuse light it gives the point.
   glEnable(GL_BLEND);
   glBlendFunc(GL_ONE, GL_ONE);
   glBlendEquation(GL_FUNC_ADD);
   bindColorTargets(framebuffer_.id(), {&shadowSum_, &lampDiffuse_});
-  draw(layers, background, parameters, false, transmitStraight);
+  draw(program, layers, background);
   glDisable(GL_BLEND);
+  checkGlError("shadowing the background");
 }
 
 void LiquidShadowPass::setSky(const SurfaceLayers& layers, const BackgroundData& background,
                               const LiquidParameters& parameters, float particleRadius,
                               const SkyOcclusionData* occlusion) {
-  glProgramUniform1f(program_.id(), uniformLocation(program_.id(), "submergedTolerance"),
-                     2.0f * particleRadius);
-  glProgramUniform1i(program_.id(), uniformLocation(program_.id(), "skyOcclusionScale"),
+  const GLuint program = skyProgram_.id();
+  glProgramUniform1f(program, uniformLocation(program, "submergedTolerance"), 2.0f * particleRadius);
+  glProgramUniform1i(program, uniformLocation(program, "skyOcclusionScale"),
                      occlusion ? occlusion->scale : 0);
+  const glm::vec3 absorption = parameters.absorption * parameters.absorption_rgb;
+  glProgramUniform3fv(program, uniformLocation(program, "absorptionPerUnitLength"), 1, &absorption.x);
   glBindTextureUnit(4, occlusion ? occlusion->kept.id() : 0);
   bindColorTargets(framebuffer_.id(), {&skyKept_});
-  draw(layers, background, parameters, true, true);
+  draw(program, layers, background);
+  checkGlError("finding submerged points");
 }
 
-void LiquidShadowPass::draw(const SurfaceLayers& layers, const BackgroundData& background,
-                            const LiquidParameters& parameters, bool sky, bool transmitStraight) {
-  const GLuint program = program_.id();
+void LiquidShadowPass::draw(GLuint program, const SurfaceLayers& layers, const BackgroundData& background) {
   glDisable(GL_DEPTH_TEST);
   glUseProgram(program);
-  glUniform1i(uniformLocation(program, "skyMode"), sky ? 1 : 0);
-  glUniform1i(uniformLocation(program, "transmitStraight"), transmitStraight ? 1 : 0);
-  glUniform1f(uniformLocation(program, "indexOfRefraction"), parameters.ior);
-  const glm::vec3 absorption = parameters.absorption * parameters.absorption_rgb;
-  glUniform3fv(uniformLocation(program, "absorptionPerUnitLength"), 1, &absorption.x);
   glBindTextureUnit(0, background.eyeDepth.id());
   glBindTextureUnit(1, layers.front.eyeDepth.id());
   glBindTextureUnit(2, layers.back.eyeDepth.id());
   glBindTextureUnit(3, layers.front.normal.id());
   drawFullscreenTriangle(emptyVertexArray_.id());
-  checkGlError(sky ? "finding submerged points" : "shadowing the background");
 }
 
 }  // namespace spindrift

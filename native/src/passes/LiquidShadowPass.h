@@ -28,11 +28,14 @@ class LiquidShadowPass {
   LiquidShadowData result() const { return {shadowSum_, skyKept_, lampDiffuse_}; }
 
  private:
-  /// Draws into the framebuffer's bound targets.
-  void draw(const SurfaceLayers& layers, const BackgroundData& background, const LiquidParameters& parameters,
-            bool sky, bool transmitStraight);
+  /// Draws with one of the programs into the framebuffer's bound targets.
+  void draw(GLuint program, const SurfaceLayers& layers, const BackgroundData& background);
 
-  ProgramObject program_;
+  // liquid_shadow.frag compiled for each mode: a light whose caustics carry what crosses the liquid, a light
+  // whose shadow does, and the sky. Each mode's program holds only its own work (see ShaderLibrary::program).
+  ProgramObject lightProgram_;
+  ProgramObject straightLightProgram_;
+  ProgramObject skyProgram_;
   VertexArrayObject emptyVertexArray_;
   FramebufferObject framebuffer_;
   Texture2D shadowSum_;

@@ -24,6 +24,8 @@ SkyOcclusionData SkyOcclusionPass::run(const SurfaceLayers& skyLayers, const Lig
   glUniform1i(uniformLocation(program, "directionCount"), parameters.light.sky_occlusion_directions);
   glUniform4f(uniformLocation(program, "liquidBounds"), bounds.centre.x, bounds.centre.y, bounds.centre.z,
               bounds.radius);
+  glUniform3fv(uniformLocation(program, "liquidBoxLow"), 1, &bounds.low.x);
+  glUniform3fv(uniformLocation(program, "liquidBoxHigh"), 1, &bounds.high.x);
   glUniform1f(uniformLocation(program, "shortestStep"), sky.texelSize);
   // As liquid_shadow.frag's sky mode: the drawn bottom undulates by about a particle radius.
   glUniform1f(uniformLocation(program, "submergedTolerance"), 2.0f * bounds.particleRadius);

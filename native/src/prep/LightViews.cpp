@@ -13,6 +13,9 @@
 namespace spindrift {
 namespace {
 
+// The sky's view's resolution, in texels per particle radius before it is halved (see prepareLights).
+constexpr float kSkyTexelsPerRadius = 3.0f;
+
 // An up vector that is not parallel to the view direction.
 glm::vec3 upFor(const glm::vec3& forward) {
   return std::abs(forward.z) < 0.9f ? glm::vec3(0.0f, 0.0f, 1.0f) : glm::vec3(0.0f, 1.0f, 0.0f);
@@ -60,6 +63,8 @@ LiquidBounds liquidBounds(const Particles& particles, const LiquidParameters& pa
       parameters.anisotropy_smoothing * parameters.neighbour_radius * largestRadius;
   bounds.radius = 0.5f * glm::length(high - low) + reach;
   bounds.particleRadius = largestRadius;
+  bounds.low = low - glm::vec3(reach);
+  bounds.high = high + glm::vec3(reach);
   return bounds;
 }
 
@@ -167,8 +172,14 @@ LightingPreparation prepareLighting(const Particles& particles, const Camera& ca
     }
     preparation.lights.push_back(prepareFor(*view));
   }
-  // The sky's view finds how deep below the surface a point lies, which varies slowly: half the lights' side.
-  const LightView sky = skyView(bounds, std::max(size / 2, std::min(32, size)));
+  // The sky's view finds how deep below the surface a point lies, which varies slowly, and what liquid a
+  // point's hemisphere holds: half the side of a view of kSkyTexelsPerRadius, whatever the lights' texels.
+  // Half the side of a 2-texel view left the floor just past a floating slab's edge 0.036 off the hemisphere
+  // integral (GLSkyOcclusion.FloorNearAFloatingSlabKeepsTheHemisphereIntegral).
+  LightParameters skyParameters = parameters.light;
+  skyParameters.texels_per_radius = kSkyTexelsPerRadius;
+  const int skySide = lightViewSize(bounds, camera, skyParameters);
+  const LightView sky = skyView(bounds, std::max(skySide / 2, std::min(32, skySide)));
   preparation.sky = prepareFor(sky);
   preparation.milliseconds =
       std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();

@@ -17,8 +17,9 @@ namespace spindrift {
 /// A sphere around every liquid particle's drawn ellipsoid.
 struct LiquidBounds {
   glm::vec3 centre{0.0f};
-  float radius = 0.0f;          ///< 0 when there is no liquid.
-  float particleRadius = 0.0f;  ///< The largest liquid particle's.
+  float radius = 0.0f;              ///< 0 when there is no liquid.
+  float particleRadius = 0.0f;      ///< The largest liquid particle's.
+  glm::vec3 low{0.0f}, high{0.0f};  ///< A box around all the liquid drawn, tighter than the sphere when flat.
 };
 
 /// The side in texels of the lights' views: each texel as wide as the coarser of the camera's pixel where the
