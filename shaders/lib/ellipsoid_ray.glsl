@@ -13,8 +13,14 @@ layout(std430, binding = 0) readonly buffer Ellipsoids {
 
 uniform bool backFaces;
 // A Mantaflow domain's box (its cache-to-world frame, whose unit is the world's): the liquid is clipped to it,
-// so liquid pressed against the domain's walls ends in the flat face Mantaflow's mesh closes it with.
-uniform bool clipToDomain;
+// so liquid pressed against the domain's walls ends in the flat face Mantaflow's mesh closes it with. The
+// programs are compiled with and without the clip (CLIP_TO_DOMAIN): llvmpipe would run its code on every
+// fragment, and only the ellipsoids that reach the box need it (EllipsoidImpostorPass).
+#ifdef CLIP_TO_DOMAIN
+const bool clipToDomain = true;
+#else
+const bool clipToDomain = false;
+#endif
 uniform mat4 domainFromWorld;
 uniform mat4 domainFromCamera;  // domainFromWorld x the view's worldFromCamera, once per draw
 uniform vec3 domainLow;

@@ -9,7 +9,10 @@ namespace spindrift {
 
 EllipsoidImpostorPass::EllipsoidImpostorPass(const ShaderLibrary& shaders)
     : program_(shaders.program({"ellipsoid_impostor.vert", "ellipsoid_impostor.frag"})),
+      clipProgram_(
+          shaders.program({"ellipsoid_impostor.vert", "ellipsoid_impostor.frag"}, {"CLIP_TO_DOMAIN"})),
       normalsProgram_(shaders.program({"fullscreen.vert", "ellipsoid_normals.frag"})),
+      clipNormalsProgram_(shaders.program({"fullscreen.vert", "ellipsoid_normals.frag"}, {"CLIP_TO_DOMAIN"})),
       resolveFramebuffer_(createFramebuffer()),
       emptyVertexArray_(createVertexArray()),
       ellipsoidBuffer_(createBuffer()) {
@@ -17,9 +20,17 @@ EllipsoidImpostorPass::EllipsoidImpostorPass(const ShaderLibrary& shaders)
   back_.framebuffer = createFramebuffer();
 }
 
-SurfaceLayers EllipsoidImpostorPass::run(const std::vector<EllipsoidInstance>& ellipsoids,
-                                         const LayerSplit& split, const BackgroundData& background,
-                                         const Camera& view, const DomainBox* domain) {
+SurfaceLayers EllipsoidImpostorPass::run(const std::vector<EllipsoidInstance>& input, const LayerSplit& split,
+                                         const BackgroundData& background, const Camera& view,
+                                         const DomainBox* domain) {
+  ImpostorDraws draws = unclippedDraws(input.size(), split);
+  const std::vector<EllipsoidInstance>* list = &input;
+  if (domain) {
+    ordered_.assign(input.begin(), input.end());
+    draws = orderForDomainClip(ordered_, split, *domain);
+    list = &ordered_;
+  }
+  const std::vector<EllipsoidInstance>& ellipsoids = *list;
   // Grow-only storage: a sequence reallocates only when a frame has more particles than any before it.
   const std::size_t bytes = ellipsoids.size() * sizeof(EllipsoidInstance);
   if (bytes > ellipsoidBufferBytes_) {
@@ -41,21 +52,20 @@ SurfaceLayers EllipsoidImpostorPass::run(const std::vector<EllipsoidInstance>& e
     quadCount_ = ellipsoids.size();
   }
   checkGlError("uploading liquid particles");
-  const GLsizei all = GLsizei(ellipsoids.size());
-  drawLayer(front_, false, 0, all - GLsizei(split.backOnly), background, view, domain);
-  drawLayer(back_, true, GLint(split.frontOnly), all - GLsizei(split.frontOnly), background, view, domain);
+  drawLayer(front_, false, draws.front, background, view, domain);
+  drawLayer(back_, true, draws.back, background, view, domain);
   return {{front_.eyeDepth, front_.normal}, {back_.eyeDepth, back_.normal}};
 }
 
 namespace {
 
 // The uniforms of lib/ellipsoid_ray.glsl, which the impostor and the normal resolve programs share. The
-// impostor program computes no normal, so the compiler drops domainFromWorld from it: a uniform a program
-// lacks is skipped (location -1), where uniformLocation would throw.
+// impostor program computes no normal, so the compiler drops domainFromWorld from it, and the programs
+// without the clip lack the box: a uniform a program lacks is skipped (location -1), where uniformLocation
+// would throw.
 void setRayUniforms(GLuint program, bool backFaces, const Camera& view, const DomainBox* domain) {
   const auto location = [program](const char* name) { return glGetUniformLocation(program, name); };
   glProgramUniform1i(program, location("backFaces"), backFaces ? 1 : 0);
-  glProgramUniform1i(program, location("clipToDomain"), domain ? 1 : 0);
   if (!domain) return;
   const glm::mat4 domainFromWorld = glm::inverse(domain->worldFromBox);
   glProgramUniformMatrix4fv(program, location("domainFromWorld"), 1, GL_FALSE, &domainFromWorld[0][0]);
@@ -68,7 +78,7 @@ void setRayUniforms(GLuint program, bool backFaces, const Camera& view, const Do
 
 }  // namespace
 
-void EllipsoidImpostorPass::drawLayer(Target& target, bool backFaces, GLint first, GLsizei count,
+void EllipsoidImpostorPass::drawLayer(Target& target, bool backFaces, const std::vector<ImpostorDraw>& draws,
                                       const BackgroundData& background, const Camera& view,
                                       const DomainBox* domain) {
   const int width = view.width, height = view.height;
@@ -90,7 +100,7 @@ void EllipsoidImpostorPass::drawLayer(Target& target, bool backFaces, GLint firs
   glClearNamedFramebufferfv(framebuffer, GL_COLOR, 0, noSurface);
   glClearNamedFramebufferuiv(framebuffer, GL_COLOR, 1, noWinner);
   glClearNamedFramebufferfv(framebuffer, GL_DEPTH, 0, &clearDepth);
-  if (count <= 0) {
+  if (draws.empty()) {
     const float noNormal[4] = {0.0f, 0.0f, 0.0f, 0.0f};
     glClearTexImage(target.normal.id(), 0, GL_RGBA, GL_FLOAT, noNormal);
     return;
@@ -102,21 +112,26 @@ void EllipsoidImpostorPass::drawLayer(Target& target, bool backFaces, GLint firs
   glDepthFunc(backFaces ? GL_GREATER : GL_LESS);
   glDepthMask(GL_TRUE);
   glDisable(GL_BLEND);
-  glUseProgram(program_.id());
-  setRayUniforms(program_.id(), backFaces, view, domain);
-  glUniform1i(uniformLocation(program_.id(), "firstEllipsoid"), first);
   glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, ellipsoidBuffer_.id());
   glBindTextureUnit(0, background.eyeDepth.id());
   glBindVertexArray(emptyVertexArray_.id());
   glVertexArrayElementBuffer(emptyVertexArray_.id(), quadIndices_.id());
-  glDrawElements(GL_TRIANGLES, 6 * count, GL_UNSIGNED_INT, nullptr);
+  bool anyClipped = false;
+  for (const ImpostorDraw& draw : draws) {
+    const GLuint program = draw.clip ? clipProgram_.id() : program_.id();
+    anyClipped = anyClipped || draw.clip;
+    glUseProgram(program);
+    setRayUniforms(program, backFaces, view, domain);
+    glUniform1i(uniformLocation(program, "firstEllipsoid"), draw.first);
+    glDrawElements(GL_TRIANGLES, 6 * draw.count, GL_UNSIGNED_INT, nullptr);
+  }
   glDisable(GL_DEPTH_TEST);
   glDepthFunc(GL_LESS);
   checkGlError(backFaces ? "drawing back faces of liquid particles"
                          : "drawing front faces of liquid particles");
 
   // The normals of the winning ellipsoids only.
-  const GLuint normals = normalsProgram_.id();
+  const GLuint normals = anyClipped ? clipNormalsProgram_.id() : normalsProgram_.id();
   glUseProgram(normals);
   setRayUniforms(normals, backFaces, view, domain);
   bindColorTargets(resolveFramebuffer_.id(), {&target.normal});

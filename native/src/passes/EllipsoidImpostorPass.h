@@ -6,6 +6,7 @@
 #include "framedata/DepthLayers.h"
 #include "gl/GlObjects.h"
 #include "gl/ShaderLibrary.h"
+#include "prep/DomainClipOrder.h"
 #include "prep/LiquidPreparation.h"
 #include "spindrift/Scene.h"
 
@@ -32,11 +33,16 @@ class EllipsoidImpostorPass {
     Texture2D normal;  ///< Resolved from the winners after the draw.
     Texture2D depthBuffer;
   };
-  void drawLayer(Target& target, bool backFaces, GLint first, GLsizei count, const BackgroundData& background,
-                 const Camera& view, const DomainBox* domain);
+  void drawLayer(Target& target, bool backFaces, const std::vector<ImpostorDraw>& draws,
+                 const BackgroundData& background, const Camera& view, const DomainBox* domain);
 
+  // Each program twice, with and without the clip to a domain's box (lib/ellipsoid_ray.glsl): only the
+  // ellipsoids that reach the box's faces are drawn with it (orderForDomainClip).
   ProgramObject program_;
+  ProgramObject clipProgram_;
   ProgramObject normalsProgram_;  // the normal resolve: the winners' ray casts repeated, one per pixel
+  ProgramObject clipNormalsProgram_;
+  std::vector<EllipsoidInstance> ordered_;  // the list in draw order, when a domain reorders it
   FramebufferObject resolveFramebuffer_;
   VertexArrayObject emptyVertexArray_;
   BufferObject ellipsoidBuffer_;
