@@ -34,6 +34,7 @@ uniform vec3 fallbackColor;
 uniform float indexOfRefraction;
 uniform vec3 absorptionPerUnitLength;  // a * c_a of equation 9, per RGB channel
 uniform int maxRefractions;            // 1, 2 or 4
+uniform float reflectionStepPixels;    // screen distance between samples of the marches reflections take
 // The camera is inside the aggregated body (under water): every ray starts in liquid, the body's front is the
 // near plane and the first surface a ray meets is the body's back layer, the liquid's surface seen from below.
 uniform bool cameraInLiquid;
@@ -290,9 +291,9 @@ Crossing findEntry(vec3 origin, vec3 direction) {
 // background colour). `backgroundTexel` is the window position of the background texel looked up (its
 // centre), or negative when the colour came from the environment or the flat colour; `travelled` is how far
 // the ray went: to the solid it met, or as far as the screen let it be followed.
-vec3 colourAlong(vec3 origin, vec3 direction, out vec2 backgroundTexel, out float travelled) {
+vec3 colourAlong(vec3 origin, vec3 direction, float pixelsPerStep, out vec2 backgroundTexel, out float travelled) {
   backgroundTexel = vec2(-1.0);
-  ScreenRay ray = screenRay(origin, direction);
+  ScreenRay ray = screenRaySampledEvery(origin, direction, pixelsPerStep);
   float previousT = 0.0, previousF = -1.0;
   travelled = 0.0;
   for (int k = 1; k <= ray.samples; ++k) {
@@ -408,7 +409,8 @@ void main() {
       // Under water the light reflected at the surface from below crosses the liquid to the solid it comes
       // from; inside a body seen from outside the reflection's path in liquid is short and left out.
       float reflectedDistance;
-      vec3 reflectedColour = colourAlong(position, reflected, ignoredTexel, reflectedDistance);
+      // Fresnel weights it by a few per cent: a coarser march than the refraction's (docs/frame-cost.md).
+      vec3 reflectedColour = colourAlong(position, reflected, reflectionStepPixels, ignoredTexel, reflectedDistance);
       if (inside && underLiquid) reflectedColour *= exp(-absorptionPerUnitLength * reflectedDistance);
       colour += throughput * fresnel * reflectedColour;
       throughput *= 1.0 - fresnel;
@@ -472,7 +474,7 @@ void main() {
   // The last lookup is the background the compositor refracts, when it is one; all else is reflected light.
   vec2 finalTexel = hiddenEndTexel;
   vec3 finalColour = hiddenEndTexel.x >= 0.0 ? texelFetch(backgroundColor, ivec2(hiddenEndTexel), 0).rgb
-                     : dot(throughput, throughput) > 0.0 ? colourAlong(position, direction, finalTexel, ignoredDistance)
+                     : dot(throughput, throughput) > 0.0 ? colourAlong(position, direction, stepPixels, finalTexel, ignoredDistance)
                                                           : vec3(0.0);
   bool seesBackground = finalTexel.x >= 0.0;
   imageStore(refractionUvImage, pixel,

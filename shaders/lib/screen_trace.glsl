@@ -23,8 +23,9 @@ struct ScreenRay {
   int samples;
 };
 
-// The ray from `origin` (on screen, in front of the camera) clipped to the near and far planes and the screen.
-ScreenRay screenRay(vec3 origin, vec3 direction) {
+// The ray from `origin` (on screen, in front of the camera) clipped to the near and far planes and the screen,
+// sampled about every `pixelsPerStep` pixels.
+ScreenRay screenRaySampledEvery(vec3 origin, vec3 direction, float pixelsPerStep) {
   float tFar = direction.z < 0.0 ? (getFarClip() + origin.z) / -direction.z : 1e30;
   float tNear = direction.z > 0.0 ? (-origin.z - getNearClip()) / direction.z : 1e30;
   float tEnd = max(min(tFar, tNear), 0.0);
@@ -46,9 +47,12 @@ ScreenRay screenRay(vec3 origin, vec3 direction) {
   }
   ray.reach = clamp(ray.reach, 0.0, 1.0);
   float screenLength = length(delta) * ray.reach;
-  ray.samples = clamp(int(ceil(screenLength / stepPixels)), 4, maxSteps);
+  ray.samples = clamp(int(ceil(screenLength / pixelsPerStep)), 4, maxSteps);
   return ray;
 }
+
+// The same, sampled every `stepPixels`.
+ScreenRay screenRay(vec3 origin, vec3 direction) { return screenRaySampledEvery(origin, direction, stepPixels); }
 
 // The ray parameter t at fraction s of the segment's image (perspective-correct).
 float screenRayT(ScreenRay ray, float s) {

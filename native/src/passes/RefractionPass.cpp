@@ -93,6 +93,7 @@ LiquidData RefractionPass::run(const std::optional<SurfaceLayers>& splashes,
     glUniform3fv(uniformLocation(program, "domainHigh"), 1, &domain->high.x);
   }
   glUniform1f(uniformLocation(program, "stepPixels"), parameters.trace_step_pixels);
+  glUniform1f(uniformLocation(program, "reflectionStepPixels"), parameters.reflection_step_pixels);
   glUniform1i(uniformLocation(program, "maxSteps"), parameters.trace_max_steps);
   drawFullscreenTriangle(emptyVertexArray_.id());
   // The image stores must land before the split layers are sampled or read back.
