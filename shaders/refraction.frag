@@ -135,6 +135,14 @@ struct Crossing {
   vec2 fragCoord;
 };
 
+// Where a march outside the liquid first passed behind the background's solids: the samples on both sides of
+// the crossing, for the secant refinement. findEntry records it as it searches for a second body, so a path
+// that finds none does not march the same ray again for the colour behind it (colourBehind).
+struct SolidHit {
+  bool found;
+  float previousT, previousF, t, f;
+};
+
 // A depth difference along the ray whose sign change marks the crossing being searched for.
 const int kInsideBody = 0;      // f = distance inside the body (positive inside): leaving it
 const int kBehindFront = 1;     // f = z - front depth of the body: passing behind its front surface
@@ -252,18 +260,26 @@ Crossing findExit(vec3 origin, vec3 direction, int body) {
 
 // Marches from outside every body to where the ray passes behind a body's front surface while in front of its
 // back surface, or until a solid stops it.
-Crossing findEntry(vec3 origin, vec3 direction) {
+// `solid`: where the ray first passed behind a solid, as colourAlong's march would find it (its samples in the
+// start texel included).
+Crossing findEntry(vec3 origin, vec3 direction, out SolidHit solid) {
   Crossing none;
   none.found = false;
   none.hidden = false;
+  solid.found = false;
   ScreenRay ray = screenRay(origin, direction);
   float previousT = 0.0;
   vec2 previousF = vec2(-1e-6);
+  float solidPreviousT = 0.0, solidPreviousF = -1.0;
   ivec2 startTexel = texelOf(origin);
   for (int k = 1; k <= ray.samples; ++k) {
     float t = screenRaySampleT(ray, k);
+    float behindSolid = crossingFunction(kBehindSolid, 0, origin, direction, t, false);
+    if (behindSolid >= 0.0 && !solid.found) solid = SolidHit(true, solidPreviousT, solidPreviousF, t, behindSolid);
+    solidPreviousT = t;
+    solidPreviousF = behindSolid;
     if (inStartTexel(origin, direction, t, startTexel)) continue;
-    if (crossingFunction(kBehindSolid, 0, origin, direction, t, false) >= 0.0) break;
+    if (behindSolid >= 0.0) break;
     vec2 f = vec2(hasSplash ? crossingFunction(kBehindFront, kSplash, origin, direction, t, false) : -1.0,
                   // Under water the aggregate's front is the near plane, so passing behind it says nothing:
                   // a ray that has left the water is followed into splashes only.
@@ -285,30 +301,16 @@ Crossing findEntry(vec3 origin, vec3 direction) {
   return none;
 }
 
-// b(.) of equation 6: the colour seen from `origin` along `direction` outside the liquid: the background image
-// where the ray meets a solid of its depth; a ray towards the sky sees the background image at the direction's
-// vanishing point when that pixel is infinitely far; a ray that leaves the screen sees the environment (or the
-// background colour). `backgroundTexel` is the window position of the background texel looked up (its
-// centre), or negative when the colour came from the environment or the flat colour; `travelled` is how far
-// the ray went: to the solid it met, or as far as the screen let it be followed.
-vec3 colourAlong(vec3 origin, vec3 direction, float pixelsPerStep, out vec2 backgroundTexel, out float travelled) {
+// The colour behind the solid a march found (`travelled` becomes the refined distance to it), or, where it
+// found none, what lies beyond the screen (`travelled` is left as it is).
+vec3 colourBehind(vec3 origin, vec3 direction, SolidHit solid, out vec2 backgroundTexel, inout float travelled) {
   backgroundTexel = vec2(-1.0);
-  ScreenRay ray = screenRaySampledEvery(origin, direction, pixelsPerStep);
-  float previousT = 0.0, previousF = -1.0;
-  travelled = 0.0;
-  for (int k = 1; k <= ray.samples; ++k) {
-    float t = screenRaySampleT(ray, k);
-    travelled = t;
-    float f = crossingFunction(kBehindSolid, 0, origin, direction, t, false);
-    if (f >= 0.0) {
-      float tHit = refineCrossing(kBehindSolid, 0, origin, direction, previousT, previousF, t, f);
-      travelled = tHit;
-      vec2 hit = clamp(fragCoordFromCamera(origin + tHit * direction), vec2(0.0), frame.viewportSize.xy - 1.0);
-      backgroundTexel = vec2(ivec2(hit)) + 0.5;
-      return texelFetch(backgroundColor, ivec2(hit), 0).rgb;
-    }
-    previousT = t;
-    previousF = f;
+  if (solid.found) {
+    float tHit = refineCrossing(kBehindSolid, 0, origin, direction, solid.previousT, solid.previousF, solid.t, solid.f);
+    travelled = tHit;
+    vec2 hit = clamp(fragCoordFromCamera(origin + tHit * direction), vec2(0.0), frame.viewportSize.xy - 1.0);
+    backgroundTexel = vec2(ivec2(hit)) + 0.5;
+    return texelFetch(backgroundColor, ivec2(hit), 0).rgb;
   }
   if (direction.z < 0.0) {
     vec2 vanishing = fragCoordFromCamera(direction * getFarClip());
@@ -319,6 +321,29 @@ vec3 colourAlong(vec3 origin, vec3 direction, float pixelsPerStep, out vec2 back
   }
   vec3 worldDirection = mat3(frame.worldFromCamera) * direction;
   return hasEnvironment ? texture(environmentMap, equirectangularUvFromDirection(worldDirection)).rgb : fallbackColor;
+}
+
+// b(.) of equation 6: the colour seen from `origin` along `direction` outside the liquid: the background image
+// where the ray meets a solid of its depth; a ray towards the sky sees the background image at the direction's
+// vanishing point when that pixel is infinitely far; a ray that leaves the screen sees the environment (or the
+// background colour). `backgroundTexel` is the window position of the background texel looked up (its
+// centre), or negative when the colour came from the environment or the flat colour; `travelled` is how far
+// the ray went: to the solid it met, or as far as the screen let it be followed.
+vec3 colourAlong(vec3 origin, vec3 direction, float pixelsPerStep, out vec2 backgroundTexel, out float travelled) {
+  ScreenRay ray = screenRaySampledEvery(origin, direction, pixelsPerStep);
+  SolidHit solid;
+  solid.found = false;
+  float previousT = 0.0, previousF = -1.0;
+  travelled = 0.0;
+  for (int k = 1; k <= ray.samples && !solid.found; ++k) {
+    float t = screenRaySampleT(ray, k);
+    travelled = t;
+    float f = crossingFunction(kBehindSolid, 0, origin, direction, t, false);
+    if (f >= 0.0) solid = SolidHit(true, previousT, previousF, t, f);
+    previousT = t;
+    previousF = f;
+  }
+  return colourBehind(origin, direction, solid, backgroundTexel, travelled);
 }
 
 void main() {
@@ -352,7 +377,10 @@ void main() {
   ivec2 entryPixel = pixel;  // where the path last entered a body, for the thickness of an unseen remainder
   vec2 hiddenEndTexel = vec2(-1.0);  // the background texel that stands in for an end hidden behind a solid
   vec2 ignoredTexel;
-  float ignoredDistance;
+  float ignoredDistance = 0.0;
+  // Where the last search for a second body passed behind the solids, when it found no body.
+  SolidHit solidBehind;
+  bool searchedBehind = false;
   int body, firstBody;
   vec3 position, normal;
   if (underLiquid) {
@@ -460,8 +488,11 @@ void main() {
       if (dot(normal, normal) == 0.0) normal = direction;
     } else {
       if (refractions >= maxRefractions) break;
-      Crossing entry = findEntry(position, direction);
-      if (!entry.found) break;
+      Crossing entry = findEntry(position, direction, solidBehind);
+      if (!entry.found) {
+        searchedBehind = true;
+        break;
+      }
       secondBody = entry.body;
       atomicAdd(rayCounters[4], 1u);
       position += entry.t * direction;
@@ -473,9 +504,13 @@ void main() {
   }
   // The last lookup is the background the compositor refracts, when it is one; all else is reflected light.
   vec2 finalTexel = hiddenEndTexel;
-  vec3 finalColour = hiddenEndTexel.x >= 0.0 ? texelFetch(backgroundColor, ivec2(hiddenEndTexel), 0).rgb
-                     : dot(throughput, throughput) > 0.0 ? colourAlong(position, direction, stepPixels, finalTexel, ignoredDistance)
-                                                          : vec3(0.0);
+  vec3 finalColour = vec3(0.0);
+  if (hiddenEndTexel.x >= 0.0)
+    finalColour = texelFetch(backgroundColor, ivec2(hiddenEndTexel), 0).rgb;
+  else if (dot(throughput, throughput) > 0.0)
+    // A path whose search for a second body found none has marched this very ray already.
+    finalColour = searchedBehind ? colourBehind(position, direction, solidBehind, finalTexel, ignoredDistance)
+                                 : colourAlong(position, direction, stepPixels, finalTexel, ignoredDistance);
   bool seesBackground = finalTexel.x >= 0.0;
   imageStore(refractionUvImage, pixel,
              seesBackground ? vec4(finalTexel * frame.viewportSize.zw, 1.0, 0.0) : vec4(0.0));
