@@ -13,7 +13,7 @@ FrameUniforms FrameUniforms::fromCamera(const Camera& camera) {
   uniforms.worldFromCamera = camera.worldFromCamera;
   const float width = float(camera.width), height = float(camera.height);
   uniforms.viewportSize = {width, height, 1.0f / width, 1.0f / height};
-  uniforms.clipPlanes = {camera.nearClip, camera.farClip, std::log(camera.farClip / camera.nearClip), 0.0f};
+  uniforms.clipPlanes = {camera.nearClip, camera.farClip, 1.0f / camera.farClip, 0.0f};
   const float tanHalfY = std::tan(glm::radians(camera.fovYDegrees) * 0.5f);
   uniforms.tanHalfFov = {tanHalfY * camera.aspect(), tanHalfY, 0.0f, 0.0f};
   return uniforms;

@@ -16,7 +16,7 @@ struct FrameUniforms {
   glm::mat4 cameraFromWorld;
   glm::mat4 worldFromCamera;
   glm::vec4 viewportSize;  ///< width, height, 1/width, 1/height
-  glm::vec4 clipPlanes;    ///< near, far, log(far / near), 0
+  glm::vec4 clipPlanes;    ///< near, far, 1 / far, 0
   glm::vec4 tanHalfFov;    ///< tan(fov_x / 2), tan(fov_y / 2), 0, 0
 
   static FrameUniforms fromCamera(const Camera& camera);
