@@ -53,8 +53,7 @@ vec3 shadowThroughTexel(ivec2 texel, vec3 world, float pointDepth) {
   float back = texelFetch(lightBackDepth, texel, 0).r;
   // The path ends at the liquid's back surface, or at the point itself when the point is submerged.
   float end = min(back, pointDepth);
-  vec2 centre = vec2(texel) + 0.5;
-  float pathLength = distance(worldFromLightTexel(centre, front), worldFromLightTexel(centre, end));
+  float pathLength = abs(end - front) * lightRayLengthPerDepth(vec2(texel) + 0.5);
   if (skyMode) {
     // Sky light enters the surface above and travels down to the point; light past the liquid's bottom is
     // unaffected (that point is under the liquid but not in it).
@@ -78,8 +77,9 @@ vec3 shadowThroughTexel(ivec2 texel, vec3 world, float pointDepth) {
 // front, nor a crease the two faces that meet there.
 vec3 keptPastOtherLiquid(ivec2 pixel, float eyeDepth) {
   if (skyOcclusionScale == 0) return vec3(1.0);
-  vec3 world = worldPositionFromFragCoord(vec2(pixel) + 0.5, eyeDepth);
-  vec3 normal = backgroundNormal(backgroundEyeDepth, pixel, eyeDepth);
+  // In camera space: the distances are the world's.
+  vec3 point = cameraPositionAtPixel(pixel, eyeDepth);
+  vec3 normal = backgroundCameraNormal(backgroundEyeDepth, pixel, eyeDepth);
   float pixelWidth = 2.0 * frame.tanHalfFov.y * eyeDepth * frame.viewportSize.w;
   // Sample (i, j) lies at the centre of pixel (scale i + scale / 2, scale j + scale / 2).
   vec2 position = vec2(pixel - skyOcclusionScale / 2) / float(skyOcclusionScale);
@@ -94,7 +94,7 @@ vec3 keptPastOtherLiquid(ivec2 pixel, float eyeDepth) {
       vec4 sample_ = texelFetch(skyOcclusion, index, 0);
       if (!hasSurface(sample_.a)) continue;
       vec2 samplePixel = vec2(min(index * skyOcclusionScale + skyOcclusionScale / 2, ivec2(frame.viewportSize.xy) - 1));
-      vec3 offset = worldPositionFromFragCoord(samplePixel + 0.5, sample_.a) - world;
+      vec3 offset = cameraRayFromFragCoord(samplePixel + 0.5) * sample_.a - point;
       // Without a normal (a lone pixel), the distance itself.
       float offPlane = (dot(normal, normal) > 0.0 ? abs(dot(offset, normal)) : length(offset)) / pixelWidth;
       float bilinear = (i == 0 ? 1.0 - blend.x : blend.x) * (j == 0 ? 1.0 - blend.y : blend.y);

@@ -26,7 +26,8 @@ uniform int directionCount;         // cosine-weighted directions per sample
 uniform vec4 liquidBounds;          // centre, radius: a sphere around all the liquid
 uniform vec3 liquidBoxLow;          // and a box around it, tighter for a flat body (a pool)
 uniform vec3 liquidBoxHigh;
-uniform float shortestStep;         // world length: about a texel of the sky view
+uniform float skyTexel;             // world length of a texel of the sky view
+uniform float shortestStep;         // the march's step: two sky texels (docs/liquid.md)
 uniform float submergedTolerance;   // how far below the liquid's drawn bottom a point still lies in it
 uniform float solidThickness;       // world depth behind a solid's visible surface that counts as inside it
 uniform vec3 absorptionPerUnitLength;
@@ -54,7 +55,7 @@ bool inSolid(vec3 world) {
   vec2 fragCoord = fragCoordFromCamera(camera);
   if (!onScreen(fragCoord)) return false;
   float behind = -camera.z - texelFetch(backgroundEyeDepth, ivec2(fragCoord), 0).r;
-  return behind > shortestStep && behind < solidThickness;
+  return behind > skyTexel && behind < solidThickness;
 }
 
 // A right-handed basis around a unit normal (Duff et al. 2017).
@@ -116,7 +117,7 @@ void main() {
   if (dot(normal, normal) == 0.0) normal = vec3(0.0, 0.0, 1.0);  // a lone pixel: taken as floor
   mat3 basis = basisAround(normalize(normal));
   // Off the surface, so the first steps do not find the solid the point lies on.
-  vec3 origin = world + basis[2] * shortestStep;
+  vec3 origin = world + basis[2] * skyTexel;
   bool submerged = inLiquid(world, submergedTolerance);
   vec3 kept = vec3(0.0);
   for (int i = 0; i < directionCount; ++i) {

@@ -33,6 +33,13 @@ vec3 worldFromLightTexel(vec2 texel, float eyeDepth) {
   return (lightView.worldFromCamera * vec4(vec3(ndc * lightView.tanHalfFov.xy, -1.0) * eyeDepth, 1.0)).xyz;
 }
 
+// The world length of the light's ray through a texel per unit of eye depth along it (the view is rigid): the
+// distance between two points of that ray is their depth difference times this.
+float lightRayLengthPerDepth(vec2 texel) {
+  vec2 ndc = texel * lightView.viewportSize.zw * 2.0 - 1.0;
+  return length(vec3(ndc * lightView.tanHalfFov.xy, 1.0));
+}
+
 bool insideLightView(vec2 texel) {
   return all(greaterThanEqual(texel, vec2(0.0))) && all(lessThan(texel, lightView.viewportSize.xy));
 }
