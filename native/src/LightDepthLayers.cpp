@@ -8,10 +8,11 @@ namespace spindrift {
 LightDepthLayers::LightDepthLayers(const ShaderLibrary& shaders)
     : impostors_(shaders), frontSmoothing_(shaders), backSmoothing_(shaders) {}
 
-SurfaceLayers LightDepthLayers::run(const LightPreparation& light, const Camera& camera, float particleRadius,
-                                    const LiquidParameters& parameters) {
+SurfaceLayers LightDepthLayers::draw(const LightPreparation& light, bool normals) {
+  // A view's impostors read the background's depth at their own texel: one texture as large as the largest
+  // view so far serves every view (the sky's is smaller than the lights') without clearing it again.
   const int size = light.view.camera.width;
-  if (!noSolids_.matches(size, size, GL_R32F)) {
+  if (noSolids_.width < size) {
     ensureTexture(noSolids_, GL_R32F, size, size);
     const float farAway = 1e10f;
     glClearTexImage(noSolids_.id(), 0, GL_RED, GL_FLOAT, &farAway);
@@ -19,14 +20,27 @@ SurfaceLayers LightDepthLayers::run(const LightPreparation& light, const Camera&
   // The impostor and smoothing shaders read the view from binding 0: give them the light's for a while.
   lightUniforms_.update(light.view.camera, 0);
   const BackgroundData noBackground{noSolids_, noSolids_, nullptr, glm::vec3(0.0f), nullptr};
-  const SurfaceLayers drawn =
-      impostors_.run(light.liquid.aggregates, light.liquid.aggregateLayers, noBackground, light.view.camera);
-  const auto restoreViews = [&] {
-    lightUniforms_.update(light.view.camera, 2);
-    cameraUniforms_.update(camera, 0);
-  };
+  return impostors_.run(light.liquid.aggregates, light.liquid.aggregateLayers, noBackground, light.view.camera,
+                        nullptr, normals);
+}
+
+void LightDepthLayers::restoreViews(const LightPreparation& light, const Camera& camera) {
+  lightUniforms_.update(light.view.camera, 2);
+  cameraUniforms_.update(camera, 0);
+}
+
+SurfaceLayers LightDepthLayers::runDepthOnly(const LightPreparation& light, const Camera& camera) {
+  const SurfaceLayers drawn = draw(light, false);
+  restoreViews(light, camera);
+  return drawn;
+}
+
+SurfaceLayers LightDepthLayers::run(const LightPreparation& light, const Camera& camera, float particleRadius,
+                                    const LiquidParameters& parameters) {
+  const int size = light.view.camera.width;
+  const SurfaceLayers drawn = draw(light, true);
   if (parameters.smoothing == "none") {
-    restoreViews();
+    restoreViews(light, camera);
     return drawn;
   }
   // The plane-fit window smooths away the particles' bumps: a particle across (half a radius each side of the
@@ -40,7 +54,7 @@ SurfaceLayers LightDepthLayers::run(const LightPreparation& light, const Camera&
   }
   const DepthLayer front = frontSmoothing_.run(drawn.front, particleRadius, false, smoothing, size, size);
   const DepthLayer back = backSmoothing_.run(drawn.back, particleRadius, true, smoothing, size, size);
-  restoreViews();
+  restoreViews(light, camera);
   return {front, back};
 }
 

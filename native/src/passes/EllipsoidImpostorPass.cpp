@@ -22,7 +22,7 @@ EllipsoidImpostorPass::EllipsoidImpostorPass(const ShaderLibrary& shaders)
 
 SurfaceLayers EllipsoidImpostorPass::run(const std::vector<EllipsoidInstance>& input, const LayerSplit& split,
                                          const BackgroundData& background, const Camera& view,
-                                         const DomainBox* domain) {
+                                         const DomainBox* domain, bool normals) {
   ImpostorDraws draws = unclippedDraws(input.size(), split);
   const std::vector<EllipsoidInstance>* list = &input;
   if (domain) {
@@ -52,8 +52,8 @@ SurfaceLayers EllipsoidImpostorPass::run(const std::vector<EllipsoidInstance>& i
     quadCount_ = ellipsoids.size();
   }
   checkGlError("uploading liquid particles");
-  drawLayer(front_, false, draws.front, background, view, domain);
-  drawLayer(back_, true, draws.back, background, view, domain);
+  drawLayer(front_, false, draws.front, background, view, domain, normals);
+  drawLayer(back_, true, draws.back, background, view, domain, normals);
   return {{front_.eyeDepth, front_.normal}, {back_.eyeDepth, back_.normal}};
 }
 
@@ -80,7 +80,7 @@ void setRayUniforms(GLuint program, bool backFaces, const Camera& view, const Do
 
 void EllipsoidImpostorPass::drawLayer(Target& target, bool backFaces, const std::vector<ImpostorDraw>& draws,
                                       const BackgroundData& background, const Camera& view,
-                                      const DomainBox* domain) {
+                                      const DomainBox* domain, bool normals) {
   const int width = view.width, height = view.height;
   ensureTexture(target.eyeDepth, GL_R32F, width, height);
   ensureTexture(target.winner, GL_R32UI, width, height);
@@ -100,11 +100,9 @@ void EllipsoidImpostorPass::drawLayer(Target& target, bool backFaces, const std:
   glClearNamedFramebufferfv(framebuffer, GL_COLOR, 0, noSurface);
   glClearNamedFramebufferuiv(framebuffer, GL_COLOR, 1, noWinner);
   glClearNamedFramebufferfv(framebuffer, GL_DEPTH, 0, &clearDepth);
-  if (draws.empty()) {
-    const float noNormal[4] = {0.0f, 0.0f, 0.0f, 0.0f};
-    glClearTexImage(target.normal.id(), 0, GL_RGBA, GL_FLOAT, noNormal);
-    return;
-  }
+  const float noNormal[4] = {0.0f, 0.0f, 0.0f, 0.0f};
+  if (draws.empty() || !normals) glClearTexImage(target.normal.id(), 0, GL_RGBA, GL_FLOAT, noNormal);
+  if (draws.empty()) return;
 
   glBindFramebuffer(GL_FRAMEBUFFER, framebuffer);
   glViewport(0, 0, width, height);
@@ -130,10 +128,11 @@ void EllipsoidImpostorPass::drawLayer(Target& target, bool backFaces, const std:
   checkGlError(backFaces ? "drawing back faces of liquid particles"
                          : "drawing front faces of liquid particles");
 
+  if (!normals) return;
   // The normals of the winning ellipsoids only.
-  const GLuint normals = anyClipped ? clipNormalsProgram_.id() : normalsProgram_.id();
-  glUseProgram(normals);
-  setRayUniforms(normals, backFaces, view, domain);
+  const GLuint normalsProgram = anyClipped ? clipNormalsProgram_.id() : normalsProgram_.id();
+  glUseProgram(normalsProgram);
+  setRayUniforms(normalsProgram, backFaces, view, domain);
   bindColorTargets(resolveFramebuffer_.id(), {&target.normal});
   glBindTextureUnit(0, target.winner.id());
   drawFullscreenTriangle(emptyVertexArray_.id());

@@ -21,9 +21,10 @@ class EllipsoidImpostorPass {
   explicit EllipsoidImpostorPass(const ShaderLibrary& shaders);
   /// `split` says which ellipsoids each layer draws (all of them by default); `view` is the camera whose
   /// frame block is bound (binding 0); `domain`, when not null, clips the surfaces to a Mantaflow domain's
-  /// box.
+  /// box. Without `normals` the layers' normals are left zero (a view that needs depth alone: the sky's).
   SurfaceLayers run(const std::vector<EllipsoidInstance>& ellipsoids, const LayerSplit& split,
-                    const BackgroundData& background, const Camera& view, const DomainBox* domain = nullptr);
+                    const BackgroundData& background, const Camera& view, const DomainBox* domain = nullptr,
+                    bool normals = true);
 
  private:
   struct Target {
@@ -34,7 +35,7 @@ class EllipsoidImpostorPass {
     Texture2D depthBuffer;
   };
   void drawLayer(Target& target, bool backFaces, const std::vector<ImpostorDraw>& draws,
-                 const BackgroundData& background, const Camera& view, const DomainBox* domain);
+                 const BackgroundData& background, const Camera& view, const DomainBox* domain, bool normals);
 
   // Each program twice, with and without the clip to a domain's box (lib/ellipsoid_ray.glsl): only the
   // ellipsoids that reach the box's faces are drawn with it (orderForDomainClip).
