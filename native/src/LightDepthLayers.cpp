@@ -20,8 +20,8 @@ SurfaceLayers LightDepthLayers::draw(const LightPreparation& light, bool normals
   // The impostor and smoothing shaders read the view from binding 0: give them the light's for a while.
   lightUniforms_.update(light.view.camera, 0);
   const BackgroundData noBackground{noSolids_, noSolids_, nullptr, glm::vec3(0.0f), nullptr};
-  return impostors_.run(light.liquid.aggregates, light.liquid.aggregateLayers, noBackground, light.view.camera,
-                        nullptr, normals);
+  return impostors_.run(light.liquid.aggregates, light.liquid.aggregateLayers, noBackground,
+                        light.view.camera, nullptr, normals);
 }
 
 void LightDepthLayers::restoreViews(const LightPreparation& light, const Camera& camera) {

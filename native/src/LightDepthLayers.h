@@ -35,7 +35,8 @@ class LightDepthLayers {
   EllipsoidImpostorPass impostors_;
   DepthSmoothingPass frontSmoothing_;
   DepthSmoothingPass backSmoothing_;
-  Texture2D noSolids_;  ///< A light's view has no background: depth 1e10 everywhere (the largest view's size).
+  Texture2D
+      noSolids_;  ///< A light's view has no background: depth 1e10 everywhere (the largest view's size).
 };
 
 }  // namespace spindrift

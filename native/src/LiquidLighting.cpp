@@ -35,8 +35,8 @@ LitBackgroundData LiquidLighting::run(const LightingPreparation& lights, const C
     std::optional<SurfaceLayers> layers;
     {
       ScopedPassTimer timed(timer, "sky_depth_layers");
-      // Depth below the surface and the liquid a point's hemisphere holds need no normals, so the sky's layers
-      // are neither smoothed nor given normals.
+      // Depth below the surface and the liquid a point's hemisphere holds need no normals, so the sky's
+      // layers are neither smoothed nor given normals.
       layers.emplace(layers_.runDepthOnly(*lights.sky, camera));
     }
     std::optional<SkyOcclusionData> occlusion;
