@@ -5,7 +5,9 @@
 // on llvmpipe every fragment pays for all of its shader, and a layer's pixels are won by one fragment in
 // tens, so the normal resolve (ellipsoid_normals.frag) computes it for the winner alone. Ellipsoids whose
 // front lies behind the background's solids are hidden; a visible one keeps its back surface even where a
-// solid cuts it, and the refraction pass clips the path at the solid.
+// solid cuts it, and the refraction pass clips the path at the solid. Compiled with and without the domain clip
+// (lib/ellipsoid_ray.glsl) and, for the lights' views, without solids (NO_SOLIDS): llvmpipe pays for every
+// line of a program whether a branch takes it or not.
 #include "lib/frame.glsl"
 #include "lib/ellipsoid_ray.glsl"
 
@@ -21,10 +23,12 @@ layout(location = 1) out uint outEllipsoid;  // the ellipsoid's index + 1; 0 whe
 void main() {
   float eyeDepth, nearDepth;
   vec3 unusedNormal;
-  if (!castEllipsoid(gl_FragCoord.xy, vUnitSphereCamera, vInverseAxesCamera, eyeDepth, nearDepth,
-                     unusedNormal) ||
-      nearDepth >= texelFetch(backgroundEyeDepth, ivec2(gl_FragCoord.xy), 0).r)
-    discard;
+  bool hit = castEllipsoid(gl_FragCoord.xy, vUnitSphereCamera, vInverseAxesCamera, eyeDepth, nearDepth,
+                           unusedNormal);
+#ifndef NO_SOLIDS  // a light's view has no background
+  hit = hit && nearDepth < texelFetch(backgroundEyeDepth, ivec2(gl_FragCoord.xy), 0).r;
+#endif
+  if (!hit) discard;
   outEyeDepth = eyeDepth;
   outEllipsoid = vEllipsoid + 1u;
   gl_FragDepth = depthBufferFromEyeDepth(eyeDepth);

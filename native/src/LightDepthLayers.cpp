@@ -9,19 +9,11 @@ LightDepthLayers::LightDepthLayers(const ShaderLibrary& shaders)
     : impostors_(shaders), frontSmoothing_(shaders), backSmoothing_(shaders) {}
 
 SurfaceLayers LightDepthLayers::draw(const LightPreparation& light, bool normals) {
-  // A view's impostors read the background's depth at their own texel: one texture as large as the largest
-  // view so far serves every view (the sky's is smaller than the lights') without clearing it again.
-  const int size = light.view.camera.width;
-  if (noSolids_.width < size) {
-    ensureTexture(noSolids_, GL_R32F, size, size);
-    const float farAway = 1e10f;
-    glClearTexImage(noSolids_.id(), 0, GL_RED, GL_FLOAT, &farAway);
-  }
   // The impostor and smoothing shaders read the view from binding 0: give them the light's for a while.
   lightUniforms_.update(light.view.camera, 0);
-  const BackgroundData noBackground{noSolids_, noSolids_, nullptr, glm::vec3(0.0f), nullptr};
-  return impostors_.run(light.liquid.aggregates, light.liquid.aggregateLayers, noBackground,
-                        light.view.camera, nullptr, normals);
+  // A light's view has no background: nothing hides the liquid from it.
+  return impostors_.run(light.liquid.aggregates, light.liquid.aggregateLayers, nullptr, light.view.camera,
+                        nullptr, normals);
 }
 
 void LightDepthLayers::restoreViews(const LightPreparation& light, const Camera& camera) {

@@ -350,13 +350,13 @@ RenderResult Renderer::renderPrepared(const Scene& scene, const Particles& parti
     std::optional<SurfaceLayers> splashes, aggregates;
     if (plan.runs(Pass::SplashDepthLayers)) {
       splashes.emplace(timed(Pass::SplashDepthLayers, [&] {
-        return pipeline.splashImpostors.run(liquid.splashes, {}, background, camera, domainBox);
+        return pipeline.splashImpostors.run(liquid.splashes, {}, &background, camera, domainBox);
       }));
       intermediate.keep(*splashes, "splash");
     }
     if (plan.runs(Pass::AggregateDepthLayers)) {
       aggregates.emplace(timed(Pass::AggregateDepthLayers, [&] {
-        return pipeline.aggregateImpostors.run(liquid.aggregates, liquid.aggregateLayers, background, camera,
+        return pipeline.aggregateImpostors.run(liquid.aggregates, liquid.aggregateLayers, &background, camera,
                                                domainBox);
       }));
       intermediate.keep(*aggregates, "aggregate");

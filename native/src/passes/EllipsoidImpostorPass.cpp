@@ -11,6 +11,8 @@ EllipsoidImpostorPass::EllipsoidImpostorPass(const ShaderLibrary& shaders)
     : program_(shaders.program({"ellipsoid_impostor.vert", "ellipsoid_impostor.frag"})),
       clipProgram_(
           shaders.program({"ellipsoid_impostor.vert", "ellipsoid_impostor.frag"}, {"CLIP_TO_DOMAIN"})),
+      noSolidsProgram_(
+          shaders.program({"ellipsoid_impostor.vert", "ellipsoid_impostor.frag"}, {"NO_SOLIDS"})),
       normalsProgram_(shaders.program({"fullscreen.vert", "ellipsoid_normals.frag"})),
       clipNormalsProgram_(shaders.program({"fullscreen.vert", "ellipsoid_normals.frag"}, {"CLIP_TO_DOMAIN"})),
       resolveFramebuffer_(createFramebuffer()),
@@ -21,7 +23,7 @@ EllipsoidImpostorPass::EllipsoidImpostorPass(const ShaderLibrary& shaders)
 }
 
 SurfaceLayers EllipsoidImpostorPass::run(const std::vector<EllipsoidInstance>& input, const LayerSplit& split,
-                                         const BackgroundData& background, const Camera& view,
+                                         const BackgroundData* background, const Camera& view,
                                          const DomainBox* domain, bool normals) {
   ImpostorDraws draws = unclippedDraws(input.size(), split);
   const std::vector<EllipsoidInstance>* list = &input;
@@ -79,7 +81,7 @@ void setRayUniforms(GLuint program, bool backFaces, const Camera& view, const Do
 }  // namespace
 
 void EllipsoidImpostorPass::drawLayer(Target& target, bool backFaces, const std::vector<ImpostorDraw>& draws,
-                                      const BackgroundData& background, const Camera& view,
+                                      const BackgroundData* background, const Camera& view,
                                       const DomainBox* domain, bool normals) {
   const int width = view.width, height = view.height;
   ensureTexture(target.eyeDepth, GL_R32F, width, height);
@@ -111,12 +113,12 @@ void EllipsoidImpostorPass::drawLayer(Target& target, bool backFaces, const std:
   glDepthMask(GL_TRUE);
   glDisable(GL_BLEND);
   glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, ellipsoidBuffer_.id());
-  glBindTextureUnit(0, background.eyeDepth.id());
+  if (background) glBindTextureUnit(0, background->eyeDepth.id());
   glBindVertexArray(emptyVertexArray_.id());
   glVertexArrayElementBuffer(emptyVertexArray_.id(), quadIndices_.id());
   bool anyClipped = false;
   for (const ImpostorDraw& draw : draws) {
-    const GLuint program = draw.clip ? clipProgram_.id() : program_.id();
+    const GLuint program = draw.clip ? clipProgram_.id() : background ? program_.id() : noSolidsProgram_.id();
     anyClipped = anyClipped || draw.clip;
     glUseProgram(program);
     setRayUniforms(program, backFaces, view, domain);

@@ -19,11 +19,12 @@ namespace spindrift {
 class EllipsoidImpostorPass {
  public:
   explicit EllipsoidImpostorPass(const ShaderLibrary& shaders);
-  /// `split` says which ellipsoids each layer draws (all of them by default); `view` is the camera whose
-  /// frame block is bound (binding 0); `domain`, when not null, clips the surfaces to a Mantaflow domain's
-  /// box. Without `normals` the layers' normals are left zero (a view that needs depth alone: the sky's).
+  /// `split` says which ellipsoids each layer draws (all of them by default); `background`, when not null,
+  /// hides the ellipsoids whose front lies behind its solids (a light's view has none); `view` is the camera
+  /// whose frame block is bound (binding 0); `domain`, when not null, clips the surfaces to a Mantaflow
+  /// domain's box. Without `normals` the layers' normals are left zero (a view that needs depth alone).
   SurfaceLayers run(const std::vector<EllipsoidInstance>& ellipsoids, const LayerSplit& split,
-                    const BackgroundData& background, const Camera& view, const DomainBox* domain = nullptr,
+                    const BackgroundData* background, const Camera& view, const DomainBox* domain = nullptr,
                     bool normals = true);
 
  private:
@@ -35,13 +36,14 @@ class EllipsoidImpostorPass {
     Texture2D depthBuffer;
   };
   void drawLayer(Target& target, bool backFaces, const std::vector<ImpostorDraw>& draws,
-                 const BackgroundData& background, const Camera& view, const DomainBox* domain, bool normals);
+                 const BackgroundData* background, const Camera& view, const DomainBox* domain, bool normals);
 
   // Each program twice, with and without the clip to a domain's box (lib/ellipsoid_ray.glsl): only the
   // ellipsoids that reach the box's faces are drawn with it (orderForDomainClip).
   ProgramObject program_;
   ProgramObject clipProgram_;
-  ProgramObject normalsProgram_;  // the normal resolve: the winners' ray casts repeated, one per pixel
+  ProgramObject noSolidsProgram_;  // neither clip nor solids: the lights' views
+  ProgramObject normalsProgram_;   // the normal resolve: the winners' ray casts repeated, one per pixel
   ProgramObject clipNormalsProgram_;
   std::vector<EllipsoidInstance> ordered_;  // the list in draw order, when a domain reorders it
   FramebufferObject resolveFramebuffer_;
