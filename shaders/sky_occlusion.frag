@@ -38,23 +38,45 @@ const int kMaxStepsPerDirection = 32;
 const float kHemisphericalFresnel = 0.066;  // water's Fresnel reflectance averaged over a cosine-weighted sky
 const float kGoldenAngle = 2.39996323;
 
-// Whether a world point lies in the liquid as the sky view sees it (`tolerance` below its drawn bottom too).
-bool inLiquid(vec3 world, float tolerance) {
-  vec2 texel = lightTexelFromWorld(world);
-  if (!insideLightView(texel)) return false;
-  float front = texelFetch(skyFrontDepth, ivec2(texel), 0).r;
-  if (front >= 0.5 * kNoSurfaceDepth) return false;
-  float depth = lightEyeDepthOf(world);
-  return depth >= front && depth <= texelFetch(skyBackDepth, ivec2(texel), 0).r + tolerance;
+// A point as the two views that judge it see it: the sky view's clip coordinates and eye depth (is it in the
+// liquid?) and the camera's (is it in a solid?). All four are linear along a straight path, so a march carries
+// them from its start instead of transforming every step's point.
+struct ViewedPoint {
+  vec4 skyClip;
+  float skyDepth;
+  vec4 cameraClip;
+  float cameraDepth;
+};
+
+// `w`: 1 for a point, 0 for a direction (the change per unit of path).
+ViewedPoint viewed(vec3 world, float w) {
+  vec4 sky = lightView.cameraFromWorld * vec4(world, w), camera = frame.cameraFromWorld * vec4(world, w);
+  return ViewedPoint(lightView.clipFromCamera * sky, -sky.z, frame.clipFromCamera * camera, -camera.z);
 }
 
-// Whether a world point lies inside a solid of the background, as far as the camera's view can tell.
-bool inSolid(vec3 world) {
-  vec3 camera = (frame.cameraFromWorld * vec4(world, 1.0)).xyz;
-  if (camera.z >= 0.0) return false;
-  vec2 fragCoord = fragCoordFromCamera(camera);
+ViewedPoint advanced(ViewedPoint start, ViewedPoint perUnit, float t) {
+  return ViewedPoint(start.skyClip + t * perUnit.skyClip, start.skyDepth + t * perUnit.skyDepth,
+                     start.cameraClip + t * perUnit.cameraClip, start.cameraDepth + t * perUnit.cameraDepth);
+}
+
+// The sky view's front and back depth over a point (no surface: a front beyond everything).
+vec2 skyColumn(ViewedPoint point) {
+  vec2 texel = (point.skyClip.xy / point.skyClip.w * 0.5 + 0.5) * lightView.viewportSize.xy;
+  if (!insideLightView(texel)) return vec2(kNoSurfaceDepth, 0.0);
+  return vec2(texelFetch(skyFrontDepth, ivec2(texel), 0).r, texelFetch(skyBackDepth, ivec2(texel), 0).r);
+}
+
+// Whether a point lies in the liquid of its column (`tolerance` below its drawn bottom too).
+bool inLiquid(ViewedPoint point, vec2 column, float tolerance) {
+  return column.x < 0.5 * kNoSurfaceDepth && point.skyDepth >= column.x && point.skyDepth <= column.y + tolerance;
+}
+
+// Whether a point lies inside a solid of the background, as far as the camera's view can tell.
+bool inSolid(ViewedPoint point) {
+  if (point.cameraDepth <= 0.0) return false;
+  vec2 fragCoord = (point.cameraClip.xy / point.cameraClip.w * 0.5 + 0.5) * frame.viewportSize.xy;
   if (!onScreen(fragCoord)) return false;
-  float behind = -camera.z - texelFetch(backgroundEyeDepth, ivec2(fragCoord), 0).r;
+  float behind = point.cameraDepth - texelFetch(backgroundEyeDepth, ivec2(fragCoord), 0).r;
   return behind > skyTexel && behind < solidThickness;
 }
 
@@ -89,15 +111,17 @@ vec3 keptAlong(vec3 origin, vec3 direction, bool skipOwnBody) {
   float lengthInLiquid = 0.0;
   int crossings = 0;
   bool wasIn = false, skipping = skipOwnBody;
+  ViewedPoint first = viewed(origin, 1.0), perUnit = viewed(direction, 0.0);
   for (int i = 0; i < steps; ++i) {
-    vec3 point = origin + direction * (start + (float(i) + 0.5) * stepLength);
+    ViewedPoint point = advanced(first, perUnit, start + (float(i) + 0.5) * stepLength);
     if (inSolid(point)) break;
+    vec2 column = skyColumn(point);
     if (skipping) {
       // A floor the liquid rests on lies within its drawn bottom's undulation: that gap is the body's too.
-      skipping = inLiquid(point, submergedTolerance);
+      skipping = inLiquid(point, column, submergedTolerance);
       if (skipping) continue;
     }
-    bool isIn = inLiquid(point, 0.0);
+    bool isIn = inLiquid(point, column, 0.0);
     if (isIn) {
       lengthInLiquid += stepLength;
       crossings += wasIn ? 0 : 2;  // in and out again
@@ -118,7 +142,8 @@ void main() {
   mat3 basis = basisAround(normalize(normal));
   // Off the surface, so the first steps do not find the solid the point lies on.
   vec3 origin = world + basis[2] * skyTexel;
-  bool submerged = inLiquid(world, submergedTolerance);
+  ViewedPoint here = viewed(world, 1.0);
+  bool submerged = inLiquid(here, skyColumn(here), submergedTolerance);
   vec3 kept = vec3(0.0);
   for (int i = 0; i < directionCount; ++i) {
     // Malley's method: points spread evenly over the unit disc (a golden-angle spiral), lifted onto the
