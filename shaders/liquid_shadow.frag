@@ -23,8 +23,8 @@ layout(binding = 4) uniform sampler2D skyOcclusion;  // sky mode: sky_occlusion.
 uniform int skyOcclusionScale;   // sky mode: pixels per sample of skyOcclusion along each axis; 0: none
 
 // Compiled in three variants (LiquidShadowPass), not switched by uniforms: llvmpipe runs both sides of a branch
-// with masks, so each mode would pay for the others' work (measured: the light's shadow 9.2 against 4.4 ms,
-// the sky's 9.4 against about 5, at 480x270).
+// with masks, so each mode would pay for the others' work (measured: the light's shadow 9.2 against 3.8 ms,
+// the sky's 9.4 against 6.7, at 480x270; docs/frame-cost.md).
 #ifdef SKY_MODE
 const bool skyMode = true;            // write the sky light a point keeps instead of a light's shadow
 #else

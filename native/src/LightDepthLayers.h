@@ -35,8 +35,6 @@ class LightDepthLayers {
   EllipsoidImpostorPass impostors_;
   DepthSmoothingPass frontSmoothing_;
   DepthSmoothingPass backSmoothing_;
-  Texture2D
-      noSolids_;  ///< A light's view has no background: depth 1e10 everywhere (the largest view's size).
 };
 
 }  // namespace spindrift

@@ -38,12 +38,13 @@ class EllipsoidImpostorPass {
   void drawLayer(Target& target, bool backFaces, const std::vector<ImpostorDraw>& draws,
                  const BackgroundData* background, const Camera& view, const DomainBox* domain, bool normals);
 
-  // Each program twice, with and without the clip to a domain's box (lib/ellipsoid_ray.glsl): only the
-  // ellipsoids that reach the box's faces are drawn with it (orderForDomainClip).
+  // The impostor program with and without the clip to a domain's box (lib/ellipsoid_ray.glsl; only the
+  // ellipsoids that reach the box's faces are drawn with it, orderForDomainClip) and without the solids test
+  // (the lights' views); the normal resolve with and without the clip.
   ProgramObject program_;
   ProgramObject clipProgram_;
-  ProgramObject noSolidsProgram_;  // neither clip nor solids: the lights' views
-  ProgramObject normalsProgram_;   // the normal resolve: the winners' ray casts repeated, one per pixel
+  ProgramObject noSolidsProgram_;
+  ProgramObject normalsProgram_;  // the normal resolve: the winners' ray casts repeated, one per pixel
   ProgramObject clipNormalsProgram_;
   std::vector<EllipsoidInstance> ordered_;  // the list in draw order, when a domain reorders it
   FramebufferObject resolveFramebuffer_;
