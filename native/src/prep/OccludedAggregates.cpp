@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <cstdint>
 #include <limits>
 
 #include <tbb/blocked_range.h>
@@ -103,6 +104,38 @@ struct ViewGrid {
             glm::dvec3((x + 0.5 - 0.5 * width) / focal, (0.5 * height - (y + 0.5)) / focal, -1.0));
   }
   const glm::dvec3& ray(int x, int y) const { return rays[std::size_t(y) * width + x]; }
+
+  // Where each pixel's ray enters and leaves a domain box, in the rays' distances (an affine map keeps a
+  // ray's parameter, so the slab test runs in the box's frame); without a box every ray is inside it.
+  std::vector<double> boxEnter, boxLeave;
+  void clipToBox(const DomainBox& domain, const glm::dmat4& boxFromCamera) {
+    boxEnter.assign(rays.size(), 0.0);
+    boxLeave.assign(rays.size(), 0.0);
+    const glm::dvec3 origin(boxFromCamera[3]), low(domain.low), high(domain.high);
+    for (std::size_t pixel = 0; pixel < rays.size(); ++pixel) {
+      const glm::dvec3 direction = glm::dmat3(boxFromCamera) * rays[pixel];
+      double enter = -std::numeric_limits<double>::infinity(),
+             leave = std::numeric_limits<double>::infinity();
+      for (int axis = 0; axis < 3; ++axis) {
+        if (direction[axis] == 0.0) {
+          if (origin[axis] < low[axis] || origin[axis] > high[axis]) enter = leave = 0.0;  // misses the slab
+          continue;
+        }
+        const double a = (low[axis] - origin[axis]) / direction[axis];
+        const double b = (high[axis] - origin[axis]) / direction[axis];
+        enter = std::max(enter, std::min(a, b));
+        leave = std::min(leave, std::max(a, b));
+      }
+      boxEnter[pixel] = enter;
+      boxLeave[pixel] = leave;
+    }
+  }
+  // A chord clipped to the box, as the impostor pass clips it (lib/ellipsoid_ray.glsl).
+  void clip(std::size_t pixel, double& entry, double& exit) const {
+    if (boxEnter.empty()) return;
+    entry = std::max(entry, boxEnter[pixel]);
+    exit = std::min(exit, boxLeave[pixel]);
+  }
   // The window position (x right, y down) of a camera-space point in front of the eye.
   glm::vec2 pixelOf(const glm::vec3& point) const {
     return {0.5f * width + focal * point.x / -point.z, 0.5f * height - focal * point.y / -point.z};
@@ -131,15 +164,6 @@ struct ViewGrid {
   }
 };
 
-bool insideBox(const EllipsoidInstance& ellipsoid, const DomainBox& domain, const glm::mat4& boxFromWorld,
-               float boxScale) {
-  const glm::vec3 centre =
-      glm::vec3(boxFromWorld * glm::vec4(glm::vec3(ellipsoid.centreAndBoundingRadius), 1.0f));
-  const float reach = ellipsoid.centreAndBoundingRadius.w * boxScale;
-  return glm::all(glm::greaterThan(centre - reach, domain.low)) &&
-         glm::all(glm::lessThan(centre + reach, domain.high));
-}
-
 }  // namespace
 
 OccludedAggregatesResult dropOccludedAggregates(std::vector<EllipsoidInstance>& ellipsoids, LayerSplit& split,
@@ -149,18 +173,15 @@ OccludedAggregatesResult dropOccludedAggregates(std::vector<EllipsoidInstance>& 
   OccludedAggregatesResult result;
   const std::size_t count = ellipsoids.size();
   if (count == 0 || camera.width <= 0 || camera.height <= 0) return result;
-  const ViewGrid grid(camera);
+  ViewGrid grid(camera);
   const glm::mat4 cameraFromWorld = camera.cameraFromWorld();
   const glm::dmat3 rotation = glm::dmat3(glm::mat3(cameraFromWorld));
-  glm::mat4 boxFromWorld(1.0f);
-  float boxScale = 1.0f;
-  if (domain) {
-    boxFromWorld = glm::inverse(domain->worldFromBox);
-    boxScale = stretchBound(glm::mat3(boxFromWorld));
-  }
+  if (domain)
+    grid.clipToBox(*domain,
+                   glm::inverse(glm::dmat4(domain->worldFromBox)) * glm::dmat4(camera.worldFromCamera));
 
   std::vector<ViewedEllipsoid> viewed(count);
-  std::vector<char> coversFront(count, 0), coversBack(count, 0);
+  std::vector<char> covers(count, 0), solidNear(count, 0);
   tbb::parallel_for(tbb::blocked_range<std::size_t>(0, count), [&](const tbb::blocked_range<std::size_t>& r) {
     for (std::size_t i = r.begin(); i != r.end(); ++i) {
       const glm::vec4& sphere = ellipsoids[i].centreAndBoundingRadius;
@@ -181,10 +202,10 @@ OccludedAggregatesResult dropOccludedAggregates(std::vector<EllipsoidInstance>& 
       view.shrunk = 1.0 - kRadiusMargin - slack / shortest;
       if (!(view.shrunk > 0.0)) continue;
       grid.rectangle(centre, glm::vec3(view.shrunk * halfExtents), view.coverLow, view.coverHigh);
-      const bool unclipped = !domain || insideBox(ellipsoids[i], *domain, boxFromWorld, boxScale);
-      coversFront[i] = unclipped;
-      coversBack[i] =
-          unclipped && !(solids && solids->solidNearerThan(glm::vec3(sphere), radius, depth + radius));
+      covers[i] = 1;
+      // With a solid nearer than its far side it covers the back layer only at the pixels where its front
+      // lies before the solid (the impostor pass hides it where its entry lies behind one).
+      solidNear[i] = solids && solids->solidNearerThan(glm::vec3(sphere), radius, depth + radius);
     }
   });
 
@@ -194,28 +215,52 @@ OccludedAggregatesResult dropOccludedAggregates(std::vector<EllipsoidInstance>& 
   const std::size_t pixels = std::size_t(grid.width) * grid.height;
   std::vector<double> frontAtMost(pixels, std::numeric_limits<double>::infinity());
   std::vector<double> backAtLeast(pixels, -std::numeric_limits<double>::infinity());
+  // Where a layer's ellipsoid certainly reaches past the box's face, that layer's surface is the face itself,
+  // computed by every fragment there from the pixel's ray alone: nothing can be nearer (farther), and the
+  // others that reach it only tie. The lowest such index keeps the pixel; the others need not be drawn there.
+  constexpr std::uint32_t kNoOwner = std::numeric_limits<std::uint32_t>::max();
+  std::vector<std::uint32_t> frontFaceOwner, backFaceOwner;
+  if (domain) {
+    frontFaceOwner.assign(pixels, kNoOwner);
+    backFaceOwner.assign(pixels, kNoOwner);
+  }
+  const std::size_t backFrom = count - split.backOnly;
   constexpr int kRowsPerBand = 16;
   const int bands = (grid.height + kRowsPerBand - 1) / kRowsPerBand;
   tbb::parallel_for(0, bands, [&](int band) {
     const int firstRow = band * kRowsPerBand, lastRow = std::min(firstRow + kRowsPerBand, grid.height) - 1;
     for (std::size_t i = 0; i < count; ++i) {
       const ViewedEllipsoid& view = viewed[i];
-      if (!coversFront[i] && !coversBack[i]) continue;
+      if (!covers[i]) continue;
       for (int y = std::max(view.coverLow.y, firstRow); y <= std::min(view.coverHigh.y, lastRow); ++y)
         for (int x = view.coverLow.x; x <= view.coverHigh.x; ++x) {
           double entry, exit;
           if (!chord(view.ellipsoid, view.shrunk, grid.ray(x, y), entry, exit)) continue;
           const std::size_t pixel = std::size_t(y) * grid.width + x;
-          if (coversFront[i]) frontAtMost[pixel] = std::min(frontAtMost[pixel], entry + view.chordMargin);
-          if (coversBack[i]) backAtLeast[pixel] = std::max(backAtLeast[pixel], exit - view.chordMargin);
+          // Where a domain box cuts it, its surfaces are the clipped chord's ends, if any are left.
+          const double unclippedEntry = entry, unclippedExit = exit;
+          grid.clip(pixel, entry, exit);
+          if (!(entry < exit - 2.0 * view.chordMargin)) continue;
+          const bool coversBackHere = !solidNear[i] || (entry + view.chordMargin) * -grid.ray(x, y).z <
+                                                           double(solids->nearestAt(x, y));
+          frontAtMost[pixel] = std::min(frontAtMost[pixel], entry + view.chordMargin);
+          if (coversBackHere) backAtLeast[pixel] = std::max(backAtLeast[pixel], exit - view.chordMargin);
+          if (!domain) continue;
+          const std::uint32_t index = std::uint32_t(i);
+          if (i < backFrom && frontFaceOwner[pixel] == kNoOwner &&
+              unclippedEntry < grid.boxEnter[pixel] - 2.0 * view.chordMargin)
+            frontFaceOwner[pixel] = index;
+          if (coversBackHere && i >= split.frontOnly && backFaceOwner[pixel] == kNoOwner &&
+              unclippedExit > grid.boxLeave[pixel] + 2.0 * view.chordMargin)
+            backFaceOwner[pixel] = index;
         }
     }
   });
 
   // An ellipsoid is hidden from a layer when at every pixel where it may be drawn, another ellipsoid's
-  // surface is certainly nearer than its grown self's entry (front) or farther than its exit (back). Its own
-  // shrunk self never hides it: that chord lies inside the grown one's, and the margins only widen that.
-  const std::size_t backFrom = count - split.backOnly;
+  // surface is certainly nearer than its grown self's entry (front) or farther than its exit (back), or
+  // another one holds the box's face there. Its own shrunk self never hides it: that chord lies inside the
+  // grown one's, and the margins only widen that; a face's owner is never hidden where it owns it.
   std::vector<char> inFront(count), inBack(count);
   tbb::parallel_for(tbb::blocked_range<std::size_t>(0, count), [&](const tbb::blocked_range<std::size_t>& r) {
     for (std::size_t i = r.begin(); i != r.end(); ++i) {
@@ -229,8 +274,12 @@ OccludedAggregatesResult dropOccludedAggregates(std::vector<EllipsoidInstance>& 
           double entry, exit;
           if (!chord(view.ellipsoid, view.grown, grid.ray(x, y), entry, exit)) continue;
           const std::size_t pixel = std::size_t(y) * grid.width + x;
-          hiddenFront = hiddenFront && frontAtMost[pixel] < entry - view.chordMargin;
-          hiddenBack = hiddenBack && backAtLeast[pixel] > exit + view.chordMargin;
+          grid.clip(pixel, entry, exit);
+          if (entry > exit + 2.0 * view.chordMargin) continue;  // the box leaves nothing of it here
+          const bool frontTie = domain && frontFaceOwner[pixel] != kNoOwner && frontFaceOwner[pixel] != i;
+          const bool backTie = domain && backFaceOwner[pixel] != kNoOwner && backFaceOwner[pixel] != i;
+          hiddenFront = hiddenFront && (frontTie || frontAtMost[pixel] < entry - view.chordMargin);
+          hiddenBack = hiddenBack && (backTie || backAtLeast[pixel] > exit + view.chordMargin);
         }
       if (hiddenFront) inFront[i] = 0;
       if (hiddenBack) inBack[i] = 0;

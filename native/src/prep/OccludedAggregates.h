@@ -26,9 +26,12 @@ struct OccludedAggregatesResult {
 /// it also drops what a nearer part of the body hides (a wave's back behind its front).
 ///
 /// Q counts as covering only where its fragments are certain to be drawn: whole inside the near and far
-/// planes and the domain box, and, for the back layer, with no solid nearer than its farthest depth (the
-/// impostor pass hides an ellipsoid whose entry lies behind a solid). `ellipsoids` and `split` come as
-/// dropHiddenInterior leaves them ([front only | both | back only]) and leave in that order too.
+/// planes and, for the back layer, with no solid nearer than its farthest depth (the impostor pass hides an
+/// ellipsoid whose entry lies behind a solid). Where a domain box cuts Q, its chord is clipped to the box as
+/// the impostor pass clips it, and Q covers the pixels where some of it is left: liquid resting on a domain's
+/// floor or walls is mostly such ellipsoids (30,270 of the 37,070 drawn into the dam break's front layer).
+/// `ellipsoids` and `split` come as dropHiddenInterior leaves them ([front only | both | back only]) and
+/// leave in that order too.
 OccludedAggregatesResult dropOccludedAggregates(std::vector<EllipsoidInstance>& ellipsoids, LayerSplit& split,
                                                 const Camera& camera, const DomainBox* domain,
                                                 const SolidDepthTiles* solids);

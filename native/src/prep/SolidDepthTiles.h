@@ -26,6 +26,10 @@ class SolidDepthTiles {
   /// Whether a solid may lie nearer than `farthestDepth` within the screen rectangle of a world-space sphere
   /// (which must lie beyond the near plane).
   bool solidNearerThan(const glm::vec3& centre, float radius, float farthestDepth) const;
+  /// The depth no solid is nearer than at a pixel (x right, y down, inside the frame): its tile's.
+  float nearestAt(int x, int y) const {
+    return nearest_[std::size_t(y / kTileSize) * std::size_t(columns_) + std::size_t(x / kTileSize)];
+  }
 
  private:
   // Lowers the tiles under a pixel rectangle (inclusive pixel coordinates, clamped to the frame) to `depth`.
