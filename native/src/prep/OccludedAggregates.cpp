@@ -54,6 +54,22 @@ bool chord(const CameraEllipsoid& ellipsoid, double scale, const glm::dvec3& ray
   return true;
 }
 
+// The rays r = (u, v, -1) through the image plane that meet the ellipsoid scaled by s about its centre are
+// those with s^2 |M r|^2 - |M c x M r|^2 >= 0: the cone r^T K r >= 0 with K = s^2 M^T M - (C M)^T (C M),
+// C the cross product with M c. Returns K.
+glm::dmat3 silhouetteCone(const CameraEllipsoid& ellipsoid, double scale) {
+  glm::dvec3 columns[3], crossed[3];
+  for (int j = 0; j < 3; ++j) {
+    columns[j] = glm::dvec3(ellipsoid.rows[0][j], ellipsoid.rows[1][j], ellipsoid.rows[2][j]);
+    crossed[j] = glm::cross(ellipsoid.scaledCentre, columns[j]);
+  }
+  glm::dmat3 cone;
+  for (int j = 0; j < 3; ++j)
+    for (int k = 0; k < 3; ++k)
+      cone[j][k] = scale * scale * glm::dot(columns[j], columns[k]) - glm::dot(crossed[j], crossed[k]);
+  return cone;
+}
+
 // One ellipsoid as this view sees it: grown by the margins, where a pixel's ray meets it (it may be drawn
 // there, no nearer than that entry and no farther than that exit); shrunk by them, where it certainly is
 // (entering no later and leaving no earlier).
@@ -61,7 +77,10 @@ struct ViewedEllipsoid {
   CameraEllipsoid ellipsoid;
   double grown = 1.0, shrunk = 0.0;  // the scales about its centre
   double chordMargin = 0.0;
-  glm::ivec2 reachLow{0}, reachHigh{-1};  // pixel rectangles (inclusive) of the grown and the shrunk one
+  // Bounds on any ray's entry and exit of the grown ellipsoid, margins included: its bounding sphere's.
+  double nearest = 0.0, farthest = 0.0;
+  glm::dmat3 grownCone{0.0}, shrunkCone{0.0};  // silhouetteCone of each
+  glm::ivec2 reachLow{0}, reachHigh{-1};       // pixel rectangles (inclusive) of the grown and the shrunk one
   glm::ivec2 coverLow{0}, coverHigh{-1};
   bool valid = false;  // whole between the near and far planes
 };
@@ -141,6 +160,30 @@ struct ViewGrid {
     return {0.5f * width + focal * point.x / -point.z, 0.5f * height - focal * point.y / -point.z};
   }
 
+  // The pixels of row y (clamped to [low, high]) whose centres' rays may meet the ellipsoid whose silhouette
+  // cone is k (silhouetteCone): its quadratic in u along the row, widened by a pixel each side for rounding
+  // (a row the quadratic cannot bound keeps [low, high]). Leaves first > last where the row misses it.
+  void rowSpan(const glm::dmat3& k, int y, int low, int high, int& first, int& last) const {
+    first = low;
+    last = high;
+    const double v = (0.5 * height - (y + 0.5)) / focal;
+    // r = (u, v, -1): k00 u^2 + 2 (k01 v - k02) u + (k11 v^2 - 2 k12 v + k22) >= 0.
+    const double qa = k[0][0], halfQb = k[0][1] * v - k[0][2];
+    const double qc = k[1][1] * v * v - 2.0 * k[1][2] * v + k[2][2];
+    if (!(qa < 0.0)) return;
+    const double discriminant = halfQb * halfQb - qa * qc;
+    if (!(discriminant >= 0.0)) {
+      if (discriminant < 0.0) first = high + 1;  // a NaN keeps the whole row
+      return;
+    }
+    const double root = std::sqrt(discriminant);
+    const double u0 = (-halfQb + root) / qa, u1 = (-halfQb - root) / qa;  // qa < 0: u0 <= u1
+    const double x0 = std::floor(u0 * focal + 0.5 * width - 0.5) - 1.0;
+    const double x1 = std::ceil(u1 * focal + 0.5 * width - 0.5) + 1.0;
+    if (x0 > double(low)) first = x0 > double(high) ? high + 1 : int(x0);
+    if (x1 < double(high)) last = x1 < double(low) ? low - 1 : int(x1);
+  }
+
   // The pixels whose centres may see a box about `centre` (camera space, wholly in front of the eye): its
   // corners projected, which bound its projection.
   void rectangle(const glm::vec3& centre, const glm::vec3& halfExtents, glm::ivec2& low,
@@ -181,7 +224,7 @@ OccludedAggregatesResult dropOccludedAggregates(std::vector<EllipsoidInstance>& 
                    glm::inverse(glm::dmat4(domain->worldFromBox)) * glm::dmat4(camera.worldFromCamera));
 
   std::vector<ViewedEllipsoid> viewed(count);
-  std::vector<char> covers(count, 0), solidNear(count, 0);
+  std::vector<char> covers(count, 0);
   tbb::parallel_for(tbb::blocked_range<std::size_t>(0, count), [&](const tbb::blocked_range<std::size_t>& r) {
     for (std::size_t i = r.begin(); i != r.end(); ++i) {
       const glm::vec4& sphere = ellipsoids[i].centreAndBoundingRadius;
@@ -198,14 +241,15 @@ OccludedAggregatesResult dropOccludedAggregates(std::vector<EllipsoidInstance>& 
       const glm::dvec3 halfExtents = cameraHalfExtents(view.ellipsoid);
       view.grown = 1.0 + kRadiusMargin + slack / shortest;
       view.chordMargin = kChordMargin * double(radius) + kDistanceMargin * double(distance);
+      view.nearest = double(distance) - view.grown * double(radius) - 2.0 * view.chordMargin;
+      view.farthest = double(distance) + view.grown * double(radius) + 2.0 * view.chordMargin;
       grid.rectangle(centre, glm::vec3(view.grown * halfExtents), view.reachLow, view.reachHigh);
+      view.grownCone = silhouetteCone(view.ellipsoid, view.grown);
       view.shrunk = 1.0 - kRadiusMargin - slack / shortest;
+      view.shrunkCone = silhouetteCone(view.ellipsoid, view.shrunk);
       if (!(view.shrunk > 0.0)) continue;
       grid.rectangle(centre, glm::vec3(view.shrunk * halfExtents), view.coverLow, view.coverHigh);
       covers[i] = 1;
-      // With a solid nearer than its far side it covers the back layer only at the pixels where its front
-      // lies before the solid (the impostor pass hides it where its entry lies behind one).
-      solidNear[i] = solids && solids->solidNearerThan(glm::vec3(sphere), radius, depth + radius);
     }
   });
 
@@ -217,7 +261,7 @@ OccludedAggregatesResult dropOccludedAggregates(std::vector<EllipsoidInstance>& 
   std::vector<double> backAtLeast(pixels, -std::numeric_limits<double>::infinity());
   // Where a layer's ellipsoid certainly reaches past the box's face, that layer's surface is the face itself,
   // computed by every fragment there from the pixel's ray alone: nothing can be nearer (farther), and the
-  // others that reach it only tie. The lowest such index keeps the pixel; the others need not be drawn there.
+  // others that reach it only tie. The first one met keeps the pixel; the others need not be drawn there.
   constexpr std::uint32_t kNoOwner = std::numeric_limits<std::uint32_t>::max();
   std::vector<std::uint32_t> frontFaceOwner, backFaceOwner;
   if (domain) {
@@ -227,13 +271,40 @@ OccludedAggregatesResult dropOccludedAggregates(std::vector<EllipsoidInstance>& 
   const std::size_t backFrom = count - split.backOnly;
   constexpr int kRowsPerBand = 16;
   const int bands = (grid.height + kRowsPerBand - 1) / kRowsPerBand;
+  // Nearest first: once a pixel's nearer surfaces are in, a farther ellipsoid that can change neither bound
+  // there (nor take a face it cannot reach) is passed over without its chord.
+  std::vector<std::uint32_t> nearestFirst;
+  nearestFirst.reserve(count);
+  for (std::size_t i = 0; i < count; ++i)
+    if (covers[i]) nearestFirst.push_back(std::uint32_t(i));
+  std::sort(nearestFirst.begin(), nearestFirst.end(),
+            [&](std::uint32_t a, std::uint32_t b) { return viewed[a].nearest < viewed[b].nearest; });
+  // Each band's ellipsoids, in that order: a band touches only the few it holds.
+  std::vector<std::vector<std::uint32_t>> inBand(static_cast<std::size_t>(bands));
+  for (const std::uint32_t i : nearestFirst) {
+    const int first = std::max(viewed[i].coverLow.y, 0) / kRowsPerBand;
+    const int last = std::min(viewed[i].coverHigh.y / kRowsPerBand, bands - 1);
+    for (int band = first; band <= last; ++band)
+      inBand[std::size_t(band)].push_back(i);
+  }
   tbb::parallel_for(0, bands, [&](int band) {
     const int firstRow = band * kRowsPerBand, lastRow = std::min(firstRow + kRowsPerBand, grid.height) - 1;
-    for (std::size_t i = 0; i < count; ++i) {
+    for (const std::uint32_t i : inBand[std::size_t(band)]) {
       const ViewedEllipsoid& view = viewed[i];
-      if (!covers[i]) continue;
-      for (int y = std::max(view.coverLow.y, firstRow); y <= std::min(view.coverHigh.y, lastRow); ++y)
-        for (int x = view.coverLow.x; x <= view.coverHigh.x; ++x) {
+      for (int y = std::max(view.coverLow.y, firstRow); y <= std::min(view.coverHigh.y, lastRow); ++y) {
+        int firstX, lastX;
+        grid.rowSpan(view.shrunkCone, y, view.coverLow.x, view.coverHigh.x, firstX, lastX);
+        for (int x = firstX; x <= lastX; ++x) {
+          const std::size_t here = std::size_t(y) * grid.width + x;
+          const bool frontSettled =
+              domain ? frontFaceOwner[here] != kNoOwner ||
+                           (frontAtMost[here] <= view.nearest && view.nearest >= grid.boxEnter[here])
+                     : frontAtMost[here] <= view.nearest;
+          const bool backSettled =
+              domain ? backFaceOwner[here] != kNoOwner ||
+                           (backAtLeast[here] >= view.farthest && view.farthest <= grid.boxLeave[here])
+                     : backAtLeast[here] >= view.farthest;
+          if (frontSettled && backSettled) continue;
           double entry, exit;
           if (!chord(view.ellipsoid, view.shrunk, grid.ray(x, y), entry, exit)) continue;
           const std::size_t pixel = std::size_t(y) * grid.width + x;
@@ -241,8 +312,10 @@ OccludedAggregatesResult dropOccludedAggregates(std::vector<EllipsoidInstance>& 
           const double unclippedEntry = entry, unclippedExit = exit;
           grid.clip(pixel, entry, exit);
           if (!(entry < exit - 2.0 * view.chordMargin)) continue;
-          const bool coversBackHere = !solidNear[i] || (entry + view.chordMargin) * -grid.ray(x, y).z <
-                                                           double(solids->nearestAt(x, y));
+          // It covers the back layer only where its front lies before the solids (the impostor pass hides
+          // it where its entry lies behind one).
+          const bool coversBackHere =
+              !solids || (entry + view.chordMargin) * -grid.ray(x, y).z < double(solids->nearestAt(x, y));
           frontAtMost[pixel] = std::min(frontAtMost[pixel], entry + view.chordMargin);
           if (coversBackHere) backAtLeast[pixel] = std::max(backAtLeast[pixel], exit - view.chordMargin);
           if (!domain) continue;
@@ -254,6 +327,7 @@ OccludedAggregatesResult dropOccludedAggregates(std::vector<EllipsoidInstance>& 
               unclippedExit > grid.boxLeave[pixel] + 2.0 * view.chordMargin)
             backFaceOwner[pixel] = index;
         }
+      }
     }
   });
 
@@ -269,18 +343,26 @@ OccludedAggregatesResult dropOccludedAggregates(std::vector<EllipsoidInstance>& 
       const ViewedEllipsoid& view = viewed[i];
       if (!view.valid) continue;
       bool hiddenFront = inFront[i], hiddenBack = inBack[i];
-      for (int y = view.reachLow.y; y <= view.reachHigh.y && (hiddenFront || hiddenBack); ++y)
-        for (int x = view.reachLow.x; x <= view.reachHigh.x && (hiddenFront || hiddenBack); ++x) {
-          double entry, exit;
-          if (!chord(view.ellipsoid, view.grown, grid.ray(x, y), entry, exit)) continue;
+      // No ray meets the grown ellipsoid nearer than its bounding sphere's near side or farther than its far
+      // side: where those alone settle a pixel (deep inside a body, most pixels), no chord is needed.
+      for (int y = view.reachLow.y; y <= view.reachHigh.y && (hiddenFront || hiddenBack); ++y) {
+        int firstX, lastX;
+        grid.rowSpan(view.grownCone, y, view.reachLow.x, view.reachHigh.x, firstX, lastX);
+        for (int x = firstX; x <= lastX && (hiddenFront || hiddenBack); ++x) {
           const std::size_t pixel = std::size_t(y) * grid.width + x;
-          grid.clip(pixel, entry, exit);
-          if (entry > exit + 2.0 * view.chordMargin) continue;  // the box leaves nothing of it here
           const bool frontTie = domain && frontFaceOwner[pixel] != kNoOwner && frontFaceOwner[pixel] != i;
           const bool backTie = domain && backFaceOwner[pixel] != kNoOwner && backFaceOwner[pixel] != i;
+          const bool frontSettled = !hiddenFront || frontTie || frontAtMost[pixel] < view.nearest;
+          const bool backSettled = !hiddenBack || backTie || backAtLeast[pixel] > view.farthest;
+          if (frontSettled && backSettled) continue;
+          double entry, exit;
+          if (!chord(view.ellipsoid, view.grown, grid.ray(x, y), entry, exit)) continue;
+          grid.clip(pixel, entry, exit);
+          if (entry > exit + 2.0 * view.chordMargin) continue;  // the box leaves nothing of it here
           hiddenFront = hiddenFront && (frontTie || frontAtMost[pixel] < entry - view.chordMargin);
           hiddenBack = hiddenBack && (backTie || backAtLeast[pixel] > exit + view.chordMargin);
         }
+      }
       if (hiddenFront) inFront[i] = 0;
       if (hiddenBack) inBack[i] = 0;
     }
