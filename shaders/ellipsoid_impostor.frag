@@ -31,5 +31,12 @@ void main() {
   if (!hit) discard;
   outEyeDepth = eyeDepth;
   outEllipsoid = vEllipsoid + 1u;
-  gl_FragDepth = depthBufferFromEyeDepth(eyeDepth);
+  // Every ellipsoid the domain box cuts at this pixel puts the same face at the same depth, and one whose own
+  // surface ends there to the last bit would win or lose by the drawing order: the face takes such ties (its
+  // depth buffer value a step nearer, or farther for the back layer), so the layer is the face wherever one
+  // ellipsoid reaches past it, whichever others are drawn (prep/OccludedAggregates.cpp relies on it).
+  float bufferDepth = depthBufferFromEyeDepth(eyeDepth);
+  if (clipToDomain && castOnDomainFace)
+    bufferDepth = uintBitsToFloat(backFaces ? floatBitsToUint(bufferDepth) + 1u : floatBitsToUint(bufferDepth) - 1u);
+  gl_FragDepth = bufferDepth;
 }

@@ -39,6 +39,9 @@ vec3 cameraInUnitSphere(mat3 inverseAxesCamera, vec3 cameraCentre) {
   return -(inverseAxesCamera * cameraCentre);
 }
 
+// Whether the last castEllipsoid's surface is the domain box's face (set by castEllipsoid).
+bool castOnDomainFace = false;
+
 // Where the ray through a pixel meets the ellipsoid: the eye depth of the surface the layer keeps (the
 // nearest front-facing one, or with backFaces the farthest back-facing one), the eye depth where the ray
 // enters (which the background test needs) and the world outward normal there; false where the pixel has no
@@ -94,6 +97,7 @@ bool castEllipsoid(vec2 fragCoord, vec3 origin, mat3 inverseAxesCamera, out floa
     cameraInside = nearT <= 0.0;
   }
   float t = backFaces ? farT : nearT;
+  castOnDomainFace = onBox;
 
   nearDepth = cameraInside ? getNearClip() : nearT * -direction.z;
   if (nearDepth < getNearClip()) return false;

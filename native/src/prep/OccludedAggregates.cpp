@@ -34,41 +34,60 @@ struct CameraEllipsoid {
   glm::dvec3 scaledCentre{0.0};
 };
 
-// Where a unit ray from the eye enters and leaves the ellipsoid scaled about its centre by `scale`; false
-// when it misses. In the ellipsoid's unit space the ray is t d - M c with d = M r, and it meets the sphere of
-// radius `scale` where |t d - M c| = scale: the discriminant is scale^2 |d|^2 - |M c x d|^2, the form that
-// stays exact for a ball hundreds of radii away (a sun's view), where the plain quadratic's terms cancel.
-// Distances along the ray: for one pixel every ellipsoid is compared on the same ray, so they order as planar
-// depths do.
-bool chord(const CameraEllipsoid& ellipsoid, double scale, const glm::dvec3& ray, double& entry,
-           double& exit) {
-  const glm::dvec3 d(glm::dot(ellipsoid.rows[0], ray), glm::dot(ellipsoid.rows[1], ray),
-                     glm::dot(ellipsoid.rows[2], ray));
-  const glm::dvec3 offset = glm::cross(ellipsoid.scaledCentre, d);
-  const double lengthSquared = glm::dot(d, d);
-  const double missing = scale * scale * lengthSquared - glm::dot(offset, offset);
-  if (!(missing >= 0.0) || !(lengthSquared > 0.0)) return false;
-  const double along = glm::dot(ellipsoid.scaledCentre, d), half = std::sqrt(missing);
-  entry = (along - half) / lengthSquared;
-  exit = (along + half) / lengthSquared;
-  return true;
-}
+// The rays r = (u, v, -1) through the image plane, whose parameter t is the planar eye depth of the point t
+// r: each meets the ellipsoid scaled by s about its centre where |t M r - M c| = s, that is at t = (g.r -+
+// sqrt(r^T K r)) / r^T A r with A = M^T M, g = M^T M c and the cone K = s^2 A - (C M)^T (C M), C the cross
+// product with M c (r^T K r = s^2 |M r|^2 - |M c x M r|^2: the discriminant in a form that stays exact for a
+// ball far from the eye, where the textbook quadratic's terms cancel; a sun's view is a thousand liquid radii
+// away). For one pixel every ellipsoid is compared on the same ray.
+struct ChordPolynomials {
+  glm::dmat3 lengths{0.0};  // A
+  glm::dvec3 along{0.0};    // g
+  glm::dmat3 cone{0.0};     // K
 
-// The rays r = (u, v, -1) through the image plane that meet the ellipsoid scaled by s about its centre are
-// those with s^2 |M r|^2 - |M c x M r|^2 >= 0: the cone r^T K r >= 0 with K = s^2 M^T M - (C M)^T (C M),
-// C the cross product with M c. Returns K.
-glm::dmat3 silhouetteCone(const CameraEllipsoid& ellipsoid, double scale) {
-  glm::dvec3 columns[3], crossed[3];
-  for (int j = 0; j < 3; ++j) {
-    columns[j] = glm::dvec3(ellipsoid.rows[0][j], ellipsoid.rows[1][j], ellipsoid.rows[2][j]);
-    crossed[j] = glm::cross(ellipsoid.scaledCentre, columns[j]);
+  ChordPolynomials() = default;
+  ChordPolynomials(const CameraEllipsoid& ellipsoid, double scale) {
+    glm::dvec3 columns[3], crossed[3];
+    for (int j = 0; j < 3; ++j) {
+      columns[j] = glm::dvec3(ellipsoid.rows[0][j], ellipsoid.rows[1][j], ellipsoid.rows[2][j]);
+      crossed[j] = glm::cross(ellipsoid.scaledCentre, columns[j]);
+      along[j] = glm::dot(columns[j], ellipsoid.scaledCentre);
+    }
+    for (int j = 0; j < 3; ++j)
+      for (int k = 0; k < 3; ++k) {
+        lengths[j][k] = glm::dot(columns[j], columns[k]);
+        cone[j][k] = scale * scale * lengths[j][k] - glm::dot(crossed[j], crossed[k]);
+      }
   }
-  glm::dmat3 cone;
-  for (int j = 0; j < 3; ++j)
-    for (int k = 0; k < 3; ++k)
-      cone[j][k] = scale * scale * glm::dot(columns[j], columns[k]) - glm::dot(crossed[j], crossed[k]);
-  return cone;
-}
+};
+
+// r^T Q r along a row (r = (u, v, -1), v fixed) as q2 u^2 + q1 u + q0.
+struct RowQuadratic {
+  double q2 = 0.0, q1 = 0.0, q0 = 0.0;
+  RowQuadratic(const glm::dmat3& q, double v)
+      : q2(q[0][0]), q1(2.0 * (q[0][1] * v - q[0][2])), q0(q[1][1] * v * v - 2.0 * q[1][2] * v + q[2][2]) {}
+  double at(double u) const { return (q2 * u + q1) * u + q0; }
+};
+
+// One ellipsoid's chords along one row of pixels.
+struct RowChords {
+  RowQuadratic lengths, cone;
+  double alongSlope, alongOffset;
+  RowChords(const ChordPolynomials& polynomials, double v)
+      : lengths(polynomials.lengths, v),
+        cone(polynomials.cone, v),
+        alongSlope(polynomials.along.x),
+        alongOffset(polynomials.along.y * v - polynomials.along.z) {}
+  // Where the ray at u enters and leaves (planar eye depths); false where it misses.
+  bool at(double u, double& entry, double& exit) const {
+    const double lengthSquared = lengths.at(u), missing = cone.at(u);
+    if (!(missing >= 0.0) || !(lengthSquared > 0.0)) return false;
+    const double along = alongSlope * u + alongOffset, half = std::sqrt(missing);
+    entry = (along - half) / lengthSquared;
+    exit = (along + half) / lengthSquared;
+    return true;
+  }
+};
 
 // One ellipsoid as this view sees it: grown by the margins, where a pixel's ray meets it (it may be drawn
 // there, no nearer than that entry and no farther than that exit); shrunk by them, where it certainly is
@@ -77,10 +96,11 @@ struct ViewedEllipsoid {
   CameraEllipsoid ellipsoid;
   double grown = 1.0, shrunk = 0.0;  // the scales about its centre
   double chordMargin = 0.0;
-  // Bounds on any ray's entry and exit of the grown ellipsoid, margins included: its bounding sphere's.
+  // Bounds on any ray's entry and exit of the grown ellipsoid, margins included: its bounding sphere's
+  // depths.
   double nearest = 0.0, farthest = 0.0;
-  glm::dmat3 grownCone{0.0}, shrunkCone{0.0};  // silhouetteCone of each
-  glm::ivec2 reachLow{0}, reachHigh{-1};       // pixel rectangles (inclusive) of the grown and the shrunk one
+  ChordPolynomials grownChords, shrunkChords;
+  glm::ivec2 reachLow{0}, reachHigh{-1};  // pixel rectangles (inclusive) of the grown and the shrunk one
   glm::ivec2 coverLow{0}, coverHigh{-1};
   bool valid = false;  // whole between the near and far planes
 };
@@ -111,28 +131,26 @@ glm::dvec3 cameraHalfExtents(const CameraEllipsoid& ellipsoid) {
 struct ViewGrid {
   int width = 0;
   int height = 0;
-  float focal = 1.0f;            // pixels per unit of the image plane at distance 1
-  std::vector<glm::dvec3> rays;  // unit ray through each pixel centre (x right, y down), camera space
+  float focal = 1.0f;  // pixels per unit of the image plane at distance 1
 
   explicit ViewGrid(const Camera& camera) : width(camera.width), height(camera.height) {
     focal = 1.0f / camera.pixelSizeAt(1.0f);
-    rays.resize(std::size_t(width) * height);
-    for (int y = 0; y < height; ++y)
-      for (int x = 0; x < width; ++x)
-        rays[std::size_t(y) * width + x] = glm::normalize(
-            glm::dvec3((x + 0.5 - 0.5 * width) / focal, (0.5 * height - (y + 0.5)) / focal, -1.0));
   }
-  const glm::dvec3& ray(int x, int y) const { return rays[std::size_t(y) * width + x]; }
+  // The ray through a pixel centre (x right, y down) is (u, v, -1) in camera space.
+  double u(int x) const { return (x + 0.5 - 0.5 * width) / focal; }
+  double v(int y) const { return (0.5 * height - (y + 0.5)) / focal; }
 
-  // Where each pixel's ray enters and leaves a domain box, in the rays' distances (an affine map keeps a
-  // ray's parameter, so the slab test runs in the box's frame); without a box every ray is inside it.
+  // Where each pixel's ray enters and leaves a domain box, in planar eye depth (an affine map keeps a ray's
+  // parameter, so the slab test runs in the box's frame); without a box every ray is inside it.
   std::vector<double> boxEnter, boxLeave;
   void clipToBox(const DomainBox& domain, const glm::dmat4& boxFromCamera) {
-    boxEnter.assign(rays.size(), 0.0);
-    boxLeave.assign(rays.size(), 0.0);
+    const std::size_t pixels = std::size_t(width) * std::size_t(height);
+    boxEnter.assign(pixels, 0.0);
+    boxLeave.assign(pixels, 0.0);
     const glm::dvec3 origin(boxFromCamera[3]), low(domain.low), high(domain.high);
-    for (std::size_t pixel = 0; pixel < rays.size(); ++pixel) {
-      const glm::dvec3 direction = glm::dmat3(boxFromCamera) * rays[pixel];
+    for (std::size_t pixel = 0; pixel < pixels; ++pixel) {
+      const glm::dvec3 ray(u(int(pixel % std::size_t(width))), v(int(pixel / std::size_t(width))), -1.0);
+      const glm::dvec3 direction = glm::dmat3(boxFromCamera) * ray;
       double enter = -std::numeric_limits<double>::infinity(),
              leave = std::numeric_limits<double>::infinity();
       for (int axis = 0; axis < 3; ++axis) {
@@ -160,24 +178,20 @@ struct ViewGrid {
     return {0.5f * width + focal * point.x / -point.z, 0.5f * height - focal * point.y / -point.z};
   }
 
-  // The pixels of row y (clamped to [low, high]) whose centres' rays may meet the ellipsoid whose silhouette
-  // cone is k (silhouetteCone): its quadratic in u along the row, widened by a pixel each side for rounding
-  // (a row the quadratic cannot bound keeps [low, high]). Leaves first > last where the row misses it.
-  void rowSpan(const glm::dmat3& k, int y, int low, int high, int& first, int& last) const {
+  // The pixels of a row (clamped to [low, high]) whose centres' rays may meet an ellipsoid, from its cone's
+  // quadratic along the row, widened by a pixel each side for rounding (a row the quadratic cannot bound
+  // keeps [low, high]). Leaves first > last where the row misses it.
+  void rowSpan(const RowQuadratic& cone, int low, int high, int& first, int& last) const {
     first = low;
     last = high;
-    const double v = (0.5 * height - (y + 0.5)) / focal;
-    // r = (u, v, -1): k00 u^2 + 2 (k01 v - k02) u + (k11 v^2 - 2 k12 v + k22) >= 0.
-    const double qa = k[0][0], halfQb = k[0][1] * v - k[0][2];
-    const double qc = k[1][1] * v * v - 2.0 * k[1][2] * v + k[2][2];
-    if (!(qa < 0.0)) return;
-    const double discriminant = halfQb * halfQb - qa * qc;
+    if (!(cone.q2 < 0.0)) return;
+    const double discriminant = 0.25 * cone.q1 * cone.q1 - cone.q2 * cone.q0;
     if (!(discriminant >= 0.0)) {
       if (discriminant < 0.0) first = high + 1;  // a NaN keeps the whole row
       return;
     }
     const double root = std::sqrt(discriminant);
-    const double u0 = (-halfQb + root) / qa, u1 = (-halfQb - root) / qa;  // qa < 0: u0 <= u1
+    const double u0 = (-0.5 * cone.q1 + root) / cone.q2, u1 = (-0.5 * cone.q1 - root) / cone.q2;  // u0 <= u1
     const double x0 = std::floor(u0 * focal + 0.5 * width - 0.5) - 1.0;
     const double x1 = std::ceil(u1 * focal + 0.5 * width - 0.5) + 1.0;
     if (x0 > double(low)) first = x0 > double(high) ? high + 1 : int(x0);
@@ -241,12 +255,12 @@ OccludedAggregatesResult dropOccludedAggregates(std::vector<EllipsoidInstance>& 
       const glm::dvec3 halfExtents = cameraHalfExtents(view.ellipsoid);
       view.grown = 1.0 + kRadiusMargin + slack / shortest;
       view.chordMargin = kChordMargin * double(radius) + kDistanceMargin * double(distance);
-      view.nearest = double(distance) - view.grown * double(radius) - 2.0 * view.chordMargin;
-      view.farthest = double(distance) + view.grown * double(radius) + 2.0 * view.chordMargin;
+      view.nearest = double(depth) - view.grown * double(radius) - 2.0 * view.chordMargin;
+      view.farthest = double(depth) + view.grown * double(radius) + 2.0 * view.chordMargin;
       grid.rectangle(centre, glm::vec3(view.grown * halfExtents), view.reachLow, view.reachHigh);
-      view.grownCone = silhouetteCone(view.ellipsoid, view.grown);
+      view.grownChords = ChordPolynomials(view.ellipsoid, view.grown);
       view.shrunk = 1.0 - kRadiusMargin - slack / shortest;
-      view.shrunkCone = silhouetteCone(view.ellipsoid, view.shrunk);
+      view.shrunkChords = ChordPolynomials(view.ellipsoid, view.shrunk);
       if (!(view.shrunk > 0.0)) continue;
       grid.rectangle(centre, glm::vec3(view.shrunk * halfExtents), view.coverLow, view.coverHigh);
       covers[i] = 1;
@@ -260,8 +274,9 @@ OccludedAggregatesResult dropOccludedAggregates(std::vector<EllipsoidInstance>& 
   std::vector<double> frontAtMost(pixels, std::numeric_limits<double>::infinity());
   std::vector<double> backAtLeast(pixels, -std::numeric_limits<double>::infinity());
   // Where a layer's ellipsoid certainly reaches past the box's face, that layer's surface is the face itself,
-  // computed by every fragment there from the pixel's ray alone: nothing can be nearer (farther), and the
-  // others that reach it only tie. The first one met keeps the pixel; the others need not be drawn there.
+  // computed by every fragment there from the pixel's ray alone: nothing can be nearer (farther), the others
+  // that reach past it tie, and the impostor pass gives the face any exact tie with an ellipsoid's own
+  // surface (ellipsoid_impostor.frag). The first one met keeps the pixel; the others need not be drawn there.
   constexpr std::uint32_t kNoOwner = std::numeric_limits<std::uint32_t>::max();
   std::vector<std::uint32_t> frontFaceOwner, backFaceOwner;
   if (domain) {
@@ -293,7 +308,8 @@ OccludedAggregatesResult dropOccludedAggregates(std::vector<EllipsoidInstance>& 
       const ViewedEllipsoid& view = viewed[i];
       for (int y = std::max(view.coverLow.y, firstRow); y <= std::min(view.coverHigh.y, lastRow); ++y) {
         int firstX, lastX;
-        grid.rowSpan(view.shrunkCone, y, view.coverLow.x, view.coverHigh.x, firstX, lastX);
+        const RowChords row(view.shrunkChords, grid.v(y));
+        grid.rowSpan(row.cone, view.coverLow.x, view.coverHigh.x, firstX, lastX);
         for (int x = firstX; x <= lastX; ++x) {
           const std::size_t here = std::size_t(y) * grid.width + x;
           const bool frontSettled =
@@ -306,7 +322,7 @@ OccludedAggregatesResult dropOccludedAggregates(std::vector<EllipsoidInstance>& 
                      : backAtLeast[here] >= view.farthest;
           if (frontSettled && backSettled) continue;
           double entry, exit;
-          if (!chord(view.ellipsoid, view.shrunk, grid.ray(x, y), entry, exit)) continue;
+          if (!row.at(grid.u(x), entry, exit)) continue;
           const std::size_t pixel = std::size_t(y) * grid.width + x;
           // Where a domain box cuts it, its surfaces are the clipped chord's ends, if any are left.
           const double unclippedEntry = entry, unclippedExit = exit;
@@ -314,8 +330,7 @@ OccludedAggregatesResult dropOccludedAggregates(std::vector<EllipsoidInstance>& 
           if (!(entry < exit - 2.0 * view.chordMargin)) continue;
           // It covers the back layer only where its front lies before the solids (the impostor pass hides
           // it where its entry lies behind one).
-          const bool coversBackHere =
-              !solids || (entry + view.chordMargin) * -grid.ray(x, y).z < double(solids->nearestAt(x, y));
+          const bool coversBackHere = !solids || entry + view.chordMargin < double(solids->nearestAt(x, y));
           frontAtMost[pixel] = std::min(frontAtMost[pixel], entry + view.chordMargin);
           if (coversBackHere) backAtLeast[pixel] = std::max(backAtLeast[pixel], exit - view.chordMargin);
           if (!domain) continue;
@@ -347,7 +362,8 @@ OccludedAggregatesResult dropOccludedAggregates(std::vector<EllipsoidInstance>& 
       // side: where those alone settle a pixel (deep inside a body, most pixels), no chord is needed.
       for (int y = view.reachLow.y; y <= view.reachHigh.y && (hiddenFront || hiddenBack); ++y) {
         int firstX, lastX;
-        grid.rowSpan(view.grownCone, y, view.reachLow.x, view.reachHigh.x, firstX, lastX);
+        const RowChords row(view.grownChords, grid.v(y));
+        grid.rowSpan(row.cone, view.reachLow.x, view.reachHigh.x, firstX, lastX);
         for (int x = firstX; x <= lastX && (hiddenFront || hiddenBack); ++x) {
           const std::size_t pixel = std::size_t(y) * grid.width + x;
           const bool frontTie = domain && frontFaceOwner[pixel] != kNoOwner && frontFaceOwner[pixel] != i;
@@ -356,7 +372,7 @@ OccludedAggregatesResult dropOccludedAggregates(std::vector<EllipsoidInstance>& 
           const bool backSettled = !hiddenBack || backTie || backAtLeast[pixel] > view.farthest;
           if (frontSettled && backSettled) continue;
           double entry, exit;
-          if (!chord(view.ellipsoid, view.grown, grid.ray(x, y), entry, exit)) continue;
+          if (!row.at(grid.u(x), entry, exit)) continue;
           grid.clip(pixel, entry, exit);
           if (entry > exit + 2.0 * view.chordMargin) continue;  // the box leaves nothing of it here
           hiddenFront = hiddenFront && (frontTie || frontAtMost[pixel] < entry - view.chordMargin);
