@@ -327,7 +327,8 @@ OccludedAggregatesResult dropOccludedAggregates(std::vector<EllipsoidInstance>& 
           // Where a domain box cuts it, its surfaces are the clipped chord's ends, if any are left.
           const double unclippedEntry = entry, unclippedExit = exit;
           grid.clip(pixel, entry, exit);
-          if (!(entry < exit - 2.0 * view.chordMargin)) continue;
+          const bool clipped = entry != unclippedEntry || exit != unclippedExit;
+          if (clipped && !(entry < exit - 2.0 * view.chordMargin)) continue;
           // It covers the back layer only where its front lies before the solids (the impostor pass hides
           // it where its entry lies behind one).
           const bool coversBackHere = !solids || entry + view.chordMargin < double(solids->nearestAt(x, y));
