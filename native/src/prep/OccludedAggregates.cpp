@@ -37,9 +37,11 @@ struct CameraEllipsoid {
 // The rays r = (u, v, -1) through the image plane, whose parameter t is the planar eye depth of the point t
 // r: each meets the ellipsoid scaled by s about its centre where |t M r - M c| = s, that is at t = (g.r -+
 // sqrt(r^T K r)) / r^T A r with A = M^T M, g = M^T M c and the cone K = s^2 A - (C M)^T (C M), C the cross
-// product with M c (r^T K r = s^2 |M r|^2 - |M c x M r|^2: the discriminant in a form that stays exact for a
-// ball far from the eye, where the textbook quadratic's terms cancel; a sun's view is a thousand liquid radii
-// away). For one pixel every ellipsoid is compared on the same ray.
+// product with M c (r^T K r = s^2 |M r|^2 - |M c x M r|^2). Built from cross products, the discriminant's
+// rounding grows with (distance / radius)^2 rather than its fourth power, as the textbook quadratic's
+// cancelling terms would: a sun's view is a thousand liquid radii away, some 10^5 particle radii, where that
+// leaves about 10^-6 of a chord, far inside the margins. For one pixel every ellipsoid is compared on the same
+// ray.
 struct ChordPolynomials {
   glm::dmat3 lengths{0.0};  // A
   glm::dvec3 along{0.0};    // g
