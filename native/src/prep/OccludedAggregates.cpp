@@ -40,8 +40,8 @@ struct CameraEllipsoid {
 // product with M c (r^T K r = s^2 |M r|^2 - |M c x M r|^2). Built from cross products, the discriminant's
 // rounding grows with (distance / radius)^2 rather than its fourth power, as the textbook quadratic's
 // cancelling terms would: a sun's view is a thousand liquid radii away, some 10^5 particle radii, where that
-// leaves about 10^-6 of a chord, far inside the margins. For one pixel every ellipsoid is compared on the same
-// ray.
+// leaves about 10^-6 of a chord, far inside the margins. For one pixel every ellipsoid is compared on the
+// same ray.
 struct ChordPolynomials {
   glm::dmat3 lengths{0.0};  // A
   glm::dvec3 along{0.0};    // g
