@@ -36,7 +36,8 @@ void main() {
   // depth buffer value a step nearer, or farther for the back layer), so the layer is the face wherever one
   // ellipsoid reaches past it, whichever others are drawn (prep/OccludedAggregates.cpp relies on it).
   float bufferDepth = depthBufferFromEyeDepth(eyeDepth);
+  uint bufferBits = floatBitsToUint(bufferDepth);
   if (clipToDomain && castOnDomainFace)
-    bufferDepth = uintBitsToFloat(backFaces ? floatBitsToUint(bufferDepth) + 1u : floatBitsToUint(bufferDepth) - 1u);
+    bufferDepth = uintBitsToFloat(backFaces ? bufferBits + 1u : bufferBits - 1u);
   gl_FragDepth = bufferDepth;
 }

@@ -1,10 +1,11 @@
 #version 450 core
 // Draws each liquid particle's ellipsoid as the screen rectangle along its projection's own axes that bounds
 // that exact projection (the silhouette's dual conic, as Sigg et al. 2006, section 3.2, derive its
-// axis-aligned box; on the dam-break example 19 % fewer fragments than that box), or, where that does not exist (an ellipsoid reaching the camera plane), as a
-// camera-facing quad around its bounding sphere's silhouette; the fragment shader ray-casts the exact
-// ellipsoid (lib/ellipsoid_ray.glsl). A flattened ellipsoid seen edge-on covers a fraction of its bounding
-// sphere's square, and every fragment of the quad costs a ray cast. Four vertices per particle (gl_VertexID
+// axis-aligned box; on the dam-break example 19 % fewer fragments than that box), or, where that does not
+// exist (an ellipsoid reaching the camera plane), as a camera-facing quad around its bounding sphere's
+// silhouette; the fragment shader ray-casts the exact ellipsoid (lib/ellipsoid_ray.glsl). A flattened
+// ellipsoid seen edge-on covers a fraction of its bounding sphere's square, and every fragment of the quad
+// costs a ray cast. Four vertices per particle (gl_VertexID
 // / 4 names it), drawn as two indexed triangles rather than one instance each: llvmpipe pays per instance,
 // and the lights' views of a thick body drew 1.8 times faster so (docs/frame-cost.md).
 #include "lib/frame.glsl"
@@ -28,9 +29,9 @@ void main() {
   vInverseAxesCamera = inverseAxesInCamera(ellipsoid);
   vUnitSphereCamera = cameraInUnitSphere(vInverseAxesCamera, centre);
 
-  // Tight bounds: the unit sphere maps to clip space by T = clipFromCamera [A c; 0 1], and the ellipsoid's dual
-  // quadric there is Q* = T D T^T with D = diag(1, 1, 1, -1), whose entries are the rows r of T paired by D.
-  // Its silhouette's dual conic is Q*'s x, y, w rows and columns; an ellipse of centre m and shape S
+  // Tight bounds: the unit sphere maps to clip space by T = clipFromCamera [A c; 0 1], and the ellipsoid's
+  // dual quadric there is Q* = T D T^T with D = diag(1, 1, 1, -1), whose entries are the rows r of T paired
+  // by D. Its silhouette's dual conic is Q*'s x, y, w rows and columns; an ellipse of centre m and shape S
   // ({m + S^1/2 u : |u| <= 1}) has the dual conic [m m^T - S, m; m^T, 1] up to scale, so dividing by wDw
   // gives both. It holds while the whole ellipsoid is in front of the camera plane, that is wDw < 0.
   mat4 axes = mat4(inverse(vInverseAxesCamera));

@@ -14,9 +14,17 @@
 
 #include "prep/EllipsoidBounds.h"
 #include "prep/LayerOrder.h"
+#include "prep/ViewChords.h"
 
 namespace spindrift {
 namespace {
+
+using view_chords::cameraEllipsoid;
+using view_chords::CameraEllipsoid;
+using view_chords::cameraHalfExtents;
+using view_chords::ChordPolynomials;
+using view_chords::RowChords;
+using view_chords::ViewGrid;
 
 // Margins for the rounding between this test and the impostor pass's float ray casts. A covering ellipsoid is
 // shrunk and a possibly drawn one grown by kRadiusMargin of each semi-axis (and a ray's distance to a centre
@@ -27,69 +35,6 @@ constexpr double kRadiusMargin = 1e-3;
 constexpr double kDirectionMargin = 1e-6;
 constexpr double kChordMargin = 1e-2;
 constexpr double kDistanceMargin = 1e-5;
-
-// An ellipsoid in camera space, {x : |M (x - c)| <= 1}: the rows of M and M c.
-struct CameraEllipsoid {
-  glm::dvec3 rows[3];
-  glm::dvec3 scaledCentre{0.0};
-};
-
-// The rays r = (u, v, -1) through the image plane, whose parameter t is the planar eye depth of the point t
-// r: each meets the ellipsoid scaled by s about its centre where |t M r - M c| = s, that is at t = (g.r -+
-// sqrt(r^T K r)) / r^T A r with A = M^T M, g = M^T M c and the cone K = s^2 A - (C M)^T (C M), C the cross
-// product with M c (r^T K r = s^2 |M r|^2 - |M c x M r|^2). Built from cross products, the discriminant's
-// rounding grows with (distance / radius)^2 rather than its fourth power, as the textbook quadratic's
-// cancelling terms would: a sun's view is a thousand liquid radii away, some 10^5 particle radii, where that
-// leaves about 10^-6 of a chord, far inside the margins. For one pixel every ellipsoid is compared on the
-// same ray.
-struct ChordPolynomials {
-  glm::dmat3 lengths{0.0};  // A
-  glm::dvec3 along{0.0};    // g
-  glm::dmat3 cone{0.0};     // K
-
-  ChordPolynomials() = default;
-  ChordPolynomials(const CameraEllipsoid& ellipsoid, double scale) {
-    glm::dvec3 columns[3], crossed[3];
-    for (int j = 0; j < 3; ++j) {
-      columns[j] = glm::dvec3(ellipsoid.rows[0][j], ellipsoid.rows[1][j], ellipsoid.rows[2][j]);
-      crossed[j] = glm::cross(ellipsoid.scaledCentre, columns[j]);
-      along[j] = glm::dot(columns[j], ellipsoid.scaledCentre);
-    }
-    for (int j = 0; j < 3; ++j)
-      for (int k = 0; k < 3; ++k) {
-        lengths[j][k] = glm::dot(columns[j], columns[k]);
-        cone[j][k] = scale * scale * lengths[j][k] - glm::dot(crossed[j], crossed[k]);
-      }
-  }
-};
-
-// r^T Q r along a row (r = (u, v, -1), v fixed) as q2 u^2 + q1 u + q0.
-struct RowQuadratic {
-  double q2 = 0.0, q1 = 0.0, q0 = 0.0;
-  RowQuadratic(const glm::dmat3& q, double v)
-      : q2(q[0][0]), q1(2.0 * (q[0][1] * v - q[0][2])), q0(q[1][1] * v * v - 2.0 * q[1][2] * v + q[2][2]) {}
-  double at(double u) const { return (q2 * u + q1) * u + q0; }
-};
-
-// One ellipsoid's chords along one row of pixels.
-struct RowChords {
-  RowQuadratic lengths, cone;
-  double alongSlope, alongOffset;
-  RowChords(const ChordPolynomials& polynomials, double v)
-      : lengths(polynomials.lengths, v),
-        cone(polynomials.cone, v),
-        alongSlope(polynomials.along.x),
-        alongOffset(polynomials.along.y * v - polynomials.along.z) {}
-  // Where the ray at u enters and leaves (planar eye depths); false where it misses.
-  bool at(double u, double& entry, double& exit) const {
-    const double lengthSquared = lengths.at(u), missing = cone.at(u);
-    if (!(missing >= 0.0) || !(lengthSquared > 0.0)) return false;
-    const double along = alongSlope * u + alongOffset, half = std::sqrt(missing);
-    entry = (along - half) / lengthSquared;
-    exit = (along + half) / lengthSquared;
-    return true;
-  }
-};
 
 // One ellipsoid as this view sees it: grown by the margins, where a pixel's ray meets it (it may be drawn
 // there, no nearer than that entry and no farther than that exit); shrunk by them, where it certainly is
@@ -105,122 +50,6 @@ struct ViewedEllipsoid {
   glm::ivec2 reachLow{0}, reachHigh{-1};  // pixel rectangles (inclusive) of the grown and the shrunk one
   glm::ivec2 coverLow{0}, coverHigh{-1};
   bool valid = false;  // whole between the near and far planes
-};
-
-// The ellipsoid in camera space.
-CameraEllipsoid cameraEllipsoid(const EllipsoidInstance& ellipsoid, const glm::dmat3& cameraFromWorld,
-                                const glm::dvec3& centre) {
-  CameraEllipsoid result;
-  for (int k = 0; k < 3; ++k) {
-    result.rows[k] = cameraFromWorld * glm::dvec3(glm::vec3(ellipsoid.inverseAxesRows[k]));
-    result.scaledCentre[k] = glm::dot(result.rows[k], centre);
-  }
-  return result;
-}
-
-// Half the extent of an ellipsoid along each camera axis (the box about its centre that holds it): along a
-// unit e it reaches |M^-T e|, and M^-T = M (M^T M)^-1 is M with each row divided by its squared length,
-// the rows being orthogonal.
-glm::dvec3 cameraHalfExtents(const CameraEllipsoid& ellipsoid) {
-  glm::dvec3 squared(0.0);
-  for (int k = 0; k < 3; ++k) {
-    const glm::dvec3 axis = ellipsoid.rows[k] / glm::dot(ellipsoid.rows[k], ellipsoid.rows[k]);
-    squared += axis * axis;
-  }
-  return glm::sqrt(squared);
-}
-
-struct ViewGrid {
-  int width = 0;
-  int height = 0;
-  float focal = 1.0f;  // pixels per unit of the image plane at distance 1
-
-  explicit ViewGrid(const Camera& camera) : width(camera.width), height(camera.height) {
-    focal = 1.0f / camera.pixelSizeAt(1.0f);
-  }
-  // The ray through a pixel centre (x right, y down) is (u, v, -1) in camera space.
-  double u(int x) const { return (x + 0.5 - 0.5 * width) / focal; }
-  double v(int y) const { return (0.5 * height - (y + 0.5)) / focal; }
-
-  // Where each pixel's ray enters and leaves a domain box, in planar eye depth (an affine map keeps a ray's
-  // parameter, so the slab test runs in the box's frame); without a box every ray is inside it.
-  std::vector<double> boxEnter, boxLeave;
-  void clipToBox(const DomainBox& domain, const glm::dmat4& boxFromCamera) {
-    const std::size_t pixels = std::size_t(width) * std::size_t(height);
-    boxEnter.assign(pixels, 0.0);
-    boxLeave.assign(pixels, 0.0);
-    const glm::dvec3 origin(boxFromCamera[3]), low(domain.low), high(domain.high);
-    for (std::size_t pixel = 0; pixel < pixels; ++pixel) {
-      const glm::dvec3 ray(u(int(pixel % std::size_t(width))), v(int(pixel / std::size_t(width))), -1.0);
-      const glm::dvec3 direction = glm::dmat3(boxFromCamera) * ray;
-      double enter = -std::numeric_limits<double>::infinity(),
-             leave = std::numeric_limits<double>::infinity();
-      for (int axis = 0; axis < 3; ++axis) {
-        if (direction[axis] == 0.0) {
-          if (origin[axis] < low[axis] || origin[axis] > high[axis]) enter = leave = 0.0;  // misses the slab
-          continue;
-        }
-        const double a = (low[axis] - origin[axis]) / direction[axis];
-        const double b = (high[axis] - origin[axis]) / direction[axis];
-        enter = std::max(enter, std::min(a, b));
-        leave = std::min(leave, std::max(a, b));
-      }
-      boxEnter[pixel] = enter;
-      boxLeave[pixel] = leave;
-    }
-  }
-  // A chord clipped to the box, as the impostor pass clips it (lib/ellipsoid_ray.glsl).
-  void clip(std::size_t pixel, double& entry, double& exit) const {
-    if (boxEnter.empty()) return;
-    entry = std::max(entry, boxEnter[pixel]);
-    exit = std::min(exit, boxLeave[pixel]);
-  }
-  // The window position (x right, y down) of a camera-space point in front of the eye.
-  glm::vec2 pixelOf(const glm::vec3& point) const {
-    return {0.5f * width + focal * point.x / -point.z, 0.5f * height - focal * point.y / -point.z};
-  }
-
-  // The pixels of a row (clamped to [low, high]) whose centres' rays may meet an ellipsoid, from its cone's
-  // quadratic along the row, widened by a pixel each side for rounding (a row the quadratic cannot bound
-  // keeps [low, high]). Leaves first > last where the row misses it.
-  void rowSpan(const RowQuadratic& cone, int low, int high, int& first, int& last) const {
-    first = low;
-    last = high;
-    if (!(cone.q2 < 0.0)) return;
-    const double discriminant = 0.25 * cone.q1 * cone.q1 - cone.q2 * cone.q0;
-    if (!(discriminant >= 0.0)) {
-      if (discriminant < 0.0) first = high + 1;  // a NaN keeps the whole row
-      return;
-    }
-    const double root = std::sqrt(discriminant);
-    const double u0 = (-0.5 * cone.q1 + root) / cone.q2, u1 = (-0.5 * cone.q1 - root) / cone.q2;  // u0 <= u1
-    const double x0 = std::floor(u0 * focal + 0.5 * width - 0.5) - 1.0;
-    const double x1 = std::ceil(u1 * focal + 0.5 * width - 0.5) + 1.0;
-    if (x0 > double(low)) first = x0 > double(high) ? high + 1 : int(x0);
-    if (x1 < double(high)) last = x1 < double(low) ? low - 1 : int(x1);
-  }
-
-  // The pixels whose centres may see a box about `centre` (camera space, wholly in front of the eye): its
-  // corners projected, which bound its projection.
-  void rectangle(const glm::vec3& centre, const glm::vec3& halfExtents, glm::ivec2& low,
-                 glm::ivec2& high) const {
-    glm::vec2 least(std::numeric_limits<float>::max()), most(std::numeric_limits<float>::lowest());
-    for (int corner = 0; corner < 8; ++corner) {
-      const glm::vec3 point =
-          centre + halfExtents * glm::vec3(corner & 1 ? 1.0f : -1.0f, corner & 2 ? 1.0f : -1.0f,
-                                           corner & 4 ? 1.0f : -1.0f);
-      const glm::vec2 pixel = pixelOf(point);
-      least = glm::min(least, pixel);
-      most = glm::max(most, pixel);
-    }
-    // Pixel centres at +0.5 inside [least, most], widened by one pixel for rounding; clamped to just outside
-    // the frame first, so that a ball close to the eye plane cannot overflow the conversion to int.
-    const glm::vec2 outside(-2.0f), beyond(float(width) + 2.0f, float(height) + 2.0f);
-    least = glm::clamp(least, outside, beyond);
-    most = glm::clamp(most, outside, beyond);
-    low = glm::max(glm::ivec2(glm::floor(least - 0.5f)) - 1, glm::ivec2(0));
-    high = glm::min(glm::ivec2(glm::ceil(most - 0.5f)) + 1, glm::ivec2(width - 1, height - 1));
-  }
 };
 
 }  // namespace

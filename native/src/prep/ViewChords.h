@@ -1,0 +1,108 @@
+#pragma once
+
+#include <cstddef>
+#include <vector>
+
+#include <glm/mat3x3.hpp>
+#include <glm/mat4x4.hpp>
+#include <glm/vec2.hpp>
+#include <glm/vec3.hpp>
+
+#include "prep/LiquidPreparation.h"
+#include "spindrift/Camera.h"
+#include "spindrift/Scene.h"
+
+// The geometry of the occlusion test (prep/OccludedAggregates.cpp): where the rays through a view's pixel
+// centres enter and leave an ellipsoid and a domain box, in double precision.
+namespace spindrift::view_chords {
+
+// An ellipsoid in camera space, {x : |M (x - c)| <= 1}: the rows of M and M c.
+struct CameraEllipsoid {
+  glm::dvec3 rows[3];
+  glm::dvec3 scaledCentre{0.0};
+};
+
+/// The ellipsoid in camera space: `cameraFromWorld` is the view's rotation, `centre` the camera-space
+/// centre.
+CameraEllipsoid cameraEllipsoid(const EllipsoidInstance& ellipsoid, const glm::dmat3& cameraFromWorld,
+                                const glm::dvec3& centre);
+
+/// Half the extent of an ellipsoid along each camera axis (the box about its centre that holds it).
+glm::dvec3 cameraHalfExtents(const CameraEllipsoid& ellipsoid);
+
+// The rays r = (u, v, -1) through the image plane, whose parameter t is the planar eye depth of the point t
+// r: each meets the ellipsoid scaled by s about its centre where |t M r - M c| = s, that is at t = (g.r -+
+// sqrt(r^T K r)) / r^T A r with A = M^T M, g = M^T M c and the cone K = s^2 A - (C M)^T (C M), C the cross
+// product with M c (r^T K r = s^2 |M r|^2 - |M c x M r|^2). Built from cross products, the discriminant's
+// rounding grows with (distance / radius)^2 rather than its fourth power, as the textbook quadratic's
+// cancelling terms would: a sun's view is a thousand liquid radii away, some 10^5 particle radii, where
+// that leaves about 10^-6 of a chord, far inside the margins. For one pixel every ellipsoid is compared on
+// the same ray.
+struct ChordPolynomials {
+  glm::dmat3 lengths{0.0};  // A
+  glm::dvec3 along{0.0};    // g
+  glm::dmat3 cone{0.0};     // K
+
+  ChordPolynomials() = default;
+  ChordPolynomials(const CameraEllipsoid& ellipsoid, double scale);
+};
+
+// r^T Q r along a row (r = (u, v, -1), v fixed) as q2 u^2 + q1 u + q0.
+struct RowQuadratic {
+  double q2 = 0.0, q1 = 0.0, q0 = 0.0;
+  RowQuadratic(const glm::dmat3& q, double v)
+      : q2(q[0][0]), q1(2.0 * (q[0][1] * v - q[0][2])), q0(q[1][1] * v * v - 2.0 * q[1][2] * v + q[2][2]) {}
+  double at(double u) const { return (q2 * u + q1) * u + q0; }
+};
+
+// One ellipsoid's chords along one row of pixels.
+struct RowChords {
+  RowQuadratic lengths, cone;
+  double alongSlope, alongOffset;
+  RowChords(const ChordPolynomials& polynomials, double v)
+      : lengths(polynomials.lengths, v),
+        cone(polynomials.cone, v),
+        alongSlope(polynomials.along.x),
+        alongOffset(polynomials.along.y * v - polynomials.along.z) {}
+  // Where the ray at u enters and leaves (planar eye depths); false where it misses.
+  bool at(double u, double& entry, double& exit) const {
+    const double lengthSquared = lengths.at(u), missing = cone.at(u);
+    if (!(missing >= 0.0) || !(lengthSquared > 0.0)) return false;
+    const double along = alongSlope * u + alongOffset, half = std::sqrt(missing);
+    entry = (along - half) / lengthSquared;
+    exit = (along + half) / lengthSquared;
+    return true;
+  }
+};
+
+/// A view's pixel grid: the rays (u, v, -1) through its pixel centres, and where a domain box clips them.
+struct ViewGrid {
+  int width = 0;
+  int height = 0;
+  float focal = 1.0f;  // pixels per unit of the image plane at distance 1
+  // Where each pixel's ray enters and leaves a domain box, in planar eye depth; empty without a box.
+  std::vector<double> boxEnter, boxLeave;
+
+  explicit ViewGrid(const Camera& camera);
+  // The ray through a pixel centre (x right, y down) is (u, v, -1) in camera space.
+  double u(int x) const { return (x + 0.5 - 0.5 * width) / focal; }
+  double v(int y) const { return (0.5 * height - (y + 0.5)) / focal; }
+
+  // Fills boxEnter and boxLeave (an affine map keeps a ray's parameter, so the slab test runs in the box's
+  // frame).
+  void clipToBox(const DomainBox& domain, const glm::dmat4& boxFromCamera);
+  // A chord clipped to the box, as the impostor pass clips it (lib/ellipsoid_ray.glsl).
+  void clip(std::size_t pixel, double& entry, double& exit) const;
+  // The pixels of a row (clamped to [low, high]) whose centres' rays may meet an ellipsoid, from its cone's
+  // quadratic along the row, widened by a pixel each side for rounding (a row the quadratic cannot bound
+  // keeps [low, high]). Leaves first > last where the row misses it.
+  void rowSpan(const RowQuadratic& cone, int low, int high, int& first, int& last) const;
+  // The pixels whose centres may see a box about `centre` (camera space, wholly in front of the eye): its
+  // corners projected, which bound its projection.
+  void rectangle(const glm::vec3& centre, const glm::vec3& halfExtents, glm::ivec2& low,
+                 glm::ivec2& high) const;
+  // The window position (x right, y down) of a camera-space point in front of the eye.
+  glm::vec2 pixelOf(const glm::vec3& point) const;
+};
+
+}  // namespace spindrift::view_chords
