@@ -94,16 +94,23 @@ PixelCheck everyPixel(const std::vector<EllipsoidInstance>& all, const std::vect
   return check;
 }
 
-// A jittered 16 x 16 x 10 block, grown as a default Mantaflow domain grows its particles.
-std::vector<EllipsoidInstance> jitteredBlock(const Camera& camera) {
-  std::mt19937 random(3);
+// A jittered block of spacing 0.1 from (0.05, 0.05, 0.05) to `high`, grown as a default Mantaflow domain
+// grows its particles.
+std::vector<EllipsoidInstance> jitteredGrownBlock(const glm::vec3& high, unsigned seed,
+                                                  const Camera& camera) {
+  std::mt19937 random(seed);
   std::uniform_real_distribution<float> jitter(-0.03f, 0.03f);
-  std::vector<glm::vec3> positions = liquid_test::block({0.05f, 0.05f, 0.05f}, {1.55f, 1.55f, 0.95f}, 0.1f);
+  std::vector<glm::vec3> positions = liquid_test::block({0.05f, 0.05f, 0.05f}, high, 0.1f);
   for (glm::vec3& position : positions)
     position += glm::vec3(jitter(random), jitter(random), jitter(random));
   LiquidParameters parameters;
   parameters.surface_offset = 1.9f;
   return prepareLiquid(liquid_test::particlesOf(positions, 0.11f), camera, parameters).aggregates;
+}
+
+// A jittered 16 x 16 x 10 block.
+std::vector<EllipsoidInstance> jitteredBlock(const Camera& camera) {
+  return jitteredGrownBlock({1.55f, 1.55f, 0.95f}, 3, camera);
 }
 
 // Spheres of radius 0.048 on a lattice of spacing 0.1: none touches another.
@@ -165,13 +172,6 @@ TEST(OccludedAggregates, EllipsoidsTheDomainBoxCutsCoverWhatTheBoxLeavesOfThem) 
   // cut 30,270 of the 37,070 ellipsoids of the front layer. Seen from above, from the side (through the
   // wall's cut) and from below the floor, each layer still sees through every pixel what all ellipsoids,
   // clipped to the box, give, and most of the sheet goes from each layer.
-  std::mt19937 random(5);
-  std::uniform_real_distribution<float> jitter(-0.03f, 0.03f);
-  std::vector<glm::vec3> positions = liquid_test::block({0.05f, 0.05f, 0.05f}, {1.55f, 1.55f, 0.25f}, 0.1f);
-  for (glm::vec3& position : positions)
-    position += glm::vec3(jitter(random), jitter(random), jitter(random));
-  LiquidParameters parameters;
-  parameters.surface_offset = 1.9f;
   DomainBox box;
   box.worldFromBox = glm::rotate(glm::translate(glm::mat4(1.0f), glm::vec3(0.8f, 0.8f, 0.0f)),
                                  glm::radians(30.0f), glm::vec3(0.0f, 0.0f, 1.0f));
@@ -182,8 +182,7 @@ TEST(OccludedAggregates, EllipsoidsTheDomainBoxCutsCoverWhatTheBoxLeavesOfThem) 
       Camera::lookAt(128, 96, 40.0f, {0.8f - 2.0f, 0.8f + 3.5f, 0.4f}, {0.8f, 0.8f, 0.1f}, {0, 0, 1}),
       Camera::lookAt(128, 96, 40.0f, {1.5f, 0.2f, -2.5f}, {0.8f, 0.8f, 0.1f}, {0, 0, 1})};
   for (const Camera& camera : cameras) {
-    const std::vector<EllipsoidInstance> all =
-        prepareLiquid(liquid_test::particlesOf(positions, 0.11f), camera, parameters).aggregates;
+    const std::vector<EllipsoidInstance> all = jitteredGrownBlock({1.55f, 1.55f, 0.25f}, 5, camera);
     std::size_t cut = 0;
     for (const EllipsoidInstance& ellipsoid : all)
       cut += ellipsoid.centreAndBoundingRadius.z - ellipsoid.centreAndBoundingRadius.w < box.low.z;

@@ -40,13 +40,12 @@ constexpr double kDistanceMargin = 1e-5;
 // there, no nearer than that entry and no farther than that exit); shrunk by them, where it certainly is
 // (entering no later and leaving no earlier).
 struct ViewedEllipsoid {
-  CameraEllipsoid ellipsoid;
   double grown = 1.0, shrunk = 0.0;  // the scales about its centre
   double chordMargin = 0.0;
   // Bounds on any ray's entry and exit of the grown ellipsoid, margins included: its bounding sphere's
   // depths.
   double nearest = 0.0, farthest = 0.0;
-  ChordPolynomials grownChords, shrunkChords;
+  ChordPolynomials chords;
   glm::ivec2 reachLow{0}, reachHigh{-1};  // pixel rectangles (inclusive) of the grown and the shrunk one
   glm::ivec2 coverLow{0}, coverHigh{-1};
   bool valid = false;  // whole between the near and far planes
@@ -82,16 +81,15 @@ OccludedAggregatesResult dropOccludedAggregates(std::vector<EllipsoidInstance>& 
       // Every semi-axis grown, or shrunk, by kRadiusMargin of itself and by the slack at least.
       const double slack = kDirectionMargin * double(distance);
       const double shortest = double(inscribedRadius(ellipsoids[i]));
-      view.ellipsoid = cameraEllipsoid(ellipsoids[i], rotation, glm::dvec3(centre));
-      const glm::dvec3 halfExtents = cameraHalfExtents(view.ellipsoid);
+      const CameraEllipsoid ellipsoid = cameraEllipsoid(ellipsoids[i], rotation, glm::dvec3(centre));
+      const glm::dvec3 halfExtents = cameraHalfExtents(ellipsoid);
+      view.chords = ChordPolynomials(ellipsoid);
       view.grown = 1.0 + kRadiusMargin + slack / shortest;
       view.chordMargin = kChordMargin * double(radius) + kDistanceMargin * double(distance);
       view.nearest = double(depth) - view.grown * double(radius) - 2.0 * view.chordMargin;
       view.farthest = double(depth) + view.grown * double(radius) + 2.0 * view.chordMargin;
       grid.rectangle(centre, glm::vec3(view.grown * halfExtents), view.reachLow, view.reachHigh);
-      view.grownChords = ChordPolynomials(view.ellipsoid, view.grown);
       view.shrunk = 1.0 - kRadiusMargin - slack / shortest;
-      view.shrunkChords = ChordPolynomials(view.ellipsoid, view.shrunk);
       if (!(view.shrunk > 0.0)) continue;
       grid.rectangle(centre, glm::vec3(view.shrunk * halfExtents), view.coverLow, view.coverHigh);
       covers[i] = 1;
@@ -139,7 +137,7 @@ OccludedAggregatesResult dropOccludedAggregates(std::vector<EllipsoidInstance>& 
       const ViewedEllipsoid& view = viewed[i];
       for (int y = std::max(view.coverLow.y, firstRow); y <= std::min(view.coverHigh.y, lastRow); ++y) {
         int firstX, lastX;
-        const RowChords row(view.shrunkChords, grid.v(y));
+        const RowChords row(view.chords, view.shrunk, grid.v(y));
         grid.rowSpan(row.cone, view.coverLow.x, view.coverHigh.x, firstX, lastX);
         for (int x = firstX; x <= lastX; ++x) {
           const std::size_t here = std::size_t(y) * grid.width + x;
@@ -194,7 +192,7 @@ OccludedAggregatesResult dropOccludedAggregates(std::vector<EllipsoidInstance>& 
       // side: where those alone settle a pixel (deep inside a body, most pixels), no chord is needed.
       for (int y = view.reachLow.y; y <= view.reachHigh.y && (hiddenFront || hiddenBack); ++y) {
         int firstX, lastX;
-        const RowChords row(view.grownChords, grid.v(y));
+        const RowChords row(view.chords, view.grown, grid.v(y));
         grid.rowSpan(row.cone, view.reachLow.x, view.reachHigh.x, firstX, lastX);
         for (int x = firstX; x <= lastX && (hiddenFront || hiddenBack); ++x) {
           const std::size_t pixel = std::size_t(y) * grid.width + x;

@@ -31,17 +31,17 @@ glm::dvec3 cameraHalfExtents(const CameraEllipsoid& ellipsoid) {
   return glm::sqrt(squared);
 }
 
-ChordPolynomials::ChordPolynomials(const CameraEllipsoid& ellipsoid, double scale) {
-  glm::dvec3 columns[3], crossed[3];
+ChordPolynomials::ChordPolynomials(const CameraEllipsoid& ellipsoid) {
+  glm::dvec3 columns[3], crosses[3];
   for (int j = 0; j < 3; ++j) {
     columns[j] = glm::dvec3(ellipsoid.rows[0][j], ellipsoid.rows[1][j], ellipsoid.rows[2][j]);
-    crossed[j] = glm::cross(ellipsoid.scaledCentre, columns[j]);
+    crosses[j] = glm::cross(ellipsoid.scaledCentre, columns[j]);
     along[j] = glm::dot(columns[j], ellipsoid.scaledCentre);
   }
   for (int j = 0; j < 3; ++j)
     for (int k = 0; k < 3; ++k) {
       lengths[j][k] = glm::dot(columns[j], columns[k]);
-      cone[j][k] = scale * scale * lengths[j][k] - glm::dot(crossed[j], crossed[k]);
+      crossed[j][k] = glm::dot(crosses[j], crosses[k]);
     }
 }
 

@@ -38,13 +38,16 @@ glm::dvec3 cameraHalfExtents(const CameraEllipsoid& ellipsoid);
 // cancelling terms would: a sun's view is a thousand liquid radii away, some 10^5 particle radii, where
 // that leaves about 10^-6 of a chord, far inside the margins. For one pixel every ellipsoid is compared on
 // the same ray.
+// The ellipsoid grown and shrunk for the rounding margins differ in s alone, so A, g and B are kept once.
 struct ChordPolynomials {
   glm::dmat3 lengths{0.0};  // A
   glm::dvec3 along{0.0};    // g
-  glm::dmat3 cone{0.0};     // K
+  glm::dmat3 crossed{0.0};  // B = (C M)^T (C M)
 
   ChordPolynomials() = default;
-  ChordPolynomials(const CameraEllipsoid& ellipsoid, double scale);
+  explicit ChordPolynomials(const CameraEllipsoid& ellipsoid);
+  // The cone K of the ellipsoid scaled by s.
+  glm::dmat3 cone(double scale) const { return scale * scale * lengths - crossed; }
 };
 
 // r^T Q r along a row (r = (u, v, -1), v fixed) as q2 u^2 + q1 u + q0.
@@ -55,13 +58,13 @@ struct RowQuadratic {
   double at(double u) const { return (q2 * u + q1) * u + q0; }
 };
 
-// One ellipsoid's chords along one row of pixels.
+// One ellipsoid's chords along one row of pixels, the ellipsoid scaled by `scale` about its centre.
 struct RowChords {
   RowQuadratic lengths, cone;
   double alongSlope, alongOffset;
-  RowChords(const ChordPolynomials& polynomials, double v)
+  RowChords(const ChordPolynomials& polynomials, double scale, double v)
       : lengths(polynomials.lengths, v),
-        cone(polynomials.cone, v),
+        cone(polynomials.cone(scale), v),
         alongSlope(polynomials.along.x),
         alongOffset(polynomials.along.y * v - polynomials.along.z) {}
   // Where the ray at u enters and leaves (planar eye depths); false where it misses.
