@@ -116,13 +116,16 @@ void main() {
       weights += lambda;
       // k: the sample lies behind foam, liquid or a solid, each within AOMaxOcclDist of the fragment. a sums
       // the opacities of the fragments in front of it (foam: its intensity), and delta is the nearest one's.
-      float foamOccluder = texelFetch(foamDepth, samplePixel, 0).r;
+      // Foam of no intensity is not an occluder: it is clear, and the sprite passes need not draw it
+      // (foam.cull_hidden), so its depth is not always there.
+      float foamOpacity = texelFetch(foamIntensity, samplePixel, 0).r;
+      float foamOccluder = foamOpacity > 0.0 ? texelFetch(foamDepth, samplePixel, 0).r : kNoSurfaceDepth;
       float fluidOccluder = texelFetch(fluidEyeDepth, samplePixel, 0).r;
       float solidOccluder = texelFetch(solidEyeDepth, samplePixel, 0).r;
       float opacity = 0.0, delta = 0.0;
       if (sampleDepth > foamOccluder) {
         float range = occlusionRange(depth, foamOccluder);
-        if (range > 0.0) opacity += texelFetch(foamIntensity, samplePixel, 0).r;
+        if (range > 0.0) opacity += foamOpacity;
         delta = max(delta, range);
       }
       if (sampleDepth > fluidOccluder) {

@@ -34,6 +34,8 @@ const char* passName(Pass pass) {
       return "refraction";
     case Pass::FoamSceneDepth:
       return "foam_scene_depth";
+    case Pass::FoamVisibility:
+      return "foam_visibility";
     case Pass::FoamDepth:
       return "foam_depth";
     case Pass::FoamThickness:
@@ -113,8 +115,12 @@ FramePlan planFrame(const FrameContents& contents) {
   const char* foamReason = contents.foamParticles == 0 ? "no foam particles in view"
                            : !foamShown                ? "no foam layer or composite asked for (--layers)"
                                                        : nullptr;
-  for (Pass pass : {Pass::FoamSceneDepth, Pass::FoamDepth, Pass::FoamThickness, Pass::FoamIntensity,
-                    Pass::FoamOcclusion, Pass::FoamBlur})
+  decide(Pass::FoamSceneDepth, foamReason);
+  decide(Pass::FoamVisibility, foamReason             ? foamReason
+                               : contents.foamCulling ? nullptr
+                                                      : "foam.cull_hidden is off");
+  for (Pass pass :
+       {Pass::FoamDepth, Pass::FoamThickness, Pass::FoamIntensity, Pass::FoamOcclusion, Pass::FoamBlur})
     decide(pass, foamReason);
   decide(Pass::Composite, contents.compositeWanted ? nullptr : "composite not asked for (--layers)");
   return plan;

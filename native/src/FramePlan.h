@@ -24,6 +24,7 @@ enum class Pass {
   RaymarchSurface,  ///< liquid.surface = raymarch: six passes, timed by RaymarchSurface itself
   Refraction,
   FoamSceneDepth,
+  FoamVisibility,
   FoamDepth,
   FoamThickness,
   FoamIntensity,
@@ -57,6 +58,7 @@ struct FrameContents {
   bool caustics = true;                ///< light.caustics.
   int skyOcclusionDirections = 16;     ///< light.sky_occlusion_directions.
   bool lightLayersWanted = true;       ///< Any of liquid_shadow, caustics, liquid_sky (`--layers`).
+  bool foamCulling = true;             ///< foam.cull_hidden.
 };
 
 /// Which passes a frame runs and, for each it does not, why. The wiring of the frame in one plain function,

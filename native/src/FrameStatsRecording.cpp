@@ -52,4 +52,9 @@ void recordFoamOcclusion(const FoamOcclusionStatistics& occlusion, FoamFrameStat
   stats.aoSamplesPerPixel = occlusion.foamPixels ? double(occlusion.samples) / occlusion.foamPixels : 0.0;
 }
 
+void recordFoamCulling(const VisibleFoam& visible, FoamFrameStats& stats) {
+  stats.hiddenBehindSolids = visible.behindSolids;
+  stats.hiddenUnderLiquid = visible.underLiquid;
+}
+
 }  // namespace spindrift

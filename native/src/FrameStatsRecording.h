@@ -3,6 +3,7 @@
 #include "framedata/FoamOcclusionData.h"
 #include "framedata/LiquidData.h"
 #include "prep/FoamPreparation.h"
+#include "prep/HiddenFoam.h"
 #include "prep/LightViews.h"
 #include "prep/LiquidPreparation.h"
 #include "spindrift/RenderResult.h"
@@ -17,6 +18,8 @@ void recordLighting(std::size_t sceneLights, const LightingPreparation& lighting
                     LightFrameStats& stats);
 /// Copies the refraction pass's GPU counters into the liquid stats.
 void recordRefraction(const RefractionStatistics& rays, LiquidFrameStats& stats);
+/// Copies the counts of the foam particles the sprite passes left out into the foam stats.
+void recordFoamCulling(const VisibleFoam& visible, FoamFrameStats& stats);
 /// Copies the foam occlusion pass's GPU counters into the foam stats.
 void recordFoamOcclusion(const FoamOcclusionStatistics& occlusion, FoamFrameStats& stats);
 

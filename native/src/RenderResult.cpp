@@ -79,6 +79,8 @@ nlohmann::json FrameStats::toJson() const {
         {"surface_particles", foam.surfaceParticles},
         {"bubble_particles", foam.bubbleParticles},
         {"culled", foam.culled},
+        {"hidden_behind_solids", foam.hiddenBehindSolids},
+        {"hidden_under_liquid", foam.hiddenUnderLiquid},
         {"foam_pixels", foam.foamPixels},
         {"occlusion_estimates", foam.occlusionEstimates},
         {"ao_samples_per_pixel", foam.aoSamplesPerPixel}}},

@@ -26,6 +26,7 @@
 #include "passes/FoamOcclusionPass.h"
 #include "passes/FoamSceneDepthPass.h"
 #include "passes/FoamThicknessPass.h"
+#include "passes/FoamVisibilityPass.h"
 #include "passes/FrameUniforms.h"
 #include "passes/OccluderDepthPass.h"
 #include "passes/RefractionPass.h"
@@ -67,6 +68,7 @@ struct FramePipeline {
   RaymarchSurface raymarch{shaders};
   RefractionPass refraction{shaders};
   FoamSceneDepthPass foamSceneDepth{shaders};
+  FoamVisibilityPass foamVisibility{shaders};
   FoamDepthPass foamDepth{shaders};
   FoamThicknessPass foamThickness{shaders};
   FoamIntensityPass foamIntensity{shaders};
@@ -307,6 +309,7 @@ RenderResult Renderer::renderPrepared(const Scene& scene, const Particles& parti
                          layers.wantsComposite(),    layers.wantsLiquidLayers(), layers.wantsFoamLayers(),
                          impl_->intermediateLayers,  liquidParameters.surface};
   contents.lights = scene.lights.size();
+  contents.foamCulling = foamParameters.cull_hidden;
   contents.lightsSeeingLiquid = lighting.lights.size();
   contents.causticLights = causticLights(lighting);
   contents.caustics = scene.parameters.light.caustics;
@@ -396,8 +399,18 @@ RenderResult Renderer::renderPrepared(const Scene& scene, const Particles& parti
         return pipeline.foamSceneDepth.run(background, liquidLayer ? &liquidLayer->frontDepth : nullptr,
                                            width, height);
       });
-      const FoamSurfaceData foamSurface = timed(
-          Pass::FoamDepth, [&] { return pipeline.foamDepth.run(foam.instances, sceneDepth, width, height); });
+      // Particles that no foam layer would show are left out of the sprite passes (foam.cull_hidden).
+      std::optional<VisibleFoam> visible;
+      if (plan.runs(Pass::FoamVisibility))
+        visible.emplace(timed(Pass::FoamVisibility, [&] {
+          return cullHiddenFoam(foam.instances, camera,
+                                pipeline.foamVisibility.run(sceneDepth, foamParameters, width, height));
+        }));
+      if (visible) recordFoamCulling(*visible, stats.foam);
+      const FoamSurfaceData foamSurface = timed(Pass::FoamDepth, [&] {
+        return pipeline.foamDepth.run(visible ? visible->instances : foam.instances, sceneDepth, width,
+                                      height);
+      });
       const FoamThicknessData foamThickness = timed(Pass::FoamThickness, [&] {
         return pipeline.foamThickness.run(foamSurface, sceneDepth, foamParameters, width, height);
       });

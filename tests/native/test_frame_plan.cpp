@@ -24,8 +24,9 @@ std::string reasonFor(const FramePlan& plan, const std::string& pass) {
   return "";
 }
 
-const std::vector<std::string> kFoamPasses = {"foam_scene_depth", "foam_depth",     "foam_thickness",
-                                              "foam_intensity",   "foam_occlusion", "foam_blur"};
+const std::vector<std::string> kFoamPasses = {"foam_scene_depth", "foam_visibility", "foam_depth",
+                                              "foam_thickness",   "foam_intensity",  "foam_occlusion",
+                                              "foam_blur"};
 
 const std::vector<std::string> kLightPasses = {"light_depth_layers", "liquid_shadow", "caustics",
                                                "sky_occlusion", "lit_background"};
@@ -39,25 +40,16 @@ TEST(FramePlan, FullFrameRunsEveryPassInRecipeOrder) {
   contents.causticLights = 1;
   contents.caustics = true;
   const FramePlan plan = planFrame(contents);
-  const std::vector<std::string> expected = {"background",
-                                             "occluder_depth",
-                                             "liquid_mesh_depth",
-                                             "light_depth_layers",
-                                             "liquid_shadow",
-                                             "caustics",
-                                             "sky_occlusion",
-                                             "lit_background",
-                                             "splash_depth_layers",
-                                             "aggregate_depth_layers",
-                                             "smoothing",
-                                             "refraction",
-                                             "foam_scene_depth",
-                                             "foam_depth",
-                                             "foam_thickness",
-                                             "foam_intensity",
-                                             "foam_occlusion",
-                                             "foam_blur",
-                                             "composite"};
+  const std::vector<std::string> expected = {"background",          "occluder_depth",
+                                             "liquid_mesh_depth",   "light_depth_layers",
+                                             "liquid_shadow",       "caustics",
+                                             "sky_occlusion",       "lit_background",
+                                             "splash_depth_layers", "aggregate_depth_layers",
+                                             "smoothing",           "refraction",
+                                             "foam_scene_depth",    "foam_visibility",
+                                             "foam_depth",          "foam_thickness",
+                                             "foam_intensity",      "foam_occlusion",
+                                             "foam_blur",           "composite"};
   EXPECT_EQ(names(plan.passes), expected);
   EXPECT_TRUE(plan.skipped.empty());
 }
@@ -65,7 +57,7 @@ TEST(FramePlan, FullFrameRunsEveryPassInRecipeOrder) {
 TEST(FramePlan, EmptyFrameRunsBackgroundAndCompositeOnly) {
   const FramePlan plan = planFrame({0, 0, 0, "plane_fit"});
   EXPECT_EQ(names(plan.passes), (std::vector<std::string>{"background", "composite"}));
-  ASSERT_EQ(plan.skipped.size(), 17u);
+  ASSERT_EQ(plan.skipped.size(), 18u);
   EXPECT_EQ(plan.skipped.front().name, "occluder_depth");
   EXPECT_EQ(reasonFor(plan, "occluder_depth"), "no occluders");
   EXPECT_EQ(reasonFor(plan, "liquid_mesh_depth"), "no liquid mesh");
@@ -185,14 +177,24 @@ TEST(FramePlan, EveryPassIsEitherRunOrSkippedExactlyOnce) {
             }
             std::sort(all.begin(), all.end());
             EXPECT_EQ(std::adjacent_find(all.begin(), all.end()), all.end());
-            EXPECT_EQ(all.size(), 19u);
+            EXPECT_EQ(all.size(), 20u);
             // A pass runs only when what it reads runs.
             if (plan.runs(Pass::SkyOcclusion)) EXPECT_TRUE(plan.runs(Pass::LitBackground));
             if (plan.runs(Pass::Smoothing)) EXPECT_TRUE(plan.runs(Pass::AggregateDepthLayers));
             if (plan.runs(Pass::FoamSceneDepth) && (splash || aggregate))
               EXPECT_TRUE(plan.runs(Pass::Refraction));
+            if (plan.runs(Pass::FoamVisibility)) EXPECT_TRUE(plan.runs(Pass::FoamSceneDepth));
           }
         }
+}
+
+TEST(FramePlan, FoamDrawnWithoutCullingSkipsItsVisibility) {
+  FrameContents contents{100, 1000, 50, "plane_fit"};
+  contents.foamCulling = false;
+  const FramePlan plan = planFrame(contents);
+  EXPECT_FALSE(plan.runs(Pass::FoamVisibility));
+  EXPECT_TRUE(plan.runs(Pass::FoamDepth));
+  EXPECT_EQ(reasonFor(plan, "foam_visibility"), "foam.cull_hidden is off");
 }
 
 FrameContents withLayers(bool composite, bool liquid, bool foam) {

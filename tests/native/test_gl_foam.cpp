@@ -172,6 +172,66 @@ TEST(GLFoam, FoamBelowLiquidSurfaceFadesWithDepth) {
   }
 }
 
+// foam.cull_hidden: spray behind a wall and bubbles deeper under the liquid than attenuation_distance are not
+// drawn, and every foam layer and the composite stay exactly what drawing every particle gives.
+TEST(GLFoam, HiddenFoamIsLeftOutAndChangesNoLayer) {
+  TempDirectory directory;
+  const int size = 65;
+  // A render with a liquid surface at eye depth 4 (world z = 1) everywhere; the solids: a wall at eye depth 3
+  // over the left third of the frame, nothing elsewhere.
+  writeBackgroundExr(
+      directory.path() / "with_liquid.exr", size, size, [](int, int) { return glm::vec3(0.1f, 0.2f, 0.3f); },
+      [](int, int) { return 4.0f; });
+  writeBackgroundExr(
+      directory.path() / "solids.exr", size, size, [](int, int) { return glm::vec3(0.1f, 0.2f, 0.3f); },
+      [&](int column, int) { return column < size / 3 ? 3.0f : 1e10f; });
+  Scene scene = sceneLookingDown(size);
+  scene.background.image = directory.path() / "with_liquid.exr";
+  scene.background.depth = directory.path() / "solids.exr";
+  scene.background.liquidDepth = directory.path() / "with_liquid.exr";
+  scene.background.depthExplicit = true;
+  const float radius = 0.04f;
+  const std::vector<glm::vec3> behindWall =
+      liquid_test::block({-0.85f, -0.4f, 1.5f}, {-0.65f, 0.4f, 1.5f}, 0.04f);
+  const std::vector<glm::vec3> deepBubbles =
+      liquid_test::block({0.0f, -0.5f, 0.4f}, {0.5f, -0.2f, 0.5f}, 0.05f);
+  Particles particles;
+  appendFoam(particles, behindWall, radius, ParticleKind::Spray);
+  appendFoam(particles, deepBubbles, radius, ParticleKind::Bubble);
+  // What stays: surface foam on the liquid, bubbles just under it, spray in front of the wall.
+  appendFoam(particles, liquid_test::block({-0.1f, -0.1f, 0.98f}, {0.6f, 0.5f, 0.98f}, 0.04f), radius,
+             ParticleKind::Foam);
+  appendFoam(particles, liquid_test::block({0.0f, -0.15f, 0.8f}, {0.5f, 0.5f, 0.85f}, 0.05f), radius,
+             ParticleKind::Bubble);
+  appendFoam(particles, liquid_test::block({-0.7f, -0.3f, 2.3f}, {-0.5f, 0.3f, 2.3f}, 0.05f), radius,
+             ParticleKind::Spray);
+  const RenderResult culled = renderer().renderParticles(scene, particles, 1);
+  scene.parameters.foam.cull_hidden = false;
+  const RenderResult drawn = renderer().renderParticles(scene, particles, 1);
+  expectFiniteFoam(culled);
+  EXPECT_EQ(culled.stats.foam.hiddenBehindSolids, behindWall.size());
+  EXPECT_EQ(culled.stats.foam.hiddenUnderLiquid, deepBubbles.size());
+  EXPECT_EQ(drawn.stats.foam.hiddenBehindSolids + drawn.stats.foam.hiddenUnderLiquid, 0u);
+  bool skippedWithReason = false;
+  for (const SkippedPass& pass : drawn.stats.skipped)
+    skippedWithReason |= pass.name == "foam_visibility" && pass.reason == "foam.cull_hidden is off";
+  EXPECT_TRUE(skippedWithReason);
+  double visible = 0.0;
+  for (const char* layer : {"composite", "foam", "foam_spray", "foam_surface", "foam_bubble", "foam_shadow",
+                            "foam_irradiance", "foam_thickness"}) {
+    const std::vector<float>& a = culled.layer(layer)->pixels;
+    const std::vector<float>& b = drawn.layer(layer)->pixels;
+    ASSERT_EQ(a.size(), b.size()) << layer;
+    std::size_t differing = 0;
+    for (std::size_t i = 0; i < a.size(); ++i)
+      differing += a[i] != b[i];
+    EXPECT_EQ(differing, 0u) << layer;
+  }
+  for (float alpha : culled.layer("foam_bubble")->pixels)
+    visible = std::max<double>(visible, alpha);
+  EXPECT_GT(visible, 0.02);  // the shallow bubbles show: the test looks at foam that is drawn
+}
+
 // Surface foam in a hemispherical bowl of radius 0.3 (rim at z = 0, bottom at z = -0.3) in a flat field out
 // to 0.7.
 Particles bowlOfFoam() {
@@ -309,7 +369,7 @@ TEST(GLFoam, NoFoamInViewSkipsFoamPasses) {
   int skippedFoamPasses = 0;
   for (const SkippedPass& pass : result.stats.skipped)
     skippedFoamPasses += pass.name.rfind("foam_", 0) == 0 && pass.reason == "no foam particles in view";
-  EXPECT_EQ(skippedFoamPasses, 6);
+  EXPECT_EQ(skippedFoamPasses, 7);
   for (const PassTiming& pass : result.stats.passes)
     EXPECT_NE(pass.name.rfind("foam_", 0), 0u) << pass.name;
   EXPECT_EQ(result.stats.foam.culled, 1u);
