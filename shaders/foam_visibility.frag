@@ -2,8 +2,9 @@
 // Where foam can still be seen, per tile of the screen: for each tile, the eye depth beyond which a foam
 // fragment anywhere in it shows nothing. A fragment behind a solid is discarded by the sprite passes, and one
 // deeper under the liquid than the attenuation distance eta_max adds no thickness (f_att = 0), so the depth is
-// min(solid, liquid + eta_max) at a pixel, and its largest value over the tile. The sprite vertex shader
-// leaves out a particle whose sphere lies wholly beyond it over the tiles its sprite covers.
+// min(solid, liquid + eta_max) at a pixel, and its largest value over the tile. The tiles are read back, and
+// the CPU leaves out a particle whose sphere lies wholly beyond them over the tiles its sprite covers
+// (prep/HiddenFoam.cpp).
 #include "lib/frame.glsl"
 
 layout(binding = 0) uniform sampler2D solidEyeDepth;
@@ -22,7 +23,8 @@ void main() {
     for (int x = first.x; x <= last.x; ++x) {
       float solid = texelFetch(solidEyeDepth, ivec2(x, y), 0).r;
       float fluid = texelFetch(fluidEyeDepth, ivec2(x, y), 0).r;
-      // NaN never hides anything: max() keeps the other operand, so it is replaced by "nothing here".
+      // A solid depth that is NaN or not positive hides nothing here (the sprite passes would discard every
+      // fragment before a non-positive one, so this only culls less).
       if (!(solid > 0.0)) solid = kNoSurfaceDepth;
       behindSolids = max(behindSolids, solid);
       float underLiquid = fluid > 0.0 && fluid < 0.5 * kNoSurfaceDepth ? fluid + attenuationDistance : kNoSurfaceDepth;
