@@ -154,6 +154,32 @@ TEST_F(ImageFilesTest, DecodesSrgbPngAndPremultipliesItsAlpha) {
   EXPECT_FALSE(readDepthImage(path).has_value());
 }
 
+// libpng allocates what a chunk claims before reading it (fuzz_background_image: a 110-byte file claiming 3.6
+// GB). A chunk longer than the file is refused first, by name; a valid PNG, with its chunks walked, still
+// reads.
+TEST_F(ImageFilesTest, PngChunkLongerThanTheFileIsRefusedBeforeDecoding) {
+  const std::filesystem::path good = directory_ / "good.png";
+  writeImage(good, 2, 1, {"R", "G", "B"}, std::vector<std::uint8_t>{1, 2, 3, 4, 5, 6}, OIIO::TypeUInt8);
+  EXPECT_EQ(readColorImage(good).width, 2);
+
+  std::ifstream in(good, std::ios::binary);
+  std::vector<char> bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  // After the signature and IHDR (8 + 25 bytes), an ancillary chunk claiming 0xda2ab66e bytes.
+  const std::vector<char> claim = {char(0xda), char(0x2a), char(0xb6), char(0x6e), 'n', 'u', 'l', 'l'};
+  bytes.insert(bytes.begin() + 33, claim.begin(), claim.end());
+  for (const char* name : {"claims.png", "claims.tif"}) {  // by its signature, whatever its extension
+    const std::filesystem::path corrupt = directory_ / name;
+    std::ofstream(corrupt, std::ios::binary).write(bytes.data(), std::streamsize(bytes.size()));
+    try {
+      readColorImage(corrupt);
+      FAIL() << "a PNG chunk claiming 3.6 GB was read";
+    } catch (const Error& error) {
+      EXPECT_NE(std::string(error.what()).find("chunk 'null' claims 3660232302 bytes"), std::string::npos)
+          << error.what();
+    }
+  }
+}
+
 TEST_F(ImageFilesTest, RepeatsGreyToRgbWithOpaqueAlpha) {
   const std::filesystem::path path = directory_ / "grey.png";
   writeImage(path, 2, 2, {"Y"}, std::vector<std::uint8_t>{0, 255, 128, 64}, OIIO::TypeUInt8);

@@ -14,6 +14,7 @@
 
 #include "io/ExrHeaderCheck.h"
 #include "io/OiioErrors.h"
+#include "io/PngChunkCheck.h"
 #include "spindrift/Error.h"
 #include "spindrift/Limits.h"
 
@@ -30,6 +31,7 @@ using oiio_errors::oneLine;
 std::unique_ptr<OIIO::ImageInput> openImage(const std::filesystem::path& path) {
   if (!std::filesystem::exists(path)) fail(path, "no such image file");
   checkExrHeaderClaims(path);
+  checkPngChunkClaims(path);
   // Keep unassociated alpha (PNG, TIFF) as stored: OIIO would otherwise premultiply the sRGB-encoded
   // values, and premultiplying is only right after decoding to linear.
   OIIO::ImageSpec config;
