@@ -180,6 +180,78 @@ TEST_F(ImageFilesTest, PngChunkLongerThanTheFileIsRefusedBeforeDecoding) {
   }
 }
 
+// OpenImageIO 2.4 reads a Photoshop APP13 segment's IPTC block with the size the block claims, past the
+// segment (fuzz_background_image: a heap over-read). Such a JPEG is refused; one whose block fits still
+// reads.
+TEST_F(ImageFilesTest, JpegIptcBlockLongerThanItsSegmentIsRefused) {
+  const std::filesystem::path plain = directory_ / "plain.jpg";
+  writeImage(plain, 2, 1, {"R", "G", "B"}, std::vector<std::uint8_t>{10, 20, 30, 40, 50, 60},
+             OIIO::TypeUInt8);
+  std::ifstream in(plain, std::ios::binary);
+  const std::vector<char> bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  // APP13 after the start of image: "Photoshop 3.0\0", "8BIM", resource 1028, 4 skipped bytes, the IPTC size,
+  // then an IPTC record 1C 02 78 00 02 "hi" (7 bytes).
+  auto withIptc = [&](unsigned claimedSize) {
+    std::vector<char> segment = {'P',
+                                 'h',
+                                 'o',
+                                 't',
+                                 'o',
+                                 's',
+                                 'h',
+                                 'o',
+                                 'p',
+                                 ' ',
+                                 '3',
+                                 '.',
+                                 '0',
+                                 '\0',
+                                 '8',
+                                 'B',
+                                 'I',
+                                 'M',
+                                 0x04,
+                                 0x04,
+                                 0,
+                                 0,
+                                 0,
+                                 0,
+                                 char(claimedSize >> 8),
+                                 char(claimedSize & 0xff),
+                                 0x1c,
+                                 0x02,
+                                 0x78,
+                                 0x00,
+                                 0x02,
+                                 'h',
+                                 'i'};
+    const std::size_t length = segment.size() + 2;
+    std::vector<char> result(bytes.begin(), bytes.begin() + 2);
+    for (const char byte : {char(0xff), char(0xed), char(length >> 8), char(length & 0xff)})
+      result.push_back(byte);
+    result.insert(result.end(), segment.begin(), segment.end());
+    result.insert(result.end(), bytes.begin() + 2, bytes.end());
+    return result;
+  };
+  const std::filesystem::path fits = directory_ / "fits.jpg";
+  const std::vector<char> fitting = withIptc(7);
+  std::ofstream(fits, std::ios::binary).write(fitting.data(), std::streamsize(fitting.size()));
+  EXPECT_EQ(readColorImage(fits).width, 2);
+  for (const char* name : {"overruns.jpg", "overruns.png"}) {  // by its marker, whatever its extension
+    const std::filesystem::path corrupt = directory_ / name;
+    const std::vector<char> overrunning = withIptc(0x5900);
+    std::ofstream(corrupt, std::ios::binary).write(overrunning.data(), std::streamsize(overrunning.size()));
+    try {
+      readColorImage(corrupt);
+      FAIL() << "a JPEG whose IPTC block overruns its segment was read";
+    } catch (const Error& error) {
+      EXPECT_NE(std::string(error.what()).find("IPTC block claims more than its 33-byte APP13 segment"),
+                std::string::npos)
+          << error.what();
+    }
+  }
+}
+
 TEST_F(ImageFilesTest, RepeatsGreyToRgbWithOpaqueAlpha) {
   const std::filesystem::path path = directory_ / "grey.png";
   writeImage(path, 2, 2, {"Y"}, std::vector<std::uint8_t>{0, 255, 128, 64}, OIIO::TypeUInt8);
@@ -315,6 +387,17 @@ TEST_F(ImageFilesTest, RefusesAnExrWhoseHeaderClaimsMoreThanTheFileHolds) {
   std::vector<char> cut(tiledBytes.begin(), tiledBytes.begin() + 12);  // inside the first name
   writeBytes(directory_ / "cut.exr", cut);
   expectRefused(directory_ / "cut.exr", "cut off");
+
+  // A name past 31 characters without the long-names flag: OpenEXR would read its first 32 bytes as the name
+  // and the rest as the type and a size (fuzz_background_image: 1.8 GB).
+  std::vector<char> longName(tiledBytes.begin(), tiledBytes.begin() + 8);
+  longName[5] &= ~0x04;  // the long-names flag, bit 10 of the version field
+  const std::string name(40, 'n');
+  longName.insert(longName.end(), name.begin(), name.end());
+  for (const char tail : {'\0', 's', 't', 'r', 'i', 'n', 'g', '\0', '\1', '\0', '\0', '\0', 'x', '\0'})
+    longName.push_back(tail);
+  writeBytes(directory_ / "long_name.exr", longName);
+  expectRefused(directory_ / "long_name.exr", "longer than 31 characters");
 }
 
 TEST(ImageFilesResize, NearestRepeatsPixelsAndBilinearBlendsThem) {

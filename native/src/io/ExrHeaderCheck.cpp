@@ -20,7 +20,13 @@ using oiio_errors::fail;
 constexpr std::uint32_t kMagic = 20000630;
 constexpr std::uint32_t kTiledFlag = 0x200;
 constexpr std::uint32_t kMultipartFlag = 0x1000;
-constexpr std::size_t kMaxNameBytes = 256;  // OpenEXR's long names: 255 characters and the terminator
+constexpr std::uint32_t kLongNamesFlag = 0x400;
+// Names and type names with their terminator: 31 characters, or 255 with the long-names flag. OpenEXR reads a
+// name that runs past its limit as its first bytes and goes on from there, so it parses a different header
+// from here on than a check that read the whole name would (fuzz_background_image: a 90-character name made
+// the next bytes a 1.8 GB attribute size).
+constexpr std::size_t kMaxShortNameBytes = 32;
+constexpr std::size_t kMaxLongNameBytes = 256;
 // Headers are a few kilobytes; a larger one is read only this far, and its claims beyond are not checked.
 constexpr std::size_t kMaxHeaderBytes = std::size_t(16) << 20;
 
@@ -35,8 +41,8 @@ class HeaderReader {
 
   // Returns nothing when the header goes on beyond what is checked, or the file cannot be read (OpenImageIO
   // then reports it).
-  std::optional<std::string> name() {
-    for (std::size_t at = position_; at < position_ + kMaxNameBytes; ++at) {
+  std::optional<std::string> name(std::size_t maxBytes) {
+    for (std::size_t at = position_; at < position_ + maxBytes; ++at) {
       if (!holds(at, 1)) {
         if (!readAll()) return std::nullopt;
         fail(path_, "the OpenEXR header is cut off");
@@ -46,7 +52,8 @@ class HeaderReader {
       position_ = at + 1;
       return text;
     }
-    fail(path_, "an OpenEXR header name is too long");
+    fail(path_, "an OpenEXR header name is longer than " + std::to_string(maxBytes - 1) + " characters" +
+                    (maxBytes == kMaxShortNameBytes ? " (the file does not set the long-names flag)" : ""));
   }
 
   std::optional<std::uint32_t> u32() {
@@ -163,16 +170,17 @@ void checkExrHeaderClaims(const std::filesystem::path& path) {
   if (reader.u32() != kMagic) return;
   const std::uint32_t flags = reader.u32().value_or(0);
   const bool multipart = (flags & kMultipartFlag) != 0;
+  const std::size_t maxNameBytes = (flags & kLongNamesFlag) != 0 ? kMaxLongNameBytes : kMaxShortNameBytes;
   std::int64_t chunks = 0;
   for (;;) {
     PartLayout layout;
     layout.tiled = !multipart && (flags & kTiledFlag) != 0;
     int attributes = 0;
     for (;; ++attributes) {
-      const std::optional<std::string> name = reader.name();
+      const std::optional<std::string> name = reader.name(maxNameBytes);
       if (!name) return;
       if (name->empty()) break;
-      const std::optional<std::string> type = reader.name();
+      const std::optional<std::string> type = reader.name(maxNameBytes);
       const std::optional<std::uint32_t> size = type ? reader.u32() : std::nullopt;
       if (!size) return;
       if (std::int32_t(*size) < 0 || *size > reader.bytesLeft()) {
