@@ -51,12 +51,17 @@ void checkJpegIptcClaims(const std::filesystem::path& path) {
   bytes.resize(kMaxScannedBytes);
   file.read(reinterpret_cast<char*>(bytes.data() + 2), std::streamsize(bytes.size() - 2));
   bytes.resize(2 + std::size_t(file.gcount()));
+  // As libjpeg's next_marker: bytes that are not 0xFF are skipped (it warns of "extraneous bytes"), then fill
+  // bytes 0xFF, and 0xFF 0x00 is data, not a marker.
   std::size_t position = 2;
-  while (position + 4 <= bytes.size()) {
-    if (bytes[position] != 0xFF) return;  // not a marker: libjpeg reports it
-    const unsigned char code = bytes[position + 1];
-    if (code == 0xFF) {  // fill byte
+  while (position + 1 < bytes.size()) {
+    if (bytes[position] != 0xFF || bytes[position + 1] == 0xFF) {
       ++position;
+      continue;
+    }
+    const unsigned char code = bytes[position + 1];
+    if (code == 0x00) {
+      position += 2;
       continue;
     }
     if (code == kStartOfScan || code == kEndOfImage) return;
@@ -64,8 +69,9 @@ void checkJpegIptcClaims(const std::filesystem::path& path) {
       position += 2;
       continue;
     }
+    if (position + 4 > bytes.size()) return;
     const std::size_t length = be16(&bytes[position + 2]);
-    if (length < 2) return;
+    if (length < 2) return;  // libjpeg refuses it
     const std::size_t dataStart = position + 4;
     const std::size_t dataLength = std::min(length - 2, bytes.size() - dataStart);
     if (code == kApp13 && iptcOverruns(&bytes[dataStart], dataLength))
