@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "io/OiioErrors.h"
+#include "spindrift/Limits.h"
 
 namespace spindrift {
 namespace {
@@ -109,6 +110,16 @@ struct PartLayout {
   std::int64_t tileWidth = 0, tileHeight = 0;
   int scanlinesPerChunk = 256;  // the largest any compression uses: the fewest chunks a part can have
   std::optional<std::int64_t> chunkCount;
+  std::uint64_t bytesPerPixel = 0;  // of all channels, as stored (half 2, float and uint 4)
+
+  // What OpenEXR allocates to decode one chunk: a scanline chunk's rows, or a tile, at every channel.
+  std::uint64_t chunkBytes() const {
+    if (width <= 0 || height <= 0) return 0;
+    const std::uint64_t pixels = tiled ? std::uint64_t(std::max<std::int64_t>(tileWidth, 0)) *
+                                             std::uint64_t(std::max<std::int64_t>(tileHeight, 0))
+                                       : std::uint64_t(width) * std::uint64_t(scanlinesPerChunk);
+    return pixels * bytesPerPixel;
+  }
 
   std::int64_t fewestChunks() const {
     if (chunkCount) return *chunkCount;
@@ -154,6 +165,17 @@ void noteAttribute(HeaderReader& reader, const std::string& name, const std::str
     layout->scanlinesPerChunk = scanlinesPerChunk(reader.byteAt(at));
   } else if (name == "chunkCount" && type == "int" && size == 4 && reader.holds(at, 4)) {
     layout->chunkCount = std::max(0, reader.i32At(at));
+  } else if (name == "channels" && type == "chlist" && reader.holds(at, size)) {
+    // Entries of name\0, int32 pixel type, 4 bytes, int32 x and y sampling; an empty name ends the list.
+    std::size_t entry = at;
+    while (entry < at + size && reader.byteAt(entry) != 0) {
+      std::size_t end = entry;
+      while (end < at + size && reader.byteAt(end) != 0)
+        ++end;
+      if (end + 17 > at + size) break;
+      layout->bytesPerPixel += reader.i32At(end + 1) == 1 ? 2 : 4;
+      entry = end + 17;
+    }
   } else if (name == "type" && type == "string" && size >= 1 && reader.holds(at, 1)) {
     layout->tiled = layout->tiled || reader.byteAt(at) == 't';  // "tiledimage" in a multi-part file
   }
@@ -204,6 +226,9 @@ void checkExrHeaderClaims(const std::filesystem::path& path) {
       fail(path, "the OpenEXR header claims at least " + std::to_string(chunks) +
                      " chunks, more than the file's " + std::to_string(fileSize) + " bytes can index");
     }
+    // OpenEXR decodes a chunk into buffers of its whole size before it reads the chunk's bytes: a data window
+    // four million pixels wide with a few rows made it zero-fill gigabytes (fuzz_background_image).
+    requireMemory(2 * layout.chunkBytes(), path.string() + ": OpenEXR's buffers for one chunk of its pixels");
     if (!multipart) break;
   }
 }
