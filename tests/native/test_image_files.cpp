@@ -237,6 +237,30 @@ TEST_F(ImageFilesTest, JpegIptcBlockLongerThanItsSegmentIsRefused) {
   const std::vector<char> fitting = withIptc(7);
   std::ofstream(fits, std::ios::binary).write(fitting.data(), std::streamsize(fitting.size()));
   EXPECT_EQ(readColorImage(fits).width, 2);
+  // The other segments OpenImageIO reads past: an ICC segment without its sequence bytes, and an APP1 segment
+  // that ends inside the name strcmp compares it with.
+  auto withSegment = [&](char code, const std::string& segment) {
+    const std::size_t length = segment.size() + 2;
+    std::vector<char> result(bytes.begin(), bytes.begin() + 2);
+    for (const char byte : {char(0xff), code, char(length >> 8), char(length & 0xff)})
+      result.push_back(byte);
+    result.insert(result.end(), segment.begin(), segment.end());
+    result.insert(result.end(), bytes.begin() + 2, bytes.end());
+    return result;
+  };
+  const std::pair<std::vector<char>, const char*> cutShort[] = {
+      {withSegment(char(0xe2), std::string("ICC_PROFILE\0", 12)), "ICC profile segment is cut short"},
+      {withSegment(char(0xe1), "Exi"), "ends inside the name it is compared with"}};
+  for (const auto& [file, message] : cutShort) {
+    const std::filesystem::path corrupt = directory_ / "cut_short.jpg";
+    std::ofstream(corrupt, std::ios::binary).write(file.data(), std::streamsize(file.size()));
+    try {
+      readColorImage(corrupt);
+      FAIL() << "read a JPEG whose segment OpenImageIO reads past: " << message;
+    } catch (const Error& error) {
+      EXPECT_NE(std::string(error.what()).find(message), std::string::npos) << error.what();
+    }
+  }
   for (const char* name : {"overruns.jpg", "overruns.png"}) {  // by its marker, whatever its extension
     const std::filesystem::path corrupt = directory_ / name;
     const std::vector<char> overrunning = withIptc(0x5900);
@@ -245,8 +269,9 @@ TEST_F(ImageFilesTest, JpegIptcBlockLongerThanItsSegmentIsRefused) {
       readColorImage(corrupt);
       FAIL() << "a JPEG whose IPTC block overruns its segment was read";
     } catch (const Error& error) {
-      EXPECT_NE(std::string(error.what()).find("IPTC block claims more than its 33-byte APP13 segment"),
-                std::string::npos)
+      EXPECT_NE(
+          std::string(error.what()).find("IPTC block claims more than its APP13 segment holds (33 bytes)"),
+          std::string::npos)
           << error.what();
     }
   }

@@ -13,7 +13,7 @@
 #include <OpenImageIO/strutil.h>
 
 #include "io/ExrHeaderCheck.h"
-#include "io/JpegIptcCheck.h"
+#include "io/JpegMarkerCheck.h"
 #include "io/OiioErrors.h"
 #include "io/PngChunkCheck.h"
 #include "spindrift/Error.h"
@@ -33,7 +33,7 @@ std::unique_ptr<OIIO::ImageInput> openImage(const std::filesystem::path& path) {
   if (!std::filesystem::exists(path)) fail(path, "no such image file");
   checkExrHeaderClaims(path);
   checkPngChunkClaims(path);
-  checkJpegIptcClaims(path);
+  checkJpegMarkerClaims(path);
   // Keep unassociated alpha (PNG, TIFF) as stored: OIIO would otherwise premultiply the sRGB-encoded
   // values, and premultiplying is only right after decoding to linear.
   OIIO::ImageSpec config;
