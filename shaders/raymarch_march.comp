@@ -49,8 +49,9 @@ uniform vec3 domainLow;
 uniform vec3 domainHigh;
 const int kBisections = 3;  // adaptive stepping: a bracket of one stepLength refined to 1/8 (then a secant)
 const int kEntryRetreats = 4;
-const int kMaxBoundSteps = 32;  // how many step lengths ahead one density sample bounds
-const int kReachCells = 2;      // how many cells beyond its own one density sample bounds
+const int kReachCells = 1;  // how many cells beyond its own one density sample bounds
+// The segment lengths, in steps, that one density sample tests (the nearer and the farther four).
+const vec4 kBoundStepsNear = vec4(1.0, 2.0, 4.0, 6.0), kBoundStepsFar = vec4(8.0, 10.0, 13.0, 17.0);
 
 // The ray parameters where the ray enters and leaves a box (entry > exit: it misses).
 vec2 boxSpan(vec3 origin, vec3 inverseDirection, vec3 low, vec3 high) {
@@ -66,13 +67,17 @@ float rayParameter(float eyeDepth, float lengthPerDepth) {
 uint particlesVisited = 0u;
 
 // The density at the ray's point `t` (as densityAt) and how far the ray may go from there without meeting the
-// iso-surface: the largest k * stepLength, k < kMaxBoundSteps, such that the density stays below `iso` all
-// along [t, t + k stepLength]. Each particle's kernel falls off with distance, so along a segment it adds at
-// most its kernel at the segment's nearest point; the sum of those is an upper bound of the density anywhere
-// on the segment. The particles within h of a segment are those of the 3x3x3 cells around each cell the
-// segment crosses: the point's cell's 27, and for each of the next kReachCells cells along the ray the 3x3
-// layer that its block adds beyond the previous ones (a step along an axis adds the block's face on that
-// side). Segments end where the ray leaves the last of those cells.
+// iso-surface: the longest of the segments [t, t + k stepLength], k one of kBoundSteps, along which the density
+// stays below `iso`. Each particle's kernel falls off with distance, so along a segment it adds at most its
+// kernel at the segment's nearest point; the sum of those is an upper bound of the density anywhere on the
+// segment. The particles within h of a segment are those of the 3x3x3 cells around each cell the segment
+// crosses: the point's cell's 27, and for each of the next kReachCells cells along the ray the 3x3 layer that
+// its block adds beyond the previous ones (a step along an axis adds the block's face on that side). Segments
+// end where the ray leaves the last of those cells.
+// Why eight fixed lengths and one cell ahead: on llvmpipe the bound costs arithmetic per particle visited, and a
+// bound for every whole step (an array indexed per particle) made each sample cost seven plain densities.
+// Eight lengths in two vec4s cost a fixed few operations per particle; a ray takes about 0.7 samples more
+// (docs/raymarch.md, "The bound's cost").
 float densityAndReach(vec3 origin, vec3 inverseDirection, vec3 direction, float t, out vec3 gradient,
                       out float safe) {
   vec3 position = origin + t * direction;
@@ -94,14 +99,12 @@ float densityAndReach(vec3 origin, vec3 inverseDirection, vec3 direction, float 
     layerBase[n][axis] += signs[axis];
     layerAxis[n] = axis;
   }
-  float reach = min(min(exits.x, exits.y), exits.z) - t;
-  int count = clamp(int(reach / stepLength), 0, kMaxBoundSteps - 1);
+  float reachSteps = (min(min(exits.x, exits.y), exits.z) - t) / stepLength;
 
   gradient = vec3(0.0);
   float density = 0.0;
-  float bound[kMaxBoundSteps];
-  for (int k = 0; k < kMaxBoundSteps; ++k)
-    bound[k] = 0.0;
+  float boundBehind = 0.0;  // what particles behind the point add to every segment: their kernel at the point
+  vec4 boundNear = vec4(0.0), boundFar = vec4(0.0);
   for (int m = 0; m < 27 + 9 * kReachCells; ++m) {
     ivec3 visit;
     if (m < 27) {
@@ -134,33 +137,26 @@ float densityAndReach(vec3 origin, vec3 inverseDirection, vec3 direction, float 
       if (along <= 0.0) {  // nearest to the point on every segment
         if (squaredDistance < squaredRadius) {
           float falloff = 1.0 - squaredDistance * inverseSquaredRadius;
-          bound[0] += falloff * falloff * falloff;
+          boundBehind += falloff * falloff * falloff;
         }
         continue;
       }
       if (squaredAside >= squaredRadius) continue;
-      // bound[k] collects the particle's most on the segment of k steps less its most on k - 1 steps; it adds
-      // nothing before the segment comes within h of it.
-      int first = max(int(ceil((along - sqrt(squaredRadius - squaredAside)) / stepLength)), 0);
-      float previous = 0.0;
-      for (int k = first; k <= count; ++k) {
-        float ahead = max(along - float(k) * stepLength, 0.0);
-        float falloff = max(1.0 - (squaredAside + ahead * ahead) * inverseSquaredRadius, 0.0);
-        float most = falloff * falloff * falloff;
-        bound[k] += most - previous;
-        previous = most;
-        if (ahead == 0.0) break;
-      }
+      vec4 aheadNear = max(along - kBoundStepsNear * stepLength, 0.0);
+      vec4 aheadFar = max(along - kBoundStepsFar * stepLength, 0.0);
+      vec4 falloffNear = max(1.0 - (squaredAside + aheadNear * aheadNear) * inverseSquaredRadius, 0.0);
+      vec4 falloffFar = max(1.0 - (squaredAside + aheadFar * aheadFar) * inverseSquaredRadius, 0.0);
+      boundNear += falloffNear * falloffNear * falloffNear;
+      boundFar += falloffFar * falloffFar * falloffFar;
     }
   }
-  // bound[k] holds increments: their running sum is the bound on k steps.
-  float sum = 0.0;
-  int k = 0;
-  for (; k <= count; ++k) {
-    sum += bound[k];
-    if (sum >= iso) break;
-  }
-  safe = float(max(k - 1, 0)) * stepLength;
+  // The bounds grow with the segment's length: the longest segment within reach whose bound stays below iso.
+  vec4 safeNear = vec4(lessThan(boundNear + boundBehind, vec4(iso))) *
+                  vec4(lessThanEqual(kBoundStepsNear, vec4(reachSteps)));
+  vec4 safeFar = vec4(lessThan(boundFar + boundBehind, vec4(iso))) *
+                 vec4(lessThanEqual(kBoundStepsFar, vec4(reachSteps)));
+  vec4 longest = max(kBoundStepsNear * safeNear, kBoundStepsFar * safeFar);
+  safe = max(max(longest.x, longest.y), max(longest.z, longest.w)) * stepLength;
   return density;
 }
 
