@@ -20,6 +20,7 @@ import sys
 import time
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+import bigger_bake  # noqa: E402
 import report  # noqa: E402
 import runs  # noqa: E402
 import scaling  # noqa: E402
@@ -131,12 +132,6 @@ def prepare_example(arguments, example, plan, absorption_rgb):
     return references
 
 
-def absorption_from(table):
-    """a * c_a, the per-unit-length absorption the Cycles water must match (parameter defaults)."""
-    a = table["liquid.absorption"]["default"]
-    return [a * c for c in table["liquid.absorption_rgb"]["default"]]
-
-
 def machine_description():
     cpu = "?"
     if os.path.isfile("/proc/cpuinfo"):
@@ -183,7 +178,7 @@ def main():
     if subset and os.path.abspath(arguments.output) == os.path.abspath(os.path.join(runs.REPOSITORY, "docs")):
         sys.exit("a subset run must not overwrite docs/benchmarks.md: give --output")
     table = runs.parameter_table()
-    absorption = absorption_from(table)
+    absorption = runs.absorption_from(table)
     machine = machine_description()
     log(f"renderer: {machine['gl_renderer']}; {machine['cpu']}")
 
@@ -220,6 +215,10 @@ def main():
                                                      scaling_work)
         results["scaling"] = {"particles": particle_rows, "resolutions": resolution_rows,
                               "slopes": scaling.slopes(particle_rows, resolution_rows)}
+        log("a bigger bake against VTK")
+        results["bigger_bake"] = bigger_bake.compare(
+            base_scene, os.path.dirname(base_scene), mantaflow_ply, plan["bigger_bake_count"], plan["repeats"],
+            absorption, plan["vtk_filters"], arguments.work)
 
     log("stability suite")
     results["stability"] = run_stability_suite(arguments.work)

@@ -28,6 +28,12 @@ def parameter_table():
     return {entry["key"]: entry for entry in json.loads(output)}
 
 
+def absorption_from(table):
+    """a * c_a, the per-unit-length absorption the Cycles water must match (parameter defaults)."""
+    a = table["liquid.absorption"]["default"]
+    return [a * c for c in table["liquid.absorption_rgb"]["default"]]
+
+
 def unsupported_settings(settings, table):
     """Why a configuration cannot run on this build (a parameter or choice it lacks), or None."""
     for key, value in settings.items():

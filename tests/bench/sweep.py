@@ -16,14 +16,16 @@ def plan(quick):
                 "background_spp": 16, "reference_spp": 32, "sweep_spp": [1, 4], "repeats": 1,
                 "configurations": configurations(quick=True), "vtk_filters": ["narrow_range"],
                 "particle_counts": [10_000, 100_000], "particle_repeats": lambda count: 1,
-                "resolutions": [(854, 480), (1280, 720)], "resolution_repeats": lambda pixels: 1}
+                "resolutions": [(854, 480), (1280, 720)], "resolution_repeats": lambda pixels: 1,
+                "bigger_bake_count": 30_000}
     return {"examples": ["dam_break", "drop"], "cameras": CAMERAS, "width": 480, "height": 270,
             "background_spp": 64, "reference_spp": 256, "sweep_spp": [1, 4, 16, 64], "repeats": 5,
             "configurations": configurations(quick=False), "vtk_filters": ["narrow_range", "bilateral"],
             "particle_counts": [10_000, 30_000, 100_000, 300_000, 1_000_000, 4_000_000],
             "particle_repeats": lambda count: 3 if count <= 300_000 else 1,
             "resolutions": [(854, 480), (1280, 720), (1920, 1080), (3840, 2160)],
-            "resolution_repeats": lambda pixels: 3 if pixels <= 1280 * 720 else 1}
+            "resolution_repeats": lambda pixels: 3 if pixels <= 1280 * 720 else 1,
+            "bigger_bake_count": 150_000}
 
 
 def configurations(quick):
