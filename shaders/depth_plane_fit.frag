@@ -1,8 +1,9 @@
 #version 450 core
 // One iteration of iterative local plane fitting (liquid paper 4.3, eqs. 1-5). Each pixel with a surface fits
-// a plane to the camera-space positions of the neighbours in its s × s window that have a surface, weighted by
-// their eye-depth difference (eq. 2), with the weighted mean of the original normals as the plane's normal
-// (eq. 3) through the weighted mean position (eq. 4), and moves to where its view ray meets that plane (eq. 5).
+// a plane to the camera-space positions of the neighbours in its s × s window (taps `tapSpacing` pixels apart)
+// that have a surface, weighted by their eye-depth difference (eq. 2), with the weighted mean of the original
+// normals as the plane's normal (eq. 3) through the weighted mean position (eq. 4), and moves to where its
+// view ray meets that plane (eq. 5).
 #include "lib/frame.glsl"
 #include "lib/depth_layer.glsl"
 
@@ -10,6 +11,7 @@ layout(binding = 0) uniform sampler2D currentEyeDepth;  // this iteration's dept
 layout(binding = 1) uniform sampler2D originalNormal;   // world normals before smoothing: ñ_j in eq. 3
 
 uniform int halfWindow;  // (s - 1) / 2
+uniform int tapSpacing;  // pixels between taps: the window's taps spread over a taller image (PlaneFitPass.h)
 uniform float sigma;     // world units: liquid.plane_fit_sigma × r
 
 layout(location = 0) out float outEyeDepth;
@@ -35,7 +37,7 @@ void main() {
   float weightSum = 0.0;
   for (int dy = -halfWindow; dy <= halfWindow; ++dy)
     for (int dx = -halfWindow; dx <= halfWindow; ++dx) {
-      ivec2 neighbour = pixel + ivec2(dx, dy);
+      ivec2 neighbour = pixel + ivec2(dx, dy) * tapSpacing;
       float depth = layerDepthAt(currentEyeDepth, neighbour);
       if (!hasSurface(depth)) continue;
       float depthDifference = (depth - centreDepth) / sigma;

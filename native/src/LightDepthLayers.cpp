@@ -40,6 +40,7 @@ SurfaceLayers LightDepthLayers::run(const LightPreparation& light, const Camera&
   // rounds the body's edges more in a coarser view and shifts its shadow
   // (GLLiquidLight.SlabShadowShiftsAsSnellsLawSays failed by 0.11 m at 207 texels with the camera's 9).
   LiquidParameters smoothing = parameters;
+  smoothing.plane_fit_reference_height = 0;  // the window is sized in the view's own texels below
   if (light.view.texelSize > 0.0f) {
     const int halfWindow = int(std::lround(0.5f * particleRadius / light.view.texelSize));
     smoothing.plane_fit_window = std::clamp(2 * halfWindow + 1, 3, parameters.plane_fit_window);

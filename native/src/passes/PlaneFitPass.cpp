@@ -1,6 +1,14 @@
 #include "passes/PlaneFitPass.h"
 
+#include <algorithm>
+#include <cmath>
+
 namespace spindrift {
+
+int planeFitTapSpacing(int imageHeight, const LiquidParameters& parameters) {
+  if (parameters.plane_fit_reference_height <= 0 || imageHeight <= 0) return 1;
+  return std::max(1, int(std::lround(double(imageHeight) / double(parameters.plane_fit_reference_height))));
+}
 
 PlaneFitPass::PlaneFitPass(const ShaderLibrary& shaders)
     : program_(shaders.program({"fullscreen.vert", "depth_plane_fit.frag"})) {}
@@ -11,6 +19,7 @@ SmoothedDepth PlaneFitPass::run(const Texture2D& eyeDepth, const Texture2D& orig
   const GLuint program = program_.id();
   glUseProgram(program);
   glUniform1i(uniformLocation(program, "halfWindow"), parameters.plane_fit_window / 2);
+  glUniform1i(uniformLocation(program, "tapSpacing"), planeFitTapSpacing(eyeDepth.height, parameters));
   glUniform1f(uniformLocation(program, "sigma"), parameters.plane_fit_sigma * particleRadius);
   glBindTextureUnit(1, originalNormal.id());
   return {targets.drawRepeatedly(eyeDepth, parameters.smoothing_iterations)};

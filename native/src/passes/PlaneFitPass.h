@@ -8,6 +8,12 @@
 
 namespace spindrift {
 
+/// The pixels between two of the plane fit's taps in an image `imageHeight` tall: the image's height over
+/// liquid.plane_fit_reference_height, rounded, at least 1 (1 when that parameter is 0). The window keeps its
+/// taps and its share of the image, so a frame rendered larger is smoothed as its preview was; a window fixed
+/// in pixels smooths a surface less the more pixels its particles cover (docs/liquid.md).
+int planeFitTapSpacing(int imageHeight, const LiquidParameters& parameters);
+
 /// The liquid paper's depth smoothing (section 4.3): liquid.smoothing_iterations rounds of local plane
 /// fitting in a liquid.plane_fit_window window with view-dependent weights, each round reading the previous
 /// round's depth and the layer's original normals. Unlike filters, it leaves silhouettes where they are.
