@@ -12,6 +12,8 @@ layout(binding = 2) uniform sampler2D foamIntensity;
 layout(binding = 3) uniform sampler2D fluidEyeDepth;
 layout(binding = 4) uniform sampler2D solidEyeDepth;
 layout(binding = 6) uniform sampler2D irradianceMap;
+// Per pixel: foam opacity, foam depth where opaque, liquid depth, solid depth (foam_occluders.frag).
+layout(binding = 7) uniform sampler2D occluders;
 
 // The Halton samples in [-1, 1]^3 (xyz) with their length (w), made once by FoamOcclusionPass.
 layout(std430, binding = 0) readonly buffer HaltonSamples {
@@ -118,10 +120,9 @@ void main() {
       // the opacities of the fragments in front of it (foam: its intensity), and delta is the nearest one's.
       // Foam of no intensity is not an occluder: it is clear, and the sprite passes need not draw it
       // (foam.cull_hidden), so its depth is not always there.
-      float foamOpacity = texelFetch(foamIntensity, samplePixel, 0).r;
-      float foamOccluder = foamOpacity > 0.0 ? texelFetch(foamDepth, samplePixel, 0).r : kNoSurfaceDepth;
-      float fluidOccluder = texelFetch(fluidEyeDepth, samplePixel, 0).r;
-      float solidOccluder = texelFetch(solidEyeDepth, samplePixel, 0).r;
+      vec4 occluder = texelFetch(occluders, samplePixel, 0);
+      float foamOpacity = occluder.r, foamOccluder = occluder.g, fluidOccluder = occluder.b,
+            solidOccluder = occluder.a;
       float opacity = 0.0, delta = 0.0;
       if (sampleDepth > foamOccluder) {
         float range = occlusionRange(depth, foamOccluder);

@@ -17,6 +17,7 @@ FoamOcclusionPass::FoamOcclusionPass(const ShaderLibrary& shaders)
     : program_(shaders.program({"fullscreen.vert", "foam_occlusion.frag"})),
       irradianceMapProgram_(shaders.program({"foam_irradiance_map.comp"})),
       upsampleProgram_(shaders.program({"fullscreen.vert", "foam_occlusion_upsample.frag"})),
+      occludersProgram_(shaders.program({"fullscreen.vert", "foam_occluders.frag"})),
       emptyVertexArray_(createVertexArray()),
       framebuffer_(createFramebuffer()),
       haltonSamples_(createBuffer()),
@@ -56,6 +57,19 @@ FoamOcclusionData FoamOcclusionPass::run(const FoamSurfaceData& surface, const F
     checkGlError("making the foam's irradiance map");
   }
 
+  // The samples' four reads packed into one texture: on llvmpipe a sample's fetches are most of its cost.
+  ensureTexture(occluders_, GL_RGBA32F, width, height);
+  bindColorTargets(framebuffer_.id(), {&occluders_});
+  glDisable(GL_DEPTH_TEST);
+  glDisable(GL_BLEND);
+  glUseProgram(occludersProgram_.id());
+  glBindTextureUnit(0, surface.depthAndSearchRadius.id());
+  glBindTextureUnit(2, intensity.intensity.id());
+  glBindTextureUnit(3, scene.fluidEyeDepth.id());
+  glBindTextureUnit(4, scene.solidEyeDepth.id());
+  drawFullscreenTriangle(emptyVertexArray_.id());
+  checkGlError("packing the foam's occluders");
+
   // Estimates, one per block (the full-resolution textures themselves when a block is one pixel).
   const int block = parameters.occlusion_block;
   ensureTexture(shadow_, GL_RG32F, width, height);
@@ -92,6 +106,7 @@ FoamOcclusionData FoamOcclusionPass::run(const FoamSurfaceData& surface, const F
   glBindTextureUnit(3, scene.fluidEyeDepth.id());
   glBindTextureUnit(4, scene.solidEyeDepth.id());
   glBindTextureUnit(6, useIrradianceMap ? irradianceMap_.id() : 0);
+  glBindTextureUnit(7, occluders_.id());
   glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, haltonSamples_.id());
   glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, counters_.id());
   drawFullscreenTriangle(emptyVertexArray_.id());

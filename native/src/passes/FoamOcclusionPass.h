@@ -34,11 +34,13 @@ class FoamOcclusionPass {
   ProgramObject program_;
   ProgramObject irradianceMapProgram_;
   ProgramObject upsampleProgram_;
+  ProgramObject occludersProgram_;
   VertexArrayObject emptyVertexArray_;
   FramebufferObject framebuffer_;
   BufferObject haltonSamples_;
   BufferObject counters_;
   Texture2D irradianceMap_;
+  Texture2D occluders_;  // what the samples read, one texel per pixel (foam_occluders.frag)
   Texture2D blockShadow_;
   Texture2D blockIrradiance_;
   Texture2D shadow_;
