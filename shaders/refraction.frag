@@ -18,6 +18,9 @@ layout(binding = 7) uniform sampler2D aggregateBackNormal;
 layout(binding = 8) uniform sampler2D backgroundColor;
 layout(binding = 9) uniform sampler2D backgroundEyeDepth;
 layout(binding = 10) uniform sampler2D environmentMap;
+// The four depth layers above, one texel per pixel: splash front, splash back, aggregate front, aggregate back
+// (refraction_layers.frag). The marches read them through frontDepth and backDepth.
+layout(binding = 11) uniform sampler2D layerDepths;
 
 // Counts of rays by what they met, for the frame's stats (see RefractionPass::Statistics).
 layout(std430, binding = 1) buffer RayCounters {
@@ -65,10 +68,12 @@ const int kAggregate = 1;
 
 float frontDepth(int body, ivec2 pixel) {
   if (body == kAggregate && cameraInLiquid) return getNearClip();
-  return body == kSplash ? texelFetch(splashFrontDepth, pixel, 0).r : texelFetch(aggregateFrontDepth, pixel, 0).r;
+  vec4 depths = texelFetch(layerDepths, pixel, 0);
+  return body == kSplash ? depths.x : depths.z;
 }
 float backDepth(int body, ivec2 pixel) {
-  return body == kSplash ? texelFetch(splashBackDepth, pixel, 0).r : texelFetch(aggregateBackDepth, pixel, 0).r;
+  vec4 depths = texelFetch(layerDepths, pixel, 0);
+  return body == kSplash ? depths.y : depths.w;
 }
 vec4 normalTexel(int body, bool back, ivec2 pixel) {
   return body == kSplash ? (back ? texelFetch(splashBackNormal, pixel, 0) : texelFetch(splashFrontNormal, pixel, 0))

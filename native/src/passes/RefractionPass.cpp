@@ -12,6 +12,8 @@ constexpr int kRayCounters = 9;
 
 RefractionPass::RefractionPass(const ShaderLibrary& shaders)
     : program_(shaders.program({"fullscreen.vert", "refraction.frag"})),
+      packProgram_(shaders.program({"fullscreen.vert", "refraction_layers.frag"})),
+      packFramebuffer_(createFramebuffer()),
       emptyVertexArray_(createVertexArray()),
       framebuffer_(createFramebuffer()),
       counters_(createBuffer()) {
@@ -38,6 +40,24 @@ LiquidData RefractionPass::run(const std::optional<SurfaceLayers>& splashes,
   glBindImageTexture(0, refractionUv_.id(), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA32F);
   glBindImageTexture(1, transmittance_.id(), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA32F);
   glBindImageTexture(2, reflection_.id(), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA32F);
+  auto layerTexture = [&](const std::optional<SurfaceLayers>& layers, bool back, bool normal) {
+    if (!layers) return emptyLayer_.id();
+    const DepthLayer& layer = back ? layers->back : layers->front;
+    return normal ? layer.normal.id() : layer.eyeDepth.id();
+  };
+  // The marches' four depth reads per sample become one: the layers packed into one texel per pixel.
+  ensureTexture(layerDepths_, GL_RGBA32F, width, height);
+  bindColorTargets(packFramebuffer_.id(), {&layerDepths_});
+  glDisable(GL_DEPTH_TEST);
+  glDisable(GL_BLEND);
+  glUseProgram(packProgram_.id());
+  glBindTextureUnit(0, layerTexture(splashes, false, false));
+  glBindTextureUnit(1, layerTexture(splashes, true, false));
+  glBindTextureUnit(2, layerTexture(aggregates, false, false));
+  glBindTextureUnit(3, layerTexture(aggregates, true, false));
+  drawFullscreenTriangle(emptyVertexArray_.id());
+  checkGlError("packing the depth layers for the refraction");
+
   const GLuint framebuffer = framebuffer_.id();
   const Texture2D* outputs[] = {&color_,     &splashColor_, &surfaceClass_,
                                 &thickness_, &frontDepth_,  &frontNormal_};
@@ -58,11 +78,6 @@ LiquidData RefractionPass::run(const std::optional<SurfaceLayers>& splashes,
   glDisable(GL_BLEND);
   const GLuint program = program_.id();
   glUseProgram(program);
-  auto layerTexture = [&](const std::optional<SurfaceLayers>& layers, bool back, bool normal) {
-    if (!layers) return emptyLayer_.id();
-    const DepthLayer& layer = back ? layers->back : layers->front;
-    return normal ? layer.normal.id() : layer.eyeDepth.id();
-  };
   glBindTextureUnit(0, layerTexture(splashes, false, false));
   glBindTextureUnit(1, layerTexture(splashes, true, false));
   glBindTextureUnit(2, layerTexture(aggregates, false, false));
@@ -74,6 +89,7 @@ LiquidData RefractionPass::run(const std::optional<SurfaceLayers>& splashes,
   glBindTextureUnit(8, background.color.id());
   glBindTextureUnit(9, background.eyeDepth.id());
   glBindTextureUnit(10, background.environment ? background.environment->id() : 0);
+  glBindTextureUnit(11, layerDepths_.id());
 
   const glm::vec3 absorption = parameters.absorption * parameters.absorption_rgb;
   glUniform1i(uniformLocation(program, "hasSplash"), splashes ? 1 : 0);

@@ -31,6 +31,9 @@ class RefractionPass {
 
  private:
   ProgramObject program_;
+  ProgramObject packProgram_;  ///< refraction_layers.frag
+  FramebufferObject packFramebuffer_;
+  Texture2D layerDepths_;  ///< the four depth layers in one RGBA32F texture
   VertexArrayObject emptyVertexArray_;
   FramebufferObject framebuffer_;
   BufferObject counters_;
