@@ -7,17 +7,14 @@
 #include "lib/frame.glsl"
 #include "lib/depth_layer.glsl"
 
-// x: this iteration's depth (z in eq. 2, p_j); yzw: the world normals before smoothing (ñ_j in eq. 3), packed
-// by plane_fit_pack.frag so that a tap is one fetch.
-layout(binding = 0) uniform sampler2D currentDepthAndNormal;
+layout(binding = 0) uniform sampler2D currentEyeDepth;  // this iteration's depth: z in eq. 2, p_j
+layout(binding = 1) uniform sampler2D originalNormal;   // world normals before smoothing: ñ_j in eq. 3
 
 uniform int halfWindow;  // (s - 1) / 2
 uniform int tapSpacing;  // pixels between taps: the window's taps spread over a taller image (PlaneFitPass.h)
 uniform float sigma;     // world units: liquid.plane_fit_sigma × r
 
-// x: the new depth; yzw: the pixel's original normal, passed on to the next iteration (an R32F target, the
-// last iteration's, keeps x alone).
-layout(location = 0) out vec4 outDepthAndNormal;
+layout(location = 0) out float outEyeDepth;
 
 // Below this |n·v| the fitted plane is within about half a degree of containing the view ray, and the
 // intersection of eq. 5 runs off towards infinity: the pixel keeps its depth instead.
@@ -26,18 +23,12 @@ const float kMinimumRayPlaneCosine = 1e-2;
 // two sides of a thin sheet): there is no plane to fit.
 const float kMinimumNormalAgreement = 1e-4;
 
-// A tap's depth and original normal; pixels outside the image read as empty, like the background.
-vec4 depthAndNormalAt(ivec2 pixel) {
-  if (any(lessThan(pixel, ivec2(0))) || any(greaterThanEqual(pixel, ivec2(frame.viewportSize.xy))))
-    return vec4(kNoSurfaceDepth, 0.0, 0.0, 0.0);
-  return texelFetch(currentDepthAndNormal, pixel, 0);
-}
-
-// The pixel's new depth: where its view ray meets the plane fitted to its window, or its depth as it was.
-float fittedDepth() {
+void main() {
   ivec2 pixel = ivec2(gl_FragCoord.xy);
-  float centreDepth = texelFetch(currentDepthAndNormal, pixel, 0).r;
-  if (!hasSurface(centreDepth)) return kNoSurfaceDepth;  // smoothing never creates a surface
+  float centreDepth = texelFetch(currentEyeDepth, pixel, 0).r;
+  outEyeDepth = kNoSurfaceDepth;
+  if (!hasSurface(centreDepth)) return;  // smoothing never creates a surface
+  outEyeDepth = centreDepth;
 
   mat3 cameraFromWorld = mat3(frame.cameraFromWorld);
   vec3 centrePosition = cameraPositionAtPixel(pixel, centreDepth);
@@ -47,12 +38,11 @@ float fittedDepth() {
   for (int dy = -halfWindow; dy <= halfWindow; ++dy)
     for (int dx = -halfWindow; dx <= halfWindow; ++dx) {
       ivec2 neighbour = pixel + ivec2(dx, dy) * tapSpacing;
-      vec4 tap = depthAndNormalAt(neighbour);
-      float depth = tap.x;
+      float depth = layerDepthAt(currentEyeDepth, neighbour);
       if (!hasSurface(depth)) continue;
       float depthDifference = (depth - centreDepth) / sigma;
       float weight = exp(-depthDifference * depthDifference);
-      normalSum += weight * (cameraFromWorld * tap.yzw);
+      normalSum += weight * (cameraFromWorld * texelFetch(originalNormal, neighbour, 0).xyz);
       offsetSum += weight * (cameraPositionAtPixel(neighbour, depth) - centrePosition);
       weightSum += weight;
     }
@@ -60,16 +50,12 @@ float fittedDepth() {
   // The centre pixel always counts with weight 1, so weightSum >= 1 unless the input held NaN; every test is
   // written so that NaN fails it and leaves the depth as it was.
   float normalLength = length(normalSum);
-  if (!(weightSum >= 1.0) || !(normalLength > kMinimumNormalAgreement * weightSum)) return centreDepth;
+  if (!(weightSum >= 1.0) || !(normalLength > kMinimumNormalAgreement * weightSum)) return;
   vec3 planeNormal = normalSum / normalLength;
   vec3 ray = cameraRayFromFragCoord(vec2(pixel) + 0.5);  // z = -1: its parameter along the ray is eye depth
   float rayDotNormal = dot(planeNormal, ray);
-  if (!(abs(rayDotNormal) > kMinimumRayPlaneCosine * length(ray))) return centreDepth;
+  if (!(abs(rayDotNormal) > kMinimumRayPlaneCosine * length(ray))) return;
   // Eq. 5 with d_i = n_i·p̄_i, written as the step from p_i = z_i·ray to the plane along the ray.
   float smoothedDepth = centreDepth + dot(planeNormal, offsetSum / weightSum) / rayDotNormal;
-  return hasSurface(smoothedDepth) && !isinf(smoothedDepth) ? smoothedDepth : centreDepth;
-}
-
-void main() {
-  outDepthAndNormal = vec4(fittedDepth(), texelFetch(currentDepthAndNormal, ivec2(gl_FragCoord.xy), 0).yzw);
+  if (hasSurface(smoothedDepth) && !isinf(smoothedDepth)) outEyeDepth = smoothedDepth;
 }

@@ -3,8 +3,6 @@
 #include <algorithm>
 #include <cmath>
 
-#include "passes/FrameUniforms.h"
-
 namespace spindrift {
 
 int planeFitTapSpacing(int imageHeight, const LiquidParameters& parameters) {
@@ -13,47 +11,18 @@ int planeFitTapSpacing(int imageHeight, const LiquidParameters& parameters) {
 }
 
 PlaneFitPass::PlaneFitPass(const ShaderLibrary& shaders)
-    : program_(shaders.program({"fullscreen.vert", "depth_plane_fit.frag"})),
-      packProgram_(shaders.program({"fullscreen.vert", "plane_fit_pack.frag"})),
-      framebuffer_(createFramebuffer()),
-      emptyVertexArray_(createVertexArray()) {}
-
-void PlaneFitPass::drawInto(const Texture2D& target) {
-  bindColorTargets(framebuffer_.id(), {&target});
-  glDisable(GL_DEPTH_TEST);
-  glDisable(GL_BLEND);
-  drawFullscreenTriangle(emptyVertexArray_.id());
-}
+    : program_(shaders.program({"fullscreen.vert", "depth_plane_fit.frag"})) {}
 
 SmoothedDepth PlaneFitPass::run(const Texture2D& eyeDepth, const Texture2D& originalNormal,
                                 float particleRadius, const LiquidParameters& parameters,
                                 DepthPingPong& targets) {
-  const int iterations = parameters.smoothing_iterations;
-  if (iterations <= 0) return {eyeDepth};
-  // Each tap reads the neighbour's depth and original normal: packed into one texel first, and carried from
-  // iteration to iteration in RGBA32F targets; the last iteration writes the depth alone into `targets`.
-  for (Texture2D& texture : packed_)
-    ensureTexture(texture, GL_RGBA32F, eyeDepth.width, eyeDepth.height);
-  glUseProgram(packProgram_.id());
-  glBindTextureUnit(0, eyeDepth.id());
-  glBindTextureUnit(1, originalNormal.id());
-  drawInto(packed_[0]);
-  checkGlError("packing the plane fit's input");
-
   const GLuint program = program_.id();
   glUseProgram(program);
   glUniform1i(uniformLocation(program, "halfWindow"), parameters.plane_fit_window / 2);
   glUniform1i(uniformLocation(program, "tapSpacing"), planeFitTapSpacing(eyeDepth.height, parameters));
   glUniform1f(uniformLocation(program, "sigma"), parameters.plane_fit_sigma * particleRadius);
-  const Texture2D* current = &packed_[0];
-  for (int iteration = 1; iteration < iterations; ++iteration) {
-    const Texture2D& next = current == &packed_[0] ? packed_[1] : packed_[0];
-    glBindTextureUnit(0, current->id());
-    drawInto(next);
-    checkGlError("fitting planes to a depth layer");
-    current = &next;
-  }
-  return {targets.draw(*current)};
+  glBindTextureUnit(1, originalNormal.id());
+  return {targets.drawRepeatedly(eyeDepth, parameters.smoothing_iterations)};
 }
 
 }  // namespace spindrift

@@ -26,13 +26,7 @@ class PlaneFitPass {
                     const LiquidParameters& parameters, DepthPingPong& targets);
 
  private:
-  void drawInto(const Texture2D& target);
-
   ProgramObject program_;
-  ProgramObject packProgram_;  ///< plane_fit_pack.frag: depth and original normal in one texel
-  FramebufferObject framebuffer_;
-  VertexArrayObject emptyVertexArray_;
-  Texture2D packed_[2];  ///< RGBA32F: depth, original world normal; the iterations alternate between them
 };
 
 }  // namespace spindrift
