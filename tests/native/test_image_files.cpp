@@ -61,6 +61,41 @@ float linearFromSrgb(float encoded) {
   return encoded <= 0.04045f ? encoded / 12.92f : std::pow((encoded + 0.055f) / 1.055f, 2.4f);
 }
 
+std::vector<char> fileBytes(const std::filesystem::path& path) {
+  std::ifstream file(path, std::ios::binary);
+  return std::vector<char>(std::istreambuf_iterator<char>(file), {});
+}
+
+void writeBytes(const std::filesystem::path& path, const std::vector<char>& bytes) {
+  std::ofstream(path, std::ios::binary).write(bytes.data(), std::streamsize(bytes.size()));
+}
+
+// Offset of the size field of the header attribute `name` of type `type`.
+std::size_t attributeSizeOffset(const std::vector<char>& bytes, const std::string& name,
+                                const std::string& type) {
+  const std::string key = name + '\0' + type + '\0';
+  const auto found = std::search(bytes.begin(), bytes.end(), key.begin(), key.end());
+  EXPECT_NE(found, bytes.end()) << name;
+  return std::size_t(found - bytes.begin()) + key.size();
+}
+
+void putInt32(std::vector<char>* bytes, std::size_t at, std::int32_t value) {
+  for (int i = 0; i < 4; ++i)
+    (*bytes)[at + i] = char((std::uint32_t(value) >> (8 * i)) & 0xff);
+}
+
+// The error names the file and says what the header claimed.
+void expectRefused(const std::filesystem::path& path, const std::string& claim) {
+  try {
+    readColorImage(path);
+    FAIL() << path << " was read";
+  } catch (const Error& error) {
+    const std::string message = error.what();
+    EXPECT_NE(message.find(path.string()), std::string::npos) << message;
+    EXPECT_NE(message.find(claim), std::string::npos) << message;
+  }
+}
+
 // Blender's multilayer EXR, channels deliberately out of order, with an AO layer whose RGB must not be
 // taken for colour and a Mist layer whose Z must not be taken for depth.
 TEST_F(ImageFilesTest, ReadsCombinedAndDepthFromABlenderMultilayerExrByName) {
@@ -162,21 +197,13 @@ TEST_F(ImageFilesTest, PngChunkLongerThanTheFileIsRefusedBeforeDecoding) {
   writeImage(good, 2, 1, {"R", "G", "B"}, std::vector<std::uint8_t>{1, 2, 3, 4, 5, 6}, OIIO::TypeUInt8);
   EXPECT_EQ(readColorImage(good).width, 2);
 
-  std::ifstream in(good, std::ios::binary);
-  std::vector<char> bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  std::vector<char> bytes = fileBytes(good);
   // After the signature and IHDR (8 + 25 bytes), an ancillary chunk claiming 0xda2ab66e bytes.
   const std::vector<char> claim = {char(0xda), char(0x2a), char(0xb6), char(0x6e), 'n', 'u', 'l', 'l'};
   bytes.insert(bytes.begin() + 33, claim.begin(), claim.end());
   for (const char* name : {"claims.png", "claims.tif"}) {  // by its signature, whatever its extension
-    const std::filesystem::path corrupt = directory_ / name;
-    std::ofstream(corrupt, std::ios::binary).write(bytes.data(), std::streamsize(bytes.size()));
-    try {
-      readColorImage(corrupt);
-      FAIL() << "a PNG chunk claiming 3.6 GB was read";
-    } catch (const Error& error) {
-      EXPECT_NE(std::string(error.what()).find("chunk 'null' claims 3660232302 bytes"), std::string::npos)
-          << error.what();
-    }
+    writeBytes(directory_ / name, bytes);
+    expectRefused(directory_ / name, "chunk 'null' claims 3660232302 bytes");
   }
 }
 
@@ -187,8 +214,7 @@ TEST_F(ImageFilesTest, JpegIptcBlockLongerThanItsSegmentIsRefused) {
   const std::filesystem::path plain = directory_ / "plain.jpg";
   writeImage(plain, 2, 1, {"R", "G", "B"}, std::vector<std::uint8_t>{10, 20, 30, 40, 50, 60},
              OIIO::TypeUInt8);
-  std::ifstream in(plain, std::ios::binary);
-  const std::vector<char> bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  const std::vector<char> bytes = fileBytes(plain);
   // APP13 after the start of image: "Photoshop 3.0\0", "8BIM", resource 1028, 4 skipped bytes, the IPTC size,
   // then an IPTC record 1C 02 78 00 02 "hi" (7 bytes).
   auto withIptc = [&](unsigned claimedSize) {
@@ -233,10 +259,8 @@ TEST_F(ImageFilesTest, JpegIptcBlockLongerThanItsSegmentIsRefused) {
     result.insert(result.end(), bytes.begin() + 2, bytes.end());
     return result;
   };
-  const std::filesystem::path fits = directory_ / "fits.jpg";
-  const std::vector<char> fitting = withIptc(7);
-  std::ofstream(fits, std::ios::binary).write(fitting.data(), std::streamsize(fitting.size()));
-  EXPECT_EQ(readColorImage(fits).width, 2);
+  writeBytes(directory_ / "fits.jpg", withIptc(7));
+  EXPECT_EQ(readColorImage(directory_ / "fits.jpg").width, 2);
   // The other segments OpenImageIO reads past: an ICC segment without its sequence bytes, and an APP1 segment
   // that ends inside the name strcmp compares it with.
   auto withSegment = [&](char code, const std::string& segment) {
@@ -252,28 +276,12 @@ TEST_F(ImageFilesTest, JpegIptcBlockLongerThanItsSegmentIsRefused) {
       {withSegment(char(0xe2), std::string("ICC_PROFILE\0", 12)), "ICC profile segment is cut short"},
       {withSegment(char(0xe1), "Exi"), "ends inside the name it is compared with"}};
   for (const auto& [file, message] : cutShort) {
-    const std::filesystem::path corrupt = directory_ / "cut_short.jpg";
-    std::ofstream(corrupt, std::ios::binary).write(file.data(), std::streamsize(file.size()));
-    try {
-      readColorImage(corrupt);
-      FAIL() << "read a JPEG whose segment OpenImageIO reads past: " << message;
-    } catch (const Error& error) {
-      EXPECT_NE(std::string(error.what()).find(message), std::string::npos) << error.what();
-    }
+    writeBytes(directory_ / "cut_short.jpg", file);
+    expectRefused(directory_ / "cut_short.jpg", message);
   }
   for (const char* name : {"overruns.jpg", "overruns.png"}) {  // by its marker, whatever its extension
-    const std::filesystem::path corrupt = directory_ / name;
-    const std::vector<char> overrunning = withIptc(0x5900);
-    std::ofstream(corrupt, std::ios::binary).write(overrunning.data(), std::streamsize(overrunning.size()));
-    try {
-      readColorImage(corrupt);
-      FAIL() << "a JPEG whose IPTC block overruns its segment was read";
-    } catch (const Error& error) {
-      EXPECT_NE(
-          std::string(error.what()).find("IPTC block claims more than its APP13 segment holds (33 bytes)"),
-          std::string::npos)
-          << error.what();
-    }
+    writeBytes(directory_ / name, withIptc(0x5900));
+    expectRefused(directory_ / name, "IPTC block claims more than its APP13 segment holds (33 bytes)");
   }
 }
 
@@ -331,41 +339,6 @@ TEST_F(ImageFilesTest, MissingOrCorruptFilesThrowErrorsNamingThem) {
     const std::string message = error.what();
     EXPECT_NE(message.find(corrupt.string()), std::string::npos) << message;
     EXPECT_EQ(message.find('\n'), std::string::npos) << message;
-  }
-}
-
-std::vector<char> fileBytes(const std::filesystem::path& path) {
-  std::ifstream file(path, std::ios::binary);
-  return std::vector<char>(std::istreambuf_iterator<char>(file), {});
-}
-
-void writeBytes(const std::filesystem::path& path, const std::vector<char>& bytes) {
-  std::ofstream(path, std::ios::binary).write(bytes.data(), std::streamsize(bytes.size()));
-}
-
-// Offset of the size field of the header attribute `name` of type `type`.
-std::size_t attributeSizeOffset(const std::vector<char>& bytes, const std::string& name,
-                                const std::string& type) {
-  const std::string key = name + '\0' + type + '\0';
-  const auto found = std::search(bytes.begin(), bytes.end(), key.begin(), key.end());
-  EXPECT_NE(found, bytes.end()) << name;
-  return std::size_t(found - bytes.begin()) + key.size();
-}
-
-void putInt32(std::vector<char>* bytes, std::size_t at, std::int32_t value) {
-  for (int i = 0; i < 4; ++i)
-    (*bytes)[at + i] = char((std::uint32_t(value) >> (8 * i)) & 0xff);
-}
-
-// The error names the file and says what the header claimed.
-void expectRefused(const std::filesystem::path& path, const std::string& claim) {
-  try {
-    readColorImage(path);
-    FAIL() << path << " was read";
-  } catch (const Error& error) {
-    const std::string message = error.what();
-    EXPECT_NE(message.find(path.string()), std::string::npos) << message;
-    EXPECT_NE(message.find(claim), std::string::npos) << message;
   }
 }
 
