@@ -9,8 +9,6 @@
 layout(binding = 0) uniform sampler2D foamDepth;  // eye depth, h
 layout(binding = 1) uniform sampler2D foamNormal;
 layout(binding = 2) uniform sampler2D foamIntensity;
-layout(binding = 3) uniform sampler2D fluidEyeDepth;
-layout(binding = 4) uniform sampler2D solidEyeDepth;
 layout(binding = 6) uniform sampler2D irradianceMap;
 // Per pixel: foam opacity, foam depth where opaque, liquid depth, solid depth (foam_occluders.frag).
 layout(binding = 7) uniform sampler2D occluders;

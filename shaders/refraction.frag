@@ -7,10 +7,6 @@
 #include "lib/optics.glsl"
 #include "lib/screen_trace.glsl"
 
-layout(binding = 0) uniform sampler2D splashFrontDepth;
-layout(binding = 1) uniform sampler2D splashBackDepth;
-layout(binding = 2) uniform sampler2D aggregateFrontDepth;
-layout(binding = 3) uniform sampler2D aggregateBackDepth;
 layout(binding = 4) uniform sampler2D splashFrontNormal;
 layout(binding = 5) uniform sampler2D splashBackNormal;
 layout(binding = 6) uniform sampler2D aggregateFrontNormal;
@@ -18,8 +14,8 @@ layout(binding = 7) uniform sampler2D aggregateBackNormal;
 layout(binding = 8) uniform sampler2D backgroundColor;
 layout(binding = 9) uniform sampler2D backgroundEyeDepth;
 layout(binding = 10) uniform sampler2D environmentMap;
-// The four depth layers above, one texel per pixel: splash front, splash back, aggregate front, aggregate back
-// (refraction_layers.frag). The marches read them through frontDepth and backDepth.
+// The four depth layers, one texel per pixel: splash front, splash back, aggregate front, aggregate back
+// (refraction_layers.frag packs them). The marches read them through frontDepth and backDepth.
 layout(binding = 11) uniform sampler2D layerDepths;
 
 // Counts of rays by what they met, for the frame's stats (see RefractionPass::Statistics).
@@ -354,8 +350,9 @@ vec3 colourAlong(vec3 origin, vec3 direction, float pixelsPerStep, out vec2 back
 void main() {
   ivec2 pixel = ivec2(gl_FragCoord.xy);
   vec3 viewDirection = normalize(cameraRayFromFragCoord(gl_FragCoord.xy));
-  float splashDepth = hasSplash ? texelFetch(splashFrontDepth, pixel, 0).r : kNoSurfaceDepth;
-  float aggregateDepth = hasAggregate ? texelFetch(aggregateFrontDepth, pixel, 0).r : kNoSurfaceDepth;
+  vec4 drawnDepths = texelFetch(layerDepths, pixel, 0);
+  float splashDepth = hasSplash ? drawnDepths.x : kNoSurfaceDepth;
+  float aggregateDepth = hasAggregate ? drawnDepths.z : kNoSurfaceDepth;
   float firstDepth = min(splashDepth, aggregateDepth);
   outLiquid = vec4(0.0);
   outSplash = vec4(0.0);

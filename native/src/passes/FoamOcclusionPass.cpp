@@ -103,8 +103,6 @@ FoamOcclusionData FoamOcclusionPass::run(const FoamSurfaceData& surface, const F
   glBindTextureUnit(0, surface.depthAndSearchRadius.id());
   glBindTextureUnit(1, surface.normal.id());
   glBindTextureUnit(2, intensity.intensity.id());
-  glBindTextureUnit(3, scene.fluidEyeDepth.id());
-  glBindTextureUnit(4, scene.solidEyeDepth.id());
   glBindTextureUnit(6, useIrradianceMap ? irradianceMap_.id() : 0);
   glBindTextureUnit(7, occluders_.id());
   glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, haltonSamples_.id());

@@ -78,10 +78,6 @@ LiquidData RefractionPass::run(const std::optional<SurfaceLayers>& splashes,
   glDisable(GL_BLEND);
   const GLuint program = program_.id();
   glUseProgram(program);
-  glBindTextureUnit(0, layerTexture(splashes, false, false));
-  glBindTextureUnit(1, layerTexture(splashes, true, false));
-  glBindTextureUnit(2, layerTexture(aggregates, false, false));
-  glBindTextureUnit(3, layerTexture(aggregates, true, false));
   glBindTextureUnit(4, layerTexture(splashes, false, true));
   glBindTextureUnit(5, layerTexture(splashes, true, true));
   glBindTextureUnit(6, layerTexture(aggregates, false, true));
