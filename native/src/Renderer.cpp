@@ -32,6 +32,7 @@
 #include "passes/RefractionPass.h"
 #include "prep/BackgroundCache.h"
 #include "prep/FoamPreparation.h"
+#include "prep/FrameLiquidCache.h"
 #include "prep/HiddenInterior.h"
 #include "prep/LightViews.h"
 #include "prep/LiquidPreparation.h"
@@ -252,9 +253,11 @@ RenderResult Renderer::renderPrepared(const Scene& scene, const Particles& parti
   const Clock::time_point prepareStart = Clock::now();
   // Under water is decided on every aggregate; dropHiddenAggregates below leaves a body that reaches the
   // camera's near plane whole, so the ellipsoids around the camera are still drawn.
-  // Mantaflow's surface is built and searched once for the camera's view and every light's.
-  FrameMantaflowSurface frameSurface;
-  LiquidPreparation liquid = prepareLiquid(particles, camera, liquidParameters, &frameSurface);
+  // Each particle is shaped, and Mantaflow's surface built and searched, once for the camera's view and every
+  // light's; a frame without lights has no other view to share them with.
+  FrameLiquidCache frameCache;
+  FrameLiquidCache* sharedWithLights = scene.lights.empty() ? nullptr : &frameCache;
+  LiquidPreparation liquid = prepareLiquid(particles, camera, liquidParameters, sharedWithLights);
   const bool cameraInLiquid = aggregatesContain(liquid.aggregates, camera.position(), domainBox);
   const float radius = typicalLiquidRadius(particles);
   const FoamPreparation foam = prepareFoam(particles, camera, foamParameters);
@@ -298,7 +301,7 @@ RenderResult Renderer::renderPrepared(const Scene& scene, const Particles& parti
                      backgroundImages.environment->height,
                      "background.environment " + pathForFrame(scene.background.environment, frame).string());
   const LightingPreparation lighting =
-      prepareLighting(particles, camera, scene.lights, scene.parameters, &frameSurface);
+      prepareLighting(particles, camera, scene.lights, scene.parameters, sharedWithLights);
   stats.prepareMilliseconds = millisecondsSince(prepareStart);
   recordPreparation(liquid, foam, stats);
   stats.liquid.cameraInLiquid = cameraInLiquid;

@@ -8,6 +8,7 @@
 #include <cmath>
 #include <cstring>
 #include <random>
+#include <string>
 #include <utility>
 #include <vector>
 
@@ -15,6 +16,7 @@
 
 #include "EllipsoidRayCast.h"
 #include "LiquidTestScenes.h"
+#include "prep/Anisotropy.h"
 #include "prep/HiddenInterior.h"
 #include "prep/LiquidPreparation.h"
 #include "spindrift/FrameInputs.h"
@@ -280,6 +282,37 @@ TEST(HiddenInterior, ScatteredDropsAndSmallSetsAreLeftAlone) {
   std::vector<EllipsoidInstance> few(10, scattered.front());  // identical ones: each covers the others
   EXPECT_EQ(dropHiddenInterior(few, camera, nullptr).dropped, 0u);
   EXPECT_EQ(few.size(), 10u);
+}
+
+// Spheres of `radius` on a perfect cubic lattice of kSpacing, 12 on a side.
+std::vector<EllipsoidInstance> latticeOfSpheres(float radius) {
+  std::vector<EllipsoidInstance> spheres;
+  for (const glm::vec3& position : liquid_test::block({0.05f, 0.05f, 0.05f}, {1.15f, 1.15f, 1.15f}, kSpacing))
+    spheres.push_back(sphereInstance(position, radius));
+  return spheres;
+}
+
+TEST(HiddenInterior, BallsTooSmallToCoverTheLatticeGapsAreNotTried) {
+  const Camera camera = obliqueCamera();
+  // Below the covering bound (sqrt(3) / 2 spacings, the cube centres' distance from the lattice points): the
+  // test, run regardless, drops nothing, so skipping it loses nothing.
+  std::vector<EllipsoidInstance> unchecked = latticeOfSpheres(0.85f * kSpacing);
+  ASSERT_EQ(unchecked.size(), 1728u);
+  EXPECT_EQ(dropHiddenInterior(unchecked, camera, nullptr).dropped, 0u);
+  std::vector<EllipsoidInstance> checked = latticeOfSpheres(0.85f * kSpacing);
+  const HiddenInteriorResult skipped = dropHiddenInterior(checked, camera, nullptr, nullptr, kSpacing);
+  EXPECT_NE(skipped.notApplied.find("cannot cover"), std::string::npos) << skipped.notApplied;
+  EXPECT_EQ(skipped.dropped, 0u);
+  // Above it the balls close the gaps and the deep ones go.
+  std::vector<EllipsoidInstance> overlapping = latticeOfSpheres(1.15f * kSpacing);
+  const HiddenInteriorResult tried = dropHiddenInterior(overlapping, camera, nullptr, nullptr, kSpacing);
+  EXPECT_EQ(tried.notApplied, "");
+  EXPECT_GT(tried.dropped, 1728u / 4);
+}
+
+TEST(HiddenInterior, ParticleSpacingIsTheLatticesSpacing) {
+  const LiquidPreparation preparation = prepareLiquid(jitteredBlock(), obliqueCamera(), grownParticles());
+  EXPECT_NEAR(preparation.particleSpacing, kSpacing, 0.1f * kSpacing);
 }
 
 // The whole frame with and without: every channel of every layer bit-identical.

@@ -3,12 +3,15 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <cstring>
 #include <random>
+#include <vector>
 
 #include <glm/geometric.hpp>
 #include <glm/trigonometric.hpp>
 
 #include "prep/Anisotropy.h"
+#include "prep/FrameLiquidCache.h"
 #include "prep/LiquidPreparation.h"
 
 namespace spindrift {
@@ -304,6 +307,58 @@ TEST(LiquidPreparation, OffScreenNeighboursShapeVisibleParticles) {
   }
   EXPECT_GT(nearTheEdge, 100u);
   EXPECT_EQ(anisotropicNearTheEdge, 0u);
+}
+
+bool sameInstances(const std::vector<EllipsoidInstance>& a, const std::vector<EllipsoidInstance>& b) {
+  return a.size() == b.size() && std::memcmp(a.data(), b.data(), a.size() * sizeof(EllipsoidInstance)) == 0;
+}
+
+TEST(LiquidPreparation, ViewsSharingAFrameCacheShapeEachParticleOnceAndGetWhatTheyGetAlone) {
+  // A jittered block with drops over it (liquid.reach_radius and smoothing at their defaults), seen obliquely
+  // and from above (both see every particle: the second reuses the first's shapes) and from close by (it
+  // culls, so it shapes its own): every view's ellipsoids are bit for bit those it gets alone, in any order.
+  Particles particles;
+  addBlock(particles, {0, 0, 0}, 10, 1.0f, 0.3f, 5);
+  for (int i = 0; i < 6; ++i)
+    addLiquid(particles, glm::vec3(0.1f * float(i) - 0.25f, 0.05f, 0.5f + 0.07f * float(i)));
+  LiquidParameters parameters;
+  const Camera views[] = {Camera::lookAt(64, 64, 60.0f, {2, -3, 2}, {0, 0, 0}, {0, 0, 1}),
+                          Camera::lookAt(64, 64, 60.0f, {0.01f, 0.02f, 4}, {0, 0, 0}, {0, 1, 0}),
+                          Camera::lookAt(64, 64, 30.0f, {0.6f, -0.3f, 0.2f}, {0.3f, 0, 0}, {0, 0, 1})};
+  std::vector<LiquidPreparation> alone;
+  for (const Camera& view : views)
+    alone.push_back(prepareLiquid(particles, view, parameters));
+  EXPECT_EQ(alone[0].culled, 0u);
+  EXPECT_EQ(alone[1].culled, 0u);
+  EXPECT_GT(alone[2].culled, 0u);
+  EXPECT_GT(alone[0].splashes.size(), 0u);
+  for (const std::vector<int>& order : {std::vector<int>{0, 1, 2, 0}, std::vector<int>{2, 1, 0, 1}}) {
+    FrameLiquidCache frame;
+    for (int view : order) {
+      const LiquidPreparation shared = prepareLiquid(particles, views[view], parameters, &frame);
+      EXPECT_TRUE(sameInstances(shared.aggregates, alone[view].aggregates)) << "view " << view;
+      EXPECT_TRUE(sameInstances(shared.splashes, alone[view].splashes)) << "view " << view;
+      EXPECT_EQ(shared.fullNeighbours, alone[view].fullNeighbours);
+      // The culling view leaves the memory as it was; a whole view has shaped every particle into it.
+      EXPECT_EQ(frame.shapes.remembered(), view == 2 && order.front() == 2 ? 0u : particles.size())
+          << "view " << view;
+    }
+  }
+}
+
+TEST(LiquidPreparation, ShapeMemoryForgetsAParticleThatMoved) {
+  ShapeMemory memory;
+  memory.reset(2);
+  ViewlessShape shape;
+  shape.density = 3.0f;
+  memory.remember(1, {1, 2, 3}, 0.5f, shape);
+  ASSERT_NE(memory.find(1, {1, 2, 3}, 0.5f), nullptr);
+  EXPECT_EQ(memory.find(1, {1, 2, 3}, 0.5f)->density, 3.0f);
+  EXPECT_EQ(memory.find(1, {1, 2, 3.001f}, 0.5f), nullptr);
+  EXPECT_EQ(memory.find(1, {1, 2, 3}, 0.6f), nullptr);
+  EXPECT_EQ(memory.find(0, {0, 0, 0}, -1.0f), nullptr) << "an empty entry matches nothing";
+  EXPECT_EQ(memory.find(2, {1, 2, 3}, 0.5f), nullptr) << "out of range";
+  EXPECT_EQ(memory.remembered(), 1u);
 }
 
 TEST(LiquidPreparation, EmptyInput) {

@@ -12,6 +12,7 @@
 
 #include <glm/geometric.hpp>
 
+#include "prep/FrameLiquidCache.h"
 #include "prep/LiquidPreparation.h"
 #include "prep/MantaflowSurface.h"
 #include "scene/MantaflowDomain.h"
@@ -368,7 +369,7 @@ TEST(MantaflowSurface, AFrameSurfaceSharedByItsViewsChangesNoViewsResult) {
   EXPECT_EQ(alone[1].culled, 0u);
   EXPECT_GT(alone[2].culled, 0u);
   for (const std::vector<int>& order : {std::vector<int>{0, 1, 2, 0}, std::vector<int>{2, 1, 0, 1}}) {
-    FrameMantaflowSurface frame;
+    FrameLiquidCache frame;
     for (int view : order) {
       const LiquidPreparation shared = prepareLiquid(particles, views[view], parameters, &frame);
       EXPECT_TRUE(sameInstances(shared.aggregates, alone[view].aggregates)) << "view " << view;

@@ -120,14 +120,36 @@ float anisotropicKernelSum(const ParticleCloud& cloud, std::uint32_t particle, c
 
 // Whether particle i's outward side (away from its neighbours' weighted mean) faces the eye, or no eye is
 // set.
-bool facesEye(const ParticleCloud& cloud, std::size_t i, const NeighbourMoments& moments,
+bool facesEye(const ParticleCloud& cloud, std::size_t i, const glm::vec3& weightedOffset,
               const AnisotropySettings& settings) {
   if (!settings.eye) return true;
   const glm::vec3 toEye = *settings.eye - glm::vec3(cloud.x[i], cloud.y[i], cloud.z[i]);
   // Silhouette particles face sideways and the 2.5 r neighbourhood's mean tilts either way: only a clearly
   // averted side (more than 120 degrees from the eye) is skipped.
-  const float along = -glm::dot(moments.weightedOffset, toEye);
-  return along >= -0.5f * glm::length(moments.weightedOffset) * glm::length(toEye);
+  const float along = -glm::dot(weightedOffset, toEye);
+  return along >= -0.5f * glm::length(weightedOffset) * glm::length(toEye);
+}
+
+// Particle i's shape and density from its neighbours in `ranges`.
+ViewlessShape shapeFromNeighbours(const ParticleCloud& cloud, std::uint32_t i, const IndexRange* ranges,
+                                  int rangeCount, const AnisotropySettings& settings) {
+  const float radius = cloud.radius[i];
+  const float neighbourhood = settings.neighbourRadius * radius;
+  const NeighbourMoments moments = accumulateMoments(cloud, i, 1.0f / neighbourhood, ranges, rangeCount);
+  ViewlessShape result;
+  result.shape = shapeFromMoments(moments, radius, settings);
+  result.weightedOffset = moments.weightedOffset;
+  if (!settings.needDensity) return result;
+  // Unit-free density: the kernel's normalisation over its support volume, times r^3.
+  if (result.shape.kind == ShapeKind::Anisotropic) {
+    const glm::vec3 support = result.shape.kernelSemiAxes / radius;
+    const float sum = anisotropicKernelSum(cloud, i, result.shape, ranges, rangeCount);
+    result.density = kKernelNormalisation * sum / (support.x * support.y * support.z);
+  } else {
+    const float radiusCubed = settings.neighbourRadius * settings.neighbourRadius * settings.neighbourRadius;
+    result.density = kKernelNormalisation * moments.isotropicKernelSum / radiusCubed;
+  }
+  return result;
 }
 
 // The offset (in radii) that makes particle i's ellipsoid reach Mantaflow's surface along the particle's
@@ -256,6 +278,24 @@ EllipsoidInstance sphereInstance(const glm::vec3& centre, float radius) {
   return ellipsoidInstance(centre, identity, glm::vec3(radius));
 }
 
+const ViewlessShape* ShapeMemory::find(std::size_t index, const glm::vec3& position, float radius) const {
+  if (index >= entries_.size()) return nullptr;
+  const Entry& entry = entries_[index];
+  return entry.radius >= 0.0f && entry.radius == radius && entry.position == position ? &entry.shape
+                                                                                      : nullptr;
+}
+
+std::size_t ShapeMemory::remembered() const {
+  return std::size_t(std::count_if(entries_.begin(), entries_.end(),
+                                   [](const Entry& entry) { return entry.radius >= 0.0f; }));
+}
+
+void ShapeMemory::remember(std::size_t index, const glm::vec3& position, float radius,
+                           const ViewlessShape& shape) {
+  if (index >= entries_.size()) return;
+  entries_[index] = Entry{position, radius, shape};
+}
+
 ParticleShapes shapeParticles(const NeighbourGrid& grid, const AnisotropySettings& settings) {
   const ParticleCloud& cloud = grid.particles();
   ParticleShapes shapes;
@@ -263,7 +303,6 @@ ParticleShapes shapeParticles(const NeighbourGrid& grid, const AnisotropySetting
   shapes.kinds.assign(cloud.size(), ShapeKind::Hidden);
   shapes.densities.assign(cloud.size(), 0.0f);
   shapes.offsets.assign(cloud.size(), settings.surfaceOffset);
-  const float radiusCubed = settings.neighbourRadius * settings.neighbourRadius * settings.neighbourRadius;
 
   tbb::parallel_for(
       tbb::blocked_range<std::size_t>(0, grid.cellCount(), 8),
@@ -271,36 +310,34 @@ ParticleShapes shapeParticles(const NeighbourGrid& grid, const AnisotropySetting
         IndexRange ranges[9];
         for (std::size_t cell = cells.begin(); cell != cells.end(); ++cell) {
           const IndexRange members = grid.cellParticles(cell);
-          int rangeCount = -1;  // Looked up on the first visible particle of the cell.
+          int rangeCount = -1;  // Looked up on the first particle of the cell that is shaped here.
           for (std::uint32_t i = members.begin; i < members.end; ++i) {
             if (!cloud.visible[i]) continue;
-            if (rangeCount < 0) rangeCount = grid.neighbourRanges(cell, ranges);
             const float radius = cloud.radius[i];
-            const float neighbourhood = settings.neighbourRadius * radius;
-            const NeighbourMoments moments =
-                accumulateMoments(cloud, i, 1.0f / neighbourhood, ranges, rangeCount);
-            const ParticleShape shape = shapeFromMoments(moments, radius, settings);
-            const glm::vec3 centre = glm::vec3(cloud.x[i], cloud.y[i], cloud.z[i]) + shape.centreOffset;
+            const glm::vec3 particle(cloud.x[i], cloud.y[i], cloud.z[i]);
+            const ViewlessShape* remembered =
+                settings.memory ? settings.memory->find(i, particle, radius) : nullptr;
+            ViewlessShape computed;
+            if (!remembered) {
+              if (rangeCount < 0) rangeCount = grid.neighbourRanges(cell, ranges);
+              computed = shapeFromNeighbours(cloud, i, ranges, rangeCount, settings);
+              if (settings.memory) settings.memory->remember(i, particle, radius, computed);
+            }
+            const ViewlessShape& viewless = remembered ? *remembered : computed;
+            const ParticleShape& shape = viewless.shape;
+            const glm::vec3 centre = particle + shape.centreOffset;
             shapes.kinds[i] = shape.kind;
+            shapes.densities[i] = viewless.density;
             // The surface offset grows every axis by the same length, so the drawn surface moves out by about
             // that much everywhere (exactly so along the axes) while the shape computed at r stays as it is.
             float offset = settings.surfaceOffset;
             if (settings.meshSurface && shape.kind == ShapeKind::Anisotropic &&
-                facesEye(cloud, i, moments, settings))
+                facesEye(cloud, i, viewless.weightedOffset, settings))
               offset = offsetToMantaflowSurface(grid, i, shape, centre, settings);
             else if (!settings.meshSurface && settings.reachRadius && shape.kind == ShapeKind::Anisotropic)
               offset = std::max(offset, reachRadiusOffset(shape, radius));
             shapes.instances[i] = ellipsoidInstance(centre, shape.axes, shape.semiAxes + offset * radius);
             shapes.offsets[i] = offset;
-            if (!settings.needDensity) continue;
-            // Unit-free density: the kernel's normalisation over its support volume, times r^3.
-            if (shape.kind == ShapeKind::Anisotropic) {
-              const glm::vec3 support = shape.kernelSemiAxes / radius;
-              const float sum = anisotropicKernelSum(cloud, i, shape, ranges, rangeCount);
-              shapes.densities[i] = kKernelNormalisation * sum / (support.x * support.y * support.z);
-            } else {
-              shapes.densities[i] = kKernelNormalisation * moments.isotropicKernelSum / radiusCubed;
-            }
           }
         }
       });

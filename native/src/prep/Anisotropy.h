@@ -14,6 +14,8 @@
 namespace spindrift {
 
 /// Yu and Turk's (2013) anisotropy constants, every length in particle radii so that they hold at any scale.
+class ShapeMemory;
+
 struct AnisotropySettings {
   float neighbourRadius = 2.5f;  ///< The neighbourhood radius R, in particle radii.
   float maxRatio = 4.0f;         ///< k_r.
@@ -33,6 +35,8 @@ struct AnisotropySettings {
   /// keep surfaceOffset (the per-particle search costs two sums over 2 r_m each). Unset: every particle.
   std::optional<glm::vec3> eye;
   bool needDensity = true;  ///< False when every particle is an aggregate (liquid.layers = merged).
+  /// Shapes remembered for the frame's other views (null: none), for the grid's cloud that the memory holds.
+  ShapeMemory* memory = nullptr;
 
   static AnisotropySettings fromParameters(const LiquidParameters& parameters);
 };
@@ -100,6 +104,40 @@ struct ParticleShapes {
   /// The surface offset each instance was grown by, in radii (liquid.surface_offset, or the per-particle
   /// offset to Mantaflow's surface or to the particle's radius, liquid.reach_radius).
   std::vector<float> offsets;
+};
+
+/// What of a particle's shaping no view changes: its shape and density from its neighbours, and where their
+/// weighted mean lies (which side faces an eye). With Mantaflow's surface, the offset each view grows the
+/// shape by is the view's own (only the particles whose outward side faces its eye search for it).
+struct ViewlessShape {
+  ParticleShape shape;
+  glm::vec3 weightedOffset{0.0f};  ///< NeighbourMoments::weightedOffset.
+  float density = 0.0f;            ///< As ParticleShapes::densities.
+};
+
+/// Each particle's ViewlessShape, remembered so that the views of one frame (the camera's, every light's, the
+/// sky's) shape a particle once: its neighbour sums are most of a view's preparation. Indexed like the
+/// sorted cloud of the first view that resets it; an entry is reused only for a particle at the same position
+/// with the same radius, so a reused shape is bit for bit the one a new computation would give. The views
+/// sharing it shape with the same settings (one frame's parameters). One thread at a time may use an index.
+class ShapeMemory {
+ public:
+  /// Forgets every shape and holds `particles` entries.
+  void reset(std::size_t particles) { entries_.assign(particles, Entry{}); }
+  std::size_t size() const { return entries_.size(); }
+  /// How many particles have a shape remembered.
+  std::size_t remembered() const;
+  /// The remembered shape of particle `index` at `position` with `radius`, or null.
+  const ViewlessShape* find(std::size_t index, const glm::vec3& position, float radius) const;
+  void remember(std::size_t index, const glm::vec3& position, float radius, const ViewlessShape& shape);
+
+ private:
+  struct Entry {
+    glm::vec3 position{0.0f};
+    float radius = -1.0f;  // Negative: nothing remembered.
+    ViewlessShape shape;
+  };
+  std::vector<Entry> entries_;
 };
 
 /// Shapes every visible particle of the grid from its neighbours (TBB-parallel over cells).

@@ -27,6 +27,13 @@ constexpr double kMaxVoxels = double(1 << 24);
 // Fewer ellipsoids than this are drawn as they are: the grid would cost more than it saves.
 constexpr std::size_t kMinEllipsoids = 256;
 
+// A surface point is hidden only inside a voxel that fits inside another ellipsoid's inscribed ball. Balls
+// about the points of a cubic lattice of spacing s leave its cube centres uncovered while their radius is
+// below sqrt(3) / 2 s, and every particle's surface passes near one of those gaps: with the median
+// inscribed radius below that many spacings the test drops nothing (the light benchmark's lattices, at 0.74,
+// dropped none in 10-40 ms a view; the thick tank of docs/frame-cost.md, at 3.3, drops 74 %).
+constexpr float kMinInscribedPerSpacing = 0.8660254f;
+
 // Below this fraction of isotropic (deep) aggregates, dropHiddenAggregates does not try.
 constexpr double kMinDeepFraction = 0.1;
 
@@ -226,7 +233,8 @@ HiddenHalves hiddenHalves(const EllipsoidInstance& ellipsoid, std::int32_t self,
 }  // namespace
 
 HiddenInteriorResult dropHiddenInterior(std::vector<EllipsoidInstance>& ellipsoids, const Camera& camera,
-                                        const DomainBox* domain, const SolidDepthTiles* solids) {
+                                        const DomainBox* domain, const SolidDepthTiles* solids,
+                                        float particleSpacing) {
   const auto start = std::chrono::steady_clock::now();
   HiddenInteriorResult result;
   const std::size_t count = ellipsoids.size();
@@ -250,8 +258,14 @@ HiddenInteriorResult dropHiddenInterior(std::vector<EllipsoidInstance>& ellipsoi
   }
   std::vector<float> sorted = inscribed;
   std::nth_element(sorted.begin(), sorted.begin() + std::ptrdiff_t(count / 2), sorted.end());
+  const float medianInscribed = sorted[count / 2];
+  if (medianInscribed < kMinInscribedPerSpacing * particleSpacing) {
+    result.notApplied = "the ellipsoids' inscribed balls cannot cover each other (median radius " +
+                        std::to_string(medianInscribed / particleSpacing) + " of the particles' spacing)";
+    return result;
+  }
   VoxelGrid grid;
-  grid.size = sorted[count / 2] / kVoxelsPerInscribedRadius;
+  grid.size = medianInscribed / kVoxelsPerInscribedRadius;
   const glm::vec3 extent = high - low;
   const double voxels =
       double(extent.x / grid.size + 3) * (extent.y / grid.size + 3) * (extent.z / grid.size + 3);
@@ -355,7 +369,7 @@ HiddenInteriorResult dropHiddenAggregates(LiquidPreparation& liquid, const Camer
     result.notApplied = "few deep aggregates (" + std::to_string(liquid.isotropicInterior) + " of " +
                         std::to_string(liquid.aggregates.size()) + ")";
   } else {
-    result = dropHiddenInterior(liquid.aggregates, camera, domain, solidTiles);
+    result = dropHiddenInterior(liquid.aggregates, camera, domain, solidTiles, liquid.particleSpacing);
   }
   liquid.aggregateLayers = result.split;
   // What the view hides: the body's far side behind its near side, and the inside of a body whose particles

@@ -34,9 +34,12 @@ struct HiddenInteriorResult {
 /// half of the surface is covered by another ellipsoid. Rays start at the near plane and end at the far
 /// plane, the domain box clips the body and the passes hide a particle whose front lies behind a solid, so
 /// nothing is left out when the body reaches the near or far plane, nor any ellipsoid that reaches the
-/// domain's walls or may reach behind a solid (`solids`, null where there are none).
+/// domain's walls or may reach behind a solid (`solids`, null where there are none). Nothing is tried when
+/// the median ellipsoid's inscribed ball is too small to cover the gaps of a lattice of `particleSpacing`
+/// (LiquidPreparation::particleSpacing; 0: not checked), where no voxel between the particles is covered.
 HiddenInteriorResult dropHiddenInterior(std::vector<EllipsoidInstance>& ellipsoids, const Camera& camera,
-                                        const DomainBox* domain, const SolidDepthTiles* solids = nullptr);
+                                        const DomainBox* domain, const SolidDepthTiles* solids = nullptr,
+                                        float particleSpacing = 0.0f);
 
 /// dropHiddenInterior on a preparation's aggregates (where enough of them are deep), then
 /// dropOccludedAggregates, recording the split in `liquid.aggregateLayers`.

@@ -137,7 +137,7 @@ std::size_t causticLights(const LightingPreparation& lighting) {
 
 LightingPreparation prepareLighting(const Particles& particles, const Camera& camera,
                                     const std::vector<Light>& lights, const Parameters& parameters,
-                                    FrameMantaflowSurface* frameSurface) {
+                                    FrameLiquidCache* frameCache) {
   const auto start = std::chrono::steady_clock::now();
   LightingPreparation preparation;
   if (lights.empty()) return preparation;
@@ -150,7 +150,7 @@ LightingPreparation prepareLighting(const Particles& particles, const Camera& ca
   // A light sees one body: splashes and aggregates are drawn into the same layers, each shaped as the
   // camera's preparation shapes it.
   const auto prepareFor = [&](const LightView& view) {
-    LightPreparation light{view, prepareLiquid(particles, view.camera, parameters.liquid, frameSurface)};
+    LightPreparation light{view, prepareLiquid(particles, view.camera, parameters.liquid, frameCache)};
     std::vector<EllipsoidInstance>& body = light.liquid.aggregates;
     body.insert(body.end(), light.liquid.splashes.begin(), light.liquid.splashes.end());
     light.liquid.splashes.clear();

@@ -72,10 +72,10 @@ struct LightingPreparation {
 /// The lights among `lighting.lights` that can cast caustics (suns and spots).
 std::size_t causticLights(const LightingPreparation& lighting);
 
-/// Prepares each light's view (and the sky's) of the liquid. `frameSurface`: the camera's, so that
-/// Mantaflow's surface is built and searched once per frame (prepareLiquid).
+/// Prepares each light's view (and the sky's) of the liquid. `frameCache`: the camera's, so that each
+/// particle is shaped and Mantaflow's surface built and searched once per frame (prepareLiquid).
 LightingPreparation prepareLighting(const Particles& particles, const Camera& camera,
                                     const std::vector<Light>& lights, const Parameters& parameters,
-                                    FrameMantaflowSurface* frameSurface = nullptr);
+                                    FrameLiquidCache* frameCache = nullptr);
 
 }  // namespace spindrift

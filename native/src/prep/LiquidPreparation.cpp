@@ -12,6 +12,7 @@
 #include <glm/matrix.hpp>
 
 #include "prep/Anisotropy.h"
+#include "prep/FrameLiquidCache.h"
 #include "prep/FullNeighbourhood.h"
 #include "prep/LiquidStages.h"
 #include "prep/MantaflowSurface.h"
@@ -220,7 +221,7 @@ bool aggregatesContain(const std::vector<EllipsoidInstance>& aggregates, const g
 }
 
 LiquidPreparation prepareLiquid(const Particles& particles, const Camera& camera,
-                                const LiquidParameters& parameters, FrameMantaflowSurface* frameSurface) {
+                                const LiquidParameters& parameters, FrameLiquidCache* frameCache) {
   const Clock::time_point start = Clock::now();
   LiquidPreparation preparation;
   LiquidCandidates candidates = selectLiquidCandidates(particles, camera, parameters);
@@ -229,34 +230,47 @@ LiquidPreparation prepareLiquid(const Particles& particles, const Camera& camera
   const NeighbourGrid grid(std::move(candidates.cloud), candidates.cellSize);
   const Clock::time_point gridBuilt = Clock::now();
 
+  // A view whose candidates are every liquid particle sorts them into the cloud every such view of the frame
+  // sorts them into (the same particles, the same cell size): it shares what frameCache remembers of it.
+  FrameLiquidCache* shared = frameCache && wholeLiquid ? frameCache : nullptr;
+  if (shared && shared->cellSize != grid.cellSize()) {
+    shared->search.reset();
+    shared->shapes.reset(grid.particles().size());
+    shared->cellSize = grid.cellSize();
+  }
+
   // Mantaflow's surface (liquid.mesh_kernel_radius, in radii of the largest particle: a Mantaflow liquid's
   // particles all have one radius) sizes each splash and each surface particle's offset.
-  // Its level set and searches depend on the candidates, not on the eye: a view whose candidates are every
-  // liquid particle shares them with the frame's other such views (FrameMantaflowSurface).
+  // Its level set and searches depend on the candidates, not on the eye.
   std::optional<MantaflowSurfaceSearch> ownSurface;
   MantaflowSurfaceSearch* meshSurface = nullptr;
   const ParticleCloud& cloud = grid.particles();
   if (parameters.mesh_kernel_radius > 0.0f && cloud.size() > 0) {
     const float kernelRadius =
         parameters.mesh_kernel_radius * *std::max_element(cloud.radius.begin(), cloud.radius.end());
-    const bool shared = frameSurface && wholeLiquid;
-    if (shared && frameSurface->search && frameSurface->search->kernelRadius() == kernelRadius &&
-        frameSurface->cellSize == grid.cellSize()) {
-      meshSurface = &*frameSurface->search;
+    if (shared && shared->search && shared->search->kernelRadius() == kernelRadius) {
+      meshSurface = &*shared->search;
     } else {
-      std::optional<MantaflowSurfaceSearch>& built = shared ? frameSurface->search : ownSurface;
+      std::optional<MantaflowSurfaceSearch>& built = shared ? shared->search : ownSurface;
       built.emplace(MantaflowLevelSet(cloud, kernelRadius), cloud.size());
-      if (shared) frameSurface->cellSize = grid.cellSize();
       meshSurface = &*built;
     }
   }
   AnisotropySettings settings = AnisotropySettings::fromParameters(parameters);
   // N_epsilon from the whole frame's particles, not the view's, so every view shapes a particle alike.
-  preparation.fullNeighbours = fullNeighbourCount(particles, parameters.neighbour_radius);
+  if (frameCache && !frameCache->fullNeighbours)
+    frameCache->fullNeighbours = fullNeighbourCount(particles, parameters.neighbour_radius);
+  preparation.fullNeighbours =
+      frameCache ? *frameCache->fullNeighbours : fullNeighbourCount(particles, parameters.neighbour_radius);
   settings.minNeighbours = appliedMinNeighbours(parameters, preparation.fullNeighbours);
+  // A lattice of spacing s holds (4 pi / 3) R^3 / s^3 particles within R of each one, itself included.
+  if (cloud.size() > 0)
+    preparation.particleSpacing =
+        candidates.cellSize * std::cbrt(4.18879f / (preparation.fullNeighbours + 1.0f));
   preparation.minNeighboursApplied = settings.minNeighbours;
   settings.eye = camera.position();
   settings.meshSurface = meshSurface;
+  settings.memory = shared ? &shared->shapes : nullptr;
   const ParticleShapes shapes = shapeParticles(grid, settings);
   classifyAndPack(grid, shapes, parameters, settings.meshSurface, preparation);
   const Clock::time_point end = Clock::now();

@@ -38,6 +38,9 @@ struct LiquidPreparation {
   std::size_t isotropicInterior = 0;  ///< Aggregates deep inside the body, drawn as spheres without PCA.
   float fullNeighbours = 0.0f;        ///< A particle inside the body has this many neighbours within R.
   float minNeighboursApplied = 0.0f;  ///< N_epsilon as applied: fewer neighbours make a sphere of k_n r.
+  /// The body's typical particle spacing (world units): that of a lattice with fullNeighbours within R of
+  /// each particle. 0 without liquid.
+  float particleSpacing = 0.0f;
   /// Splashes not drawn because Mantaflow's surface passes below them (liquid.mesh_kernel_radius > 0).
   std::size_t splashesAbsorbed = 0;
   /// For the ray-marched surface (liquid.surface = raymarch; empty otherwise): every liquid candidate, drawn
@@ -50,17 +53,16 @@ struct LiquidPreparation {
   double totalMilliseconds = 0.0;
 };
 
-struct FrameMantaflowSurface;
+struct FrameLiquidCache;
 
 /// Frustum-culls, finds neighbours, classifies each liquid particle as splash or aggregate by its anisotropic
 /// density, and builds the ellipsoids (TBB-parallel). Only particles of kind Liquid are considered.
 /// With liquid.layers = merged every visible particle is an aggregate (the earlier two-layer method).
-/// The views of one frame pass the same `frameSurface` so that Mantaflow's surface
-/// (liquid.mesh_kernel_radius) is built and searched once for all of them; the result is the same with or
-/// without it.
+/// The views of one frame pass the same `frameCache` so that what they share (each particle's shape from its
+/// neighbours, Mantaflow's surface for liquid.mesh_kernel_radius) is computed once for all of them; the
+/// result is the same with or without it.
 LiquidPreparation prepareLiquid(const Particles& particles, const Camera& camera,
-                                const LiquidParameters& parameters,
-                                FrameMantaflowSurface* frameSurface = nullptr);
+                                const LiquidParameters& parameters, FrameLiquidCache* frameCache = nullptr);
 
 /// Whether `point` lies inside the drawn aggregated body: inside one of its ellipsoids and, for a Mantaflow
 /// liquid, inside the domain's box that clips them. This is how the renderer knows the camera is under water.

@@ -2,7 +2,6 @@
 
 #include <cstddef>
 #include <cstdint>
-#include <optional>
 #include <vector>
 
 #include <glm/vec3.hpp>
@@ -77,15 +76,6 @@ class MantaflowSurfaceSearch {
   };
   MantaflowLevelSet levelSet_;
   std::vector<Search> offsetSearches_, splashSearches_;
-};
-
-/// Mantaflow's surface as the views of one frame share it. The first view whose candidates are every liquid
-/// particle of the frame (every light's view frames the whole liquid; the camera's when nothing is culled)
-/// builds it; each later such view, which would build the same level set over the same sorted cloud, uses it
-/// and its remembered searches. A view that culls particles builds its own, as its level set differs.
-struct FrameMantaflowSurface {
-  std::optional<MantaflowSurfaceSearch> search;
-  float cellSize = 0.0f;  ///< The neighbour grid's cell size the cloud was sorted with.
 };
 
 }  // namespace spindrift
