@@ -97,8 +97,35 @@ def steady_cost(scene, settings, directory):
     costs = []
     for frame in range(3, 7):
         with open(os.path.join(directory, f"steady_{frame:04d}.json")) as handle:
-            costs.append(light_cost(json.load(handle)))
-    return float(np.median([c[0] for c in costs])), float(np.median([c[1] for c in costs]))
+            stats = json.load(handle)
+        costs.append(light_cost(stats) + (stats["light"]["prepare_ms"],))
+    return tuple(float(np.median([c[k] for c in costs])) for k in range(3))
+
+
+def steady_frame_ms(scene, settings, directory):
+    """The median whole-frame time (total_ms) of frames 3 to 8 of a `--frames 1-8` sequence, the passes not
+    finished one by one (as a user's render runs)."""
+    command = [runs.SPINDRIFT, "render", scene, "-o", os.path.join(directory, "frames_####.exr"), "--stats",
+               os.path.join(directory, "frames_####.json"), "--frames", "1-8", "-q"]
+    for key, value in settings.items():
+        command += ["--set", f"{key}={json.dumps(value)}"]
+    subprocess.run(command, check=True, stdout=subprocess.DEVNULL)
+    totals = []
+    for frame in range(3, 9):
+        with open(os.path.join(directory, f"frames_{frame:04d}.json")) as handle:
+            totals.append(json.load(handle)["total_ms"])
+    return float(np.median(totals))
+
+
+def marginal_cost(directory, settings):
+    """What the scene's lights add to a steady frame: the frame with them against the same frame without
+    (the same background with its light passes), each sequence run twice, interleaved; the medians."""
+    lit, unlit = scene_variant(directory, True, True), scene_variant(directory, False, True)
+    with_lights, without = [], []
+    for _ in range(2):
+        with_lights.append(steady_frame_ms(lit, settings, directory))
+        without.append(steady_frame_ms(unlit, settings, directory))
+    return float(np.median(with_lights)), float(np.median(without))
 
 
 def write_plain_background(directory):
@@ -284,11 +311,14 @@ def main():
             if name in timed:
                 key = timed[name]
                 light_passes_ms, frame_ms = light_cost(stats)
-                steady_light_ms, steady_frame_ms = steady_cost(scene, settings, directory)
+                steady_light_ms, steady_frame_ms, steady_prepare_ms = steady_cost(scene, settings, directory)
+                with_lights_ms, without_lights_ms = marginal_cost(directory, settings)
                 sky_occlusion_ms = sum(p["gpu_ms"] for p in stats["passes"] if p["name"] == "sky_occlusion")
                 timings[key] = {"light_gpu_ms": light_passes_ms, "frame_gpu_ms": frame_ms,
                                 "sky_occlusion_gpu_ms": sky_occlusion_ms,
                                 "steady_light_gpu_ms": steady_light_ms, "steady_frame_gpu_ms": steady_frame_ms,
+                                "steady_light_prepare_ms": steady_prepare_ms,
+                                "with_lights_ms": with_lights_ms, "without_lights_ms": without_lights_ms,
                                 "view_size": stats["light"]["view_size"],
                                 "view_particles": stats["light"]["view_particles"],
                                 "view_particles_left_out": stats["light"]["view_particles_left_out"],
@@ -360,10 +390,17 @@ def write_page(results, timings, renderer, samples, background_samples, loads):
               "add-on and farm sequences run; the median, each pass finished before the next starts, so that "
               "llvmpipe's deferred rasterisation charges no pass with another's work). *View*: the lights' views' side in texels and the particles drawn into "
               "them (all views) of those shaped. *Sky occlusion*: that pass's part of the light passes' time "
-              "(one-frame process).", "",
+              "(one-frame process). *Lights' CPU*: their views' preparation (shaping, culling; `light.prepare_ms`), "
+              "steady. *What the lights cost a frame*: the whole frame (`total_ms`: loading, every preparation, "
+              "every pass, the readback; frames 3 to 8 of a `--frames 1-8` sequence, passes not finished one by "
+              "one) with the sun against the same frame without it, over the same background, each run twice, "
+              "interleaved: the difference and its share of the frame with the sun. Finishing each pass (the GPU "
+              "columns) adds a wait to each of the lights' many small passes, so the GPU shares overstate them.",
+              "",
               "| Frame | View | Particles drawn | Light passes, GPU ms | Sky occlusion, GPU ms | Whole frame, GPU ms | "
-              "Share | Steady: light ms | Steady: frame ms | Steady share | Lights' CPU preparation, ms |",
-              "|---|---|---|---|---|---|---|---|---|---|---|"]
+              "Share | Steady: light ms | Steady: frame GPU ms | Steady share | Steady: lights' CPU ms | "
+              "Frame with the sun, ms | Without, ms | What the lights cost a frame |",
+              "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|"]
     for frame in sorted(timings):
         t = timings[frame]
         drawn = t["view_particles"] - t["view_particles_left_out"]
@@ -371,7 +408,9 @@ def write_page(results, timings, renderer, samples, background_samples, loads):
                      f"{t['sky_occlusion_gpu_ms']:.1f} | {t['frame_gpu_ms']:.1f} | {100 * t['light_gpu_ms'] / t['frame_gpu_ms']:.0f} % | "
                      f"{t['steady_light_gpu_ms']:.1f} | {t['steady_frame_gpu_ms']:.1f} | "
                      f"{100 * t['steady_light_gpu_ms'] / t['steady_frame_gpu_ms']:.0f} % | "
-                     f"{t['light_prepare_ms']:.1f} |")
+                     f"{t['steady_light_prepare_ms']:.1f} | {t['with_lights_ms']:.0f} | {t['without_lights_ms']:.0f} | "
+                     f"{t['with_lights_ms'] - t['without_lights_ms']:.0f} ms, "
+                     f"{100 * (t['with_lights_ms'] - t['without_lights_ms']) / t['with_lights_ms']:.0f} % |")
     lines += ["", f"Load average (1 min) on the 2-core machine: {loads[0]:.1f} before, {loads[1]:.1f} after: the "
               "milliseconds are those of a loaded llvmpipe; the shares are what compares.", "",
               "## Path length in the water", "",
