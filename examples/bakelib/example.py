@@ -42,12 +42,19 @@ class Layout:
     liquid_render_samples: int = 32
     liquid_render_bounces: int = 8
     water_ior: float = 1.33
-    # A plain world colour: it lights the scene softly and is the background colour Spindrift falls back on.
+    # A plain world colour and strength: it lights the scene softly, and its radiance (world_radiance) is the
+    # colour Spindrift falls back on where a ray leaves everything the frame shows.
     world_color: tuple = (0.52, 0.62, 0.78)
     world_strength: float = 0.55
     # The longest life of a secondary particle, in frames; scene files pass it on as foam.lifetime_frames, which
     # normalises the remaining life the cache stores into the age that fades foam out.
     secondary_life_max: float = 16.0
+
+    @property
+    def world_radiance(self):
+        """What the world's Background node emits (its colour times its strength): the colour a scene file gives
+        Spindrift for the world, as the add-on's export.world_color computes it."""
+        return tuple(c * self.world_strength for c in self.world_color)
 
     @property
     def cell_size(self):

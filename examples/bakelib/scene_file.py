@@ -75,7 +75,7 @@ def scene_description(layout, camera, domain):
         "particles": particle_sources(domain, layout.foam_radius),
         "background": {
             "image": "renders/background.exr",
-            "color": [clean_number(c) for c in layout.world_color],
+            "color": [clean_number(c) for c in layout.world_radiance],
         },
         "foam": {"lifetime_frames": layout.secondary_life_max},
     }
@@ -94,7 +94,7 @@ def foam_only_scene_description(layout, camera, domain):
             "image": "renders/with_liquid.exr",
             "depth": "renders/background.exr",
             "liquid_depth": "renders/with_liquid.exr",
-            "color": [clean_number(c) for c in layout.world_color],
+            "color": [clean_number(c) for c in layout.world_radiance],
         },
         "foam": {"lifetime_frames": layout.secondary_life_max},
     }

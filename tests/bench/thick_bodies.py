@@ -187,7 +187,7 @@ def scene_file(camera, sun, width, height):
         "camera": scene_files.camera_description(camera, width, height),
         "particles": [{"path": "particles.ply", "role": "liquid", "radius": PARTICLE_RADIUS}],
         "background": {"image": "background.exr",
-                       "color": [c * dam_break.LAYOUT.world_strength for c in dam_break.LAYOUT.world_color]},
+                       "color": list(dam_break.LAYOUT.world_radiance)},
         "lights": [{"type": "sun",
                     "direction": [scene_files.clean_number(-c) for c in sun.matrix_world.col[2][:3]],
                     "color": list(sun.data.color), "strength": sun.data.energy}],
