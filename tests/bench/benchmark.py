@@ -25,6 +25,7 @@ import report  # noqa: E402
 import runs  # noqa: E402
 import scaling  # noqa: E402
 import sweep  # noqa: E402
+import users_render  # noqa: E402
 
 EXAMPLES = ("dam_break", "drop")
 
@@ -127,7 +128,8 @@ def prepare_example(arguments, example, plan, absorption_rgb):
             "--width", str(plan["width"]), "--height", str(plan["height"]),
             "--background-spp", str(plan["background_spp"]), "--reference-spp", str(plan["reference_spp"]),
             "--sweep-camera", plan["cameras"][0], "--sweep-spp", ",".join(map(str, plan["sweep_spp"])),
-            "--absorption-rgb", ",".join(map(str, absorption_rgb)))
+            "--absorption-rgb", ",".join(map(str, absorption_rgb)),
+            *(["--full-references"] if plan.get("users_render") else []))
     log(f"{example}: references ready ({time.perf_counter() - started:.0f} s)")
     return references
 
@@ -194,6 +196,10 @@ def main():
             "vtk": [] if arguments.sweep_only else sweep.vtk_points(example, references, plan, absorption,
                                                                       arguments.work),
         }
+        if plan.get("users_render") and not arguments.sweep_only:
+            log(f"{example}: against the user's render (the water casting its shadow)")
+            results["examples"][example]["users_render"] = users_render.compare(
+                example, references, plan, absorption, arguments.work)
     if arguments.sweep_only:
         results["scaling"] = results["stability"] = None
         finish(results, arguments, started)

@@ -17,8 +17,16 @@ EXAMPLE/cameras.json it writes into OUTPUT/CAMERA/:
 - scene.json: the Spindrift scene file for this camera, pointing at the example's cache and background.exr;
 - for --sweep-camera, cycles_spp_NNNN.exr for every --sweep-spp, and cycles_timings.json (wall seconds).
 
-The water casts no shadow (Cycles ray visibility): Spindrift refracts the background render, whose floor is
-lit, so a shadowed floor under the water would measure the light model rather than the screen-space surface.
+In reference.exr the water casts no shadow (Cycles ray visibility): Spindrift refracts the background render,
+whose floor is lit, so a shadowed floor under the water would measure the light model rather than the
+screen-space surface. With --full-references, what a user's render shows besides (docs/benchmarks.md,
+"Against the user's render"):
+
+- reference_full.exr: the same with the water casting its shadow and caustics;
+- background_light_passes.exr: background.exr with Cycles' light passes (DiffDir, DiffInd, DiffCol, GlossDir,
+  GlossInd, GlossCol), which Spindrift's shadow and caustics apply to;
+- scene_sun.json: scene.json with the scene's sun (as the Blender add-on exports it) over that background;
+- for --sweep-camera, cycles_full_spp_NNNN.exr and cycles_full_timings.json, the sweep with the shadow.
 """
 
 import argparse
@@ -55,6 +63,8 @@ def parse_arguments():
     parser.add_argument("--reference-spp", type=int, default=256)
     parser.add_argument("--sweep-camera", default="oblique")
     parser.add_argument("--sweep-spp", default="", help="comma-separated sample counts to time, e.g. 1,4,16")
+    parser.add_argument("--full-references", action="store_true",
+                        help="also the references with the water's shadow and what Spindrift needs for them")
     parser.add_argument("--absorption-rgb", default="0.9,0.3,0.15",
                         help="a * c_a of Spindrift's equation 9, per world unit")
     return parser.parse_args(argv)
@@ -153,6 +163,34 @@ def write_scene_file(example, camera, domain, example_directory, path, width, he
         handle.write(scene_file.format_scene_json(description))
 
 
+LIGHT_PASSES = ("use_pass_diffuse_direct", "use_pass_diffuse_indirect", "use_pass_diffuse_color",
+                "use_pass_glossy_direct", "use_pass_glossy_indirect", "use_pass_glossy_color")
+
+
+def sun_lights(scene):
+    """The scene's suns as a scene file's lights, as the add-on exports them (docs/scene-format.md): the
+    direction the lamp's -Z axis, Blender's colour and strength. The examples light their scene with one sun
+    and the world (examples/bakelib/blender_scene.py)."""
+    lights = []
+    for obj in scene.objects:
+        if obj.type == 'LIGHT' and obj.data.type == 'SUN' and not obj.hide_render:
+            lights.append({"type": "sun",
+                           "direction": [scene_file.clean_number(-c) for c in obj.matrix_world.col[2][:3]],
+                           "color": [scene_file.clean_number(c) for c in obj.data.color],
+                           "strength": scene_file.clean_number(obj.data.energy)})
+    return lights
+
+
+def write_sun_scene_file(directory):
+    """scene_sun.json: the camera's scene file with the scene's suns, over the background with light passes."""
+    with open(os.path.join(directory, "scene.json"), encoding="utf-8") as handle:
+        description = json.load(handle)
+    description["background"]["image"] = "background_light_passes.exr"
+    description["lights"] = sun_lights(bpy.context.scene)
+    with open(os.path.join(directory, "scene_sun.json"), "w", encoding="utf-8") as handle:
+        handle.write(scene_file.format_scene_json(description))
+
+
 def render(path, samples, seed=0):
     """Renders the current scene to a 32-bit multilayer EXR; returns the wall time in seconds."""
     scene = bpy.context.scene
@@ -215,17 +253,43 @@ def render_camera(arguments, example, camera, domain, liquid, definition, exampl
         seconds = render(os.path.join(directory, "reference.exr"), arguments.reference_spp)
         log(f"{definition['name']}: reference ({arguments.reference_spp} spp) in {seconds:.1f} s")
     if definition["name"] == arguments.sweep_camera and arguments.sweep_spp:
-        timings_path = os.path.join(directory, "cycles_timings.json")
-        timings = json.load(open(timings_path)) if os.path.isfile(timings_path) else {}
-        for samples in [int(s) for s in arguments.sweep_spp.split(",")]:
-            name = f"cycles_spp_{samples:04d}.exr"
-            if str(samples) in timings and not missing(name):
-                continue
-            # Another seed than the reference's, so the sweep's noise is independent of the reference's.
-            timings[str(samples)] = render(os.path.join(directory, name), samples, seed=1)
-            log(f"{definition['name']}: {samples} spp in {timings[str(samples)]:.2f} s")
-        with open(timings_path, "w", encoding="utf-8") as handle:
-            json.dump(timings, handle, indent=1)
+        sweep(directory, definition["name"], arguments.sweep_spp, "cycles_spp", "cycles_timings.json")
+    if not arguments.full_references:
+        return
+    write_sun_scene_file(directory)
+    layer = scene.view_layers[0]
+    if missing("background_light_passes.exr"):
+        set_visible([liquid], False)
+        for name in LIGHT_PASSES:
+            setattr(layer, name, True)
+        seconds = render(os.path.join(directory, "background_light_passes.exr"), arguments.background_spp)
+        for name in LIGHT_PASSES:
+            setattr(layer, name, False)
+        set_visible([liquid], True)
+        log(f"{definition['name']}: background with light passes in {seconds:.1f} s")
+    liquid.visible_shadow = True
+    if missing("reference_full.exr"):
+        seconds = render(os.path.join(directory, "reference_full.exr"), arguments.reference_spp)
+        log(f"{definition['name']}: reference with the water's shadow ({arguments.reference_spp} spp) in "
+            f"{seconds:.1f} s")
+    if definition["name"] == arguments.sweep_camera and arguments.sweep_spp:
+        sweep(directory, definition["name"], arguments.sweep_spp, "cycles_full_spp", "cycles_full_timings.json")
+    liquid.visible_shadow = False
+
+
+def sweep(directory, camera_name, sample_counts, prefix, timings_name):
+    """Renders the scene as it is set up at each sample count (missing ones only) and records the wall times."""
+    timings_path = os.path.join(directory, timings_name)
+    timings = json.load(open(timings_path)) if os.path.isfile(timings_path) else {}
+    for samples in [int(s) for s in sample_counts.split(",")]:
+        name = f"{prefix}_{samples:04d}.exr"
+        if str(samples) in timings and os.path.isfile(os.path.join(directory, name)):
+            continue
+        # Another seed than the reference's, so the sweep's noise is independent of the reference's.
+        timings[str(samples)] = render(os.path.join(directory, name), samples, seed=1)
+        log(f"{camera_name}: {prefix} {samples} spp in {timings[str(samples)]:.2f} s")
+    with open(timings_path, "w", encoding="utf-8") as handle:
+        json.dump(timings, handle, indent=1)
 
 
 def main():

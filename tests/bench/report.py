@@ -138,6 +138,23 @@ def peers_table(data):
     return table(["method", "frame ms", "first frame ms", "MAE", "SSIM"], rows)
 
 
+def users_render_table(users, cameras):
+    """Each renderer against both references (users_render.py), and Cycles' sweep with the water's shadow."""
+    cycles = users["cycles_full"]
+    rows = []
+    for row in users["rows"]:
+        at_equal = cycles_time_at_error(cycles, row["mae"]["full"]) if row["label"].startswith("Spindrift") else None
+        ratio = f"{at_equal * 1e3 / row['frame_ms']:.3g}×" if at_equal else "–"
+        per_camera = ", ".join(number(row["per_camera"][camera]["full"]) for camera in cameras)
+        rows.append([row["label"], number(row["frame_ms"], 4), number(row["mae"]["no_shadow"]),
+                     number(row["mae"]["full"]), per_camera, ratio])
+    rows += [[f"Cycles {p['spp']} spp, the water casting its shadow", number(p["time_s"] * 1e3, 4), "",
+              number(p["mae"]), "", ""] for p in cycles]
+    return table(["renderer", "frame ms", "MAE, no-shadow reference", "MAE, the user's render",
+                  f"the user's render, per camera ({', '.join(cameras)})",
+                  "Cycles' time at equal MAE (the user's render)"], rows)
+
+
 def scaling_tables(scaling):
     particle_rows = [[row["source"], f"{row['count']:,}", number(row["total_ms"], 4), number(row["wall_s"] * 1e3, 4),
                       number(row["peak_rss_mib"], 4), number(row["peak_gpu_mib"]), row["repeats"]]
@@ -232,6 +249,15 @@ def write(results, output, quick):
                   "### Spindrift settings", "", spindrift_table(data), "", "### Where the defaults stand", "",
                   defaults_on_front(data), "", "### GPU time per pass", "",
                   pass_table(data), "", "### Peers: VTK's fluid mapper and Cycles", "", peers_table(data)]
+        if data.get("users_render"):
+            parts += ["", "### Against the user's render (the water casting its shadow)", "",
+                      "The same frames against a Cycles render in which the water casts its shadow and caustics, "
+                      "as a user's render of the example does, beside the reference above, where it casts none "
+                      "(`tests/bench/users_render.py`). *The sun with light passes*: the example's sun in the "
+                      "scene file, as the Blender add-on exports it, over a background render with Cycles' light "
+                      "passes, so that Spindrift's shadow, caustics and sky occlusion apply. Errors are the mean "
+                      "over the cameras; Cycles' sweep and the times are the first camera's.", "",
+                      users_render_table(data["users_render"], plan["cameras"])]
         marching = raymarch_table(data)
         if marching:
             parts += ["", "### The ray-marched surface (liquid.surface = raymarch)", "",

@@ -124,15 +124,16 @@ def timed_spindrift(scene, exr, settings, repeats, work_directory):
     }
 
 
-def frame_errors(test_exr, camera_directory, radius, names):
+def frame_errors(test_exr, camera_directory, radius, names, reference="reference.exr"):
     """Geometric and image metrics of one render against a camera's Cycles references.
 
     `names` maps the test file's channels: {"depth": ..., "normal": [x, y, z], "composite": [r, g, b]}; a
-    render without depth and normals (VTK's) passes only "composite".
+    render without depth and normals (VTK's) passes only "composite". `reference` names the image the colour
+    is scored against (reference_full.exr: the water casting its shadow).
     """
     passes = metrics.read_channels(os.path.join(camera_directory, "liquid_passes.exr"),
                                    ["Depth.Z", "Normal.X", "Normal.Y", "Normal.Z"])
-    reference_rgb = metrics.read_channels(os.path.join(camera_directory, "reference.exr"),
+    reference_rgb = metrics.read_channels(os.path.join(camera_directory, reference),
                                           ["Combined.R", "Combined.G", "Combined.B"])
     solids = metrics.read_channels(os.path.join(camera_directory, "background.exr"), ["Depth.Z"])[..., 0]
     reference_depth = metrics.visible_depth(passes[..., 0], solids)

@@ -17,7 +17,7 @@ def plan(quick):
                 "configurations": configurations(quick=True), "vtk_filters": ["narrow_range"],
                 "particle_counts": [10_000, 100_000], "particle_repeats": lambda count: 1,
                 "resolutions": [(854, 480), (1280, 720)], "resolution_repeats": lambda pixels: 1,
-                "bigger_bake_count": 30_000}
+                "bigger_bake_count": 30_000, "users_render": False}
     return {"examples": ["dam_break", "drop"], "cameras": CAMERAS, "width": 480, "height": 270,
             "background_spp": 64, "reference_spp": 256, "sweep_spp": [1, 4, 16, 64], "repeats": 5,
             "configurations": configurations(quick=False), "vtk_filters": ["narrow_range", "bilateral"],
@@ -25,7 +25,10 @@ def plan(quick):
             "particle_repeats": lambda count: 3 if count <= 300_000 else 1,
             "resolutions": [(854, 480), (1280, 720), (1920, 1080), (3840, 2160)],
             "resolution_repeats": lambda pixels: 3 if pixels <= 1280 * 720 else 1,
-            "bigger_bake_count": 150_000}
+            "bigger_bake_count": 150_000,
+            # The examples against Cycles with the water's shadow (users_render.py): about 5 minutes of Cycles
+            # the first time, 2 of Spindrift and VTK.
+            "users_render": True}
 
 
 def configurations(quick):
