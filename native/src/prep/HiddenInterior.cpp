@@ -355,6 +355,10 @@ HiddenInteriorResult dropHiddenInterior(std::vector<EllipsoidInstance>& ellipsoi
   return result;
 }
 
+bool manyDeepAggregates(const LiquidPreparation& liquid) {
+  return double(liquid.isotropicInterior) >= kMinDeepFraction * double(liquid.aggregates.size());
+}
+
 HiddenInteriorResult dropHiddenAggregates(LiquidPreparation& liquid, const Camera& camera,
                                           const DomainBox* domain,
                                           const std::function<SolidDepthTiles()>& solids) {
@@ -365,7 +369,7 @@ HiddenInteriorResult dropHiddenAggregates(LiquidPreparation& liquid, const Camer
   // spray, which hides little: on the dam-break example (5 % deep) 0.8 % of the aggregates are hidden from
   // both layers and 6 % from one, fewer fragments than the grid's cost on the CPU (docs/frame-cost.md).
   HiddenInteriorResult result;
-  if (double(liquid.isotropicInterior) < kMinDeepFraction * double(liquid.aggregates.size())) {
+  if (!manyDeepAggregates(liquid)) {
     result.notApplied = "few deep aggregates (" + std::to_string(liquid.isotropicInterior) + " of " +
                         std::to_string(liquid.aggregates.size()) + ")";
   } else {

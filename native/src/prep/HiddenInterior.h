@@ -41,7 +41,11 @@ HiddenInteriorResult dropHiddenInterior(std::vector<EllipsoidInstance>& ellipsoi
                                         const DomainBox* domain, const SolidDepthTiles* solids = nullptr,
                                         float particleSpacing = 0.0f);
 
-/// dropHiddenInterior on a preparation's aggregates (where enough of them are deep), then
+/// Whether at least a tenth of a preparation's aggregates are deep (isotropic: neighbours on every side), so
+/// that a view may find much of the body hidden behind its surface.
+bool manyDeepAggregates(const LiquidPreparation& liquid);
+
+/// dropHiddenInterior on a preparation's aggregates (where manyDeepAggregates), then
 /// dropOccludedAggregates, recording the split in `liquid.aggregateLayers`.
 /// `solids`, when given, makes the frame's solids; it is called only when the step is tried (its cost, a pass
 /// over the background's depth, is not paid on frames that skip the step).

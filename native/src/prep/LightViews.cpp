@@ -154,8 +154,11 @@ LightingPreparation prepareLighting(const Particles& particles, const Camera& ca
     std::vector<EllipsoidInstance>& body = light.liquid.aggregates;
     body.insert(body.end(), light.liquid.splashes.begin(), light.liquid.splashes.end());
     light.liquid.splashes.clear();
-    // The light's layers are the body's nearest entry and farthest exit too, unclipped by the domain.
-    if (parameters.liquid.drop_hidden_interior) {
+    // The light's layers are the body's nearest entry and farthest exit too, unclipped by the domain. A light
+    // finds little of a body hidden where few of its particles are deep (a sheet, a spray): the dam break's
+    // sun leaves out 10 % of the 57,000 particles it sees, for 40-55 ms more than drawing them, so such a
+    // view draws them all (the camera's view keeps the test: a domain's faces hide much of a sheet there).
+    if (parameters.liquid.drop_hidden_interior && manyDeepAggregates(light.liquid)) {
       const HiddenInteriorResult hidden = dropHiddenAggregates(light.liquid, view.camera, nullptr);
       light.leftOut = hidden.dropped + hidden.occluded.dropped;
     }
