@@ -13,9 +13,9 @@
 
 namespace spindrift {
 
-/// Yu and Turk's (2013) anisotropy constants, every length in particle radii so that they hold at any scale.
 class ShapeMemory;
 
+/// Yu and Turk's (2013) anisotropy constants, every length in particle radii so that they hold at any scale.
 struct AnisotropySettings {
   float neighbourRadius = 2.5f;  ///< The neighbourhood radius R, in particle radii.
   float maxRatio = 4.0f;         ///< k_r.
