@@ -3,13 +3,13 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
-#include <cstring>
 #include <random>
 #include <vector>
 
 #include <glm/geometric.hpp>
 #include <glm/trigonometric.hpp>
 
+#include "EllipsoidRayCast.h"
 #include "prep/Anisotropy.h"
 #include "prep/FrameLiquidCache.h"
 #include "prep/LiquidPreparation.h"
@@ -309,10 +309,6 @@ TEST(LiquidPreparation, OffScreenNeighboursShapeVisibleParticles) {
   EXPECT_EQ(anisotropicNearTheEdge, 0u);
 }
 
-bool sameInstances(const std::vector<EllipsoidInstance>& a, const std::vector<EllipsoidInstance>& b) {
-  return a.size() == b.size() && std::memcmp(a.data(), b.data(), a.size() * sizeof(EllipsoidInstance)) == 0;
-}
-
 TEST(LiquidPreparation, ViewsSharingAFrameCacheShapeEachParticleOnceAndGetWhatTheyGetAlone) {
   // A jittered block with drops over it (liquid.reach_radius and smoothing at their defaults), seen obliquely
   // and from above (both see every particle: the second reuses the first's shapes) and from close by (it
@@ -336,8 +332,9 @@ TEST(LiquidPreparation, ViewsSharingAFrameCacheShapeEachParticleOnceAndGetWhatTh
     FrameLiquidCache frame;
     for (int view : order) {
       const LiquidPreparation shared = prepareLiquid(particles, views[view], parameters, &frame);
-      EXPECT_TRUE(sameInstances(shared.aggregates, alone[view].aggregates)) << "view " << view;
-      EXPECT_TRUE(sameInstances(shared.splashes, alone[view].splashes)) << "view " << view;
+      EXPECT_TRUE(ellipsoid_test::sameInstances(shared.aggregates, alone[view].aggregates))
+          << "view " << view;
+      EXPECT_TRUE(ellipsoid_test::sameInstances(shared.splashes, alone[view].splashes)) << "view " << view;
       EXPECT_EQ(shared.fullNeighbours, alone[view].fullNeighbours);
       // The culling view leaves the memory as it was; a whole view has shaped every particle into it.
       EXPECT_EQ(frame.shapes.remembered(), view == 2 && order.front() == 2 ? 0u : particles.size())

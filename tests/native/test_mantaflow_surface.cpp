@@ -7,11 +7,11 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstring>
 #include <vector>
 
 #include <glm/geometric.hpp>
 
+#include "EllipsoidRayCast.h"
 #include "prep/FrameLiquidCache.h"
 #include "prep/LiquidPreparation.h"
 #include "prep/MantaflowSurface.h"
@@ -339,10 +339,6 @@ TEST(MantaflowSurface, LumpedSumsAreBitForBitTheScalarSums) {
   EXPECT_GT(compared, 100);
 }
 
-bool sameInstances(const std::vector<EllipsoidInstance>& a, const std::vector<EllipsoidInstance>& b) {
-  return a.size() == b.size() && std::memcmp(a.data(), b.data(), a.size() * sizeof(EllipsoidInstance)) == 0;
-}
-
 TEST(MantaflowSurface, AFrameSurfaceSharedByItsViewsChangesNoViewsResult) {
   // A body with a ridge and drops over it, seen by an oblique camera and from above (both see every particle:
   // they share the frame's surface and each other's searches) and from close by (it culls, so it builds its
@@ -372,8 +368,9 @@ TEST(MantaflowSurface, AFrameSurfaceSharedByItsViewsChangesNoViewsResult) {
     FrameLiquidCache frame;
     for (int view : order) {
       const LiquidPreparation shared = prepareLiquid(particles, views[view], parameters, &frame);
-      EXPECT_TRUE(sameInstances(shared.aggregates, alone[view].aggregates)) << "view " << view;
-      EXPECT_TRUE(sameInstances(shared.splashes, alone[view].splashes)) << "view " << view;
+      EXPECT_TRUE(ellipsoid_test::sameInstances(shared.aggregates, alone[view].aggregates))
+          << "view " << view;
+      EXPECT_TRUE(ellipsoid_test::sameInstances(shared.splashes, alone[view].splashes)) << "view " << view;
       EXPECT_EQ(shared.splashesAbsorbed, alone[view].splashesAbsorbed);
       EXPECT_TRUE(frame.search.has_value() || view == 2)
           << "built by the first view that sees every particle";
