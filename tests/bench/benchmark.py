@@ -199,7 +199,7 @@ def main():
         if plan.get("users_render") and not arguments.sweep_only:
             log(f"{example}: against the user's render (the water casting its shadow)")
             results["examples"][example]["users_render"] = users_render.compare(
-                example, references, plan, absorption, arguments.work)
+                example, references, plan, results["examples"][example]["vtk"], arguments.work)
     if arguments.sweep_only:
         results["scaling"] = results["stability"] = None
         finish(results, arguments, started)

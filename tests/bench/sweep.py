@@ -146,6 +146,11 @@ def cycles_points(references, plan):
     return points
 
 
+def vtk_npz(work, example, camera, filter_name):
+    """Where vtk_points keeps a camera's VTK render (its composite, as run_vtk writes it)."""
+    return os.path.join(work, "vtk", example, f"{camera}_{filter_name}.npz")
+
+
 def vtk_points(example, references, plan, absorption, work):
     work_directory = os.path.join(work, "vtk", example)
     os.makedirs(work_directory, exist_ok=True)
@@ -159,11 +164,12 @@ def vtk_points(example, references, plan, absorption, work):
             camera_directory = os.path.join(references, camera)
             composite, frame_ms, first_ms, renderer = runs.run_vtk(
                 os.path.join(camera_directory, "scene.json"), particles,
-                os.path.join(work_directory, f"{camera}.npz"), plan["repeats"] if index == 0 else 1,
+                vtk_npz(work, example, camera, filter_name), plan["repeats"] if index == 0 else 1,
                 filter_name, absorption)
             timing = timing or {"frame_ms": frame_ms, "first_frame_ms": first_ms, "gl_renderer": renderer}
             per_camera.append(runs.frame_errors(None, camera_directory, 1.0, {"composite_array": composite}))
-        rows.append({"label": f"VTK {filter_name}", **timing, "errors": runs.mean_errors(per_camera)})
+        rows.append({"label": f"VTK {filter_name}", "filter": filter_name, **timing,
+                     "errors": runs.mean_errors(per_camera)})
         print(f"  VTK {filter_name}: {timing['frame_ms']:.0f} ms/frame, MAE {rows[-1]['errors']['mae']:.4f}",
               flush=True)
     return rows

@@ -6,7 +6,7 @@ For every camera, each renderer is scored against both references (references.py
 - Spindrift's defaults without lights: the benchmark's scene file, over the background render;
 - Spindrift's defaults with the example's sun (scene_sun.json, as the Blender add-on exports the scene's lamps)
   over the background with Cycles' light passes: the liquid's shadow, caustics and sky occlusion applied;
-- VTK's fluid mapper (its default filter), which has no light model;
+- VTK's fluid mapper (the plan's first filter; the renders sweep.vtk_points made), which has no light model;
 - on the first camera, Cycles' sample sweep rendered with the water's shadow, timed as the main sweep is.
 
 Times are Spindrift's frame (`total_ms`, median of the plan's repeats on the first camera).
@@ -18,6 +18,7 @@ import os
 import numpy as np
 
 import runs
+import sweep
 
 COMPOSITE = {"composite": ["composite.R", "composite.G", "composite.B"]}
 CYCLES = {"composite": ["Combined.R", "Combined.G", "Combined.B"]}
@@ -37,7 +38,7 @@ def mean_scores(per_camera):
     return {key: float(np.mean([camera[key] for camera in per_camera])) for key in REFERENCES}
 
 
-def compare(example, references, plan, absorption, work):
+def compare(example, references, plan, vtk_rows, work):
     """Rows for each renderer (mean MAE over the cameras against each reference, per-camera MAEs, time) and
     Cycles' sweep with the shadow against the full reference."""
     work_directory = os.path.join(work, "users_render", example)
@@ -54,19 +55,11 @@ def compare(example, references, plan, absorption, work):
             per_camera.append(scores(camera_directory, test_exr=exr))
         rows.append({"label": label, "frame_ms": timing["total_ms"], "mae": mean_scores(per_camera),
                      "per_camera": dict(zip(plan["cameras"], per_camera))})
-    first_scene = os.path.join(references, plan["cameras"][0], "scene.json")
-    particles = runs.export_particles(first_scene, json.load(open(first_scene))["frame"],
-                                      os.path.join(work_directory, "particles.ply"))
-    filter_name = plan["vtk_filters"][0]
-    per_camera, vtk_ms = [], None
-    for index, camera in enumerate(plan["cameras"]):
-        camera_directory = os.path.join(references, camera)
-        composite, frame_ms, _, _ = runs.run_vtk(
-            os.path.join(camera_directory, "scene.json"), particles, os.path.join(work_directory, f"{camera}.npz"),
-            plan["repeats"] if index == 0 else 1, filter_name, absorption)
-        vtk_ms = vtk_ms or frame_ms
-        per_camera.append(scores(camera_directory, composite=composite))
-    rows.append({"label": f"VTK {filter_name}", "frame_ms": vtk_ms, "mae": mean_scores(per_camera),
+    vtk = vtk_rows[0]
+    per_camera = [scores(os.path.join(references, camera),
+                         composite=np.load(sweep.vtk_npz(work, example, camera, vtk["filter"]))["composite"])
+                  for camera in plan["cameras"]]
+    rows.append({"label": vtk["label"], "frame_ms": vtk["frame_ms"], "mae": mean_scores(per_camera),
                  "per_camera": dict(zip(plan["cameras"], per_camera))})
     for row in rows:
         print(f"  {row['label']}: MAE {row['mae']['no_shadow']:.4f} against the reference without the water's "

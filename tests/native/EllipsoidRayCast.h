@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstring>
 #include <utility>
 #include <vector>
 
@@ -12,13 +11,6 @@
 
 // A double-precision CPU ray cast of one ellipsoid instance, the reference the impostor tests compare with.
 namespace ellipsoid_test {
-
-// Whether two ellipsoid lists are the same, bit for bit and in the same order.
-inline bool sameInstances(const std::vector<spindrift::EllipsoidInstance>& a,
-                          const std::vector<spindrift::EllipsoidInstance>& b) {
-  return a.size() == b.size() &&
-         (a.empty() || std::memcmp(a.data(), b.data(), a.size() * sizeof(spindrift::EllipsoidInstance)) == 0);
-}
 
 struct Chord {
   double entry = 0.0;  // in units of the direction's length

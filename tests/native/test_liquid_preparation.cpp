@@ -9,7 +9,7 @@
 #include <glm/geometric.hpp>
 #include <glm/trigonometric.hpp>
 
-#include "EllipsoidRayCast.h"
+#include "SharedViewChecks.h"
 #include "prep/Anisotropy.h"
 #include "prep/FrameLiquidCache.h"
 #include "prep/LiquidPreparation.h"
@@ -321,26 +321,16 @@ TEST(LiquidPreparation, ViewsSharingAFrameCacheShapeEachParticleOnceAndGetWhatTh
   const Camera views[] = {Camera::lookAt(64, 64, 60.0f, {2, -3, 2}, {0, 0, 0}, {0, 0, 1}),
                           Camera::lookAt(64, 64, 60.0f, {0.01f, 0.02f, 4}, {0, 0, 0}, {0, 1, 0}),
                           Camera::lookAt(64, 64, 30.0f, {0.6f, -0.3f, 0.2f}, {0.3f, 0, 0}, {0, 0, 1})};
-  std::vector<LiquidPreparation> alone;
-  for (const Camera& view : views)
-    alone.push_back(prepareLiquid(particles, view, parameters));
-  EXPECT_EQ(alone[0].culled, 0u);
-  EXPECT_EQ(alone[1].culled, 0u);
-  EXPECT_GT(alone[2].culled, 0u);
+  const std::vector<LiquidPreparation> alone = shared_views::expectSharedViewsGetWhatTheyGetAlone(
+      particles, parameters, views,
+      [&](const LiquidPreparation& shared, const LiquidPreparation& single, const FrameLiquidCache& frame,
+          int view, const std::vector<int>& order) {
+        EXPECT_EQ(shared.fullNeighbours, single.fullNeighbours);
+        // The culling view leaves the memory as it was; a whole view has shaped every particle into it.
+        EXPECT_EQ(frame.shapes.remembered(), view == 2 && order.front() == 2 ? 0u : particles.size())
+            << "view " << view;
+      });
   EXPECT_GT(alone[0].splashes.size(), 0u);
-  for (const std::vector<int>& order : {std::vector<int>{0, 1, 2, 0}, std::vector<int>{2, 1, 0, 1}}) {
-    FrameLiquidCache frame;
-    for (int view : order) {
-      const LiquidPreparation shared = prepareLiquid(particles, views[view], parameters, &frame);
-      EXPECT_TRUE(ellipsoid_test::sameInstances(shared.aggregates, alone[view].aggregates))
-          << "view " << view;
-      EXPECT_TRUE(ellipsoid_test::sameInstances(shared.splashes, alone[view].splashes)) << "view " << view;
-      EXPECT_EQ(shared.fullNeighbours, alone[view].fullNeighbours);
-      // The culling view leaves the memory as it was; a whole view has shaped every particle into it.
-      EXPECT_EQ(frame.shapes.remembered(), view == 2 && order.front() == 2 ? 0u : particles.size())
-          << "view " << view;
-    }
-  }
 }
 
 TEST(LiquidPreparation, ShapeMemoryForgetsAParticleThatMoved) {

@@ -11,7 +11,7 @@
 
 #include <glm/geometric.hpp>
 
-#include "EllipsoidRayCast.h"
+#include "SharedViewChecks.h"
 #include "prep/FrameLiquidCache.h"
 #include "prep/LiquidPreparation.h"
 #include "prep/MantaflowSurface.h"
@@ -358,24 +358,14 @@ TEST(MantaflowSurface, AFrameSurfaceSharedByItsViewsChangesNoViewsResult) {
   const Camera views[] = {Camera::lookAt(64, 64, 60.0f, {0, -20, 20}, {0, 0, 0}, {0, 0, 1}),
                           Camera::lookAt(64, 64, 60.0f, {0.5f, 0.5f, 30}, {0, 0, 0}, {0, 1, 0}),
                           Camera::lookAt(64, 64, 40.0f, {5, -1, 1}, {7, 0, 0}, {0, 0, 1})};
-  std::vector<LiquidPreparation> alone;
-  for (const Camera& view : views)
-    alone.push_back(prepareLiquid(particles, view, parameters));
-  EXPECT_EQ(alone[0].culled, 0u);
-  EXPECT_EQ(alone[1].culled, 0u);
-  EXPECT_GT(alone[2].culled, 0u);
-  for (const std::vector<int>& order : {std::vector<int>{0, 1, 2, 0}, std::vector<int>{2, 1, 0, 1}}) {
-    FrameLiquidCache frame;
-    for (int view : order) {
-      const LiquidPreparation shared = prepareLiquid(particles, views[view], parameters, &frame);
-      EXPECT_TRUE(ellipsoid_test::sameInstances(shared.aggregates, alone[view].aggregates))
-          << "view " << view;
-      EXPECT_TRUE(ellipsoid_test::sameInstances(shared.splashes, alone[view].splashes)) << "view " << view;
-      EXPECT_EQ(shared.splashesAbsorbed, alone[view].splashesAbsorbed);
-      EXPECT_TRUE(frame.search.has_value() || view == 2)
-          << "built by the first view that sees every particle";
-    }
-  }
+  const std::vector<LiquidPreparation> alone = shared_views::expectSharedViewsGetWhatTheyGetAlone(
+      particles, parameters, views,
+      [](const LiquidPreparation& shared, const LiquidPreparation& single, const FrameLiquidCache& frame,
+         int view, const std::vector<int>&) {
+        EXPECT_EQ(shared.splashesAbsorbed, single.splashesAbsorbed);
+        EXPECT_TRUE(frame.search.has_value() || view == 2)
+            << "built by the first view that sees every particle";
+      });
   EXPECT_GT(alone[0].splashes.size(), 0u);
 }
 
