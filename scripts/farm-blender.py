@@ -10,12 +10,14 @@ written in `render_write` (which Blender calls after the frame's file is closed)
 - an output without a record (a killed write, or a render of unknown origin) is removed, so it is rendered.
 Placeholders stay off: a placeholder left by a killed task is an empty file that Overwrite off would skip.
 Spindrift's own layer EXR (spindrift_NNNN.exr) is written under a temporary name and renamed by the module,
-and before the frame's render: a frame with a record has its layers. A frame whose layers fail stops the task
+and before the frame's render: a frame with a record has its layers. The temporary a killed task leaves
+beside a layer file (".spindrift_NNNN.exr.tmp-<pid>-<n>") is removed before the task renders. A frame whose layers fail stops the task
 (On Error = Stop, exit code 1) instead of rendering a frame without them, so the task is retried.
 
   blender -b shot.blend --python farm-blender.py -s A -e B -a -- --done DONE_DIR
 """
 
+import glob
 import os
 import sys
 
@@ -73,11 +75,27 @@ def layers_missing(scene, frame):
     return None if os.path.isfile(path) else path
 
 
+def remove_stale_layer_temporaries(scene, frame):
+    """Removes the temporaries a task killed while writing FRAME's layer file left beside it (the module
+    writes ".<name>.tmp-<pid>-<n>" and renames it; a SIGKILL between the two leaves it). Only this task
+    renders FRAME, so none of them is being written now."""
+    from spindrift import render_layer
+
+    if not render_layer._wants_layers(scene):
+        return
+    path = render_layer.layer_path(scene, frame)
+    pattern = os.path.join(os.path.dirname(path), "." + glob.escape(os.path.basename(path)) + ".tmp-*")
+    for temporary in glob.glob(pattern):
+        os.remove(temporary)
+        say(f"frame {frame}: removed {temporary}: a killed task's unfinished layer file")
+
+
 def prepare(scene, first, last):
     """Removes every output of FIRST..LAST that has no completion record (or lost its layer file); says which
     frames are skipped."""
     os.makedirs(DONE_DIR, exist_ok=True)
     for frame in range(first, last + 1):
+        remove_stale_layer_temporaries(scene, frame)
         output = output_path(scene, frame)
         record = record_path(output)
         missing = layers_missing(scene, frame)

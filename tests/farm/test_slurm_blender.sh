@@ -3,7 +3,8 @@
 # (tests/farm/slurm_cluster.sh), a small .blend shot of the add-on tests' baked Mantaflow fixture with
 # Spindrift composited over Cycles, rendered once locally with a plain `blender -b shot.blend -a` as the
 # reference, then submitted with scripts/farm-submit. One task's Blender is SIGKILLed after its first frame,
-# and a truncated file (what a write cut short leaves) waits at another frame's output. Checks that every
+# a truncated file (what a write cut short leaves) waits at another frame's output, and a layer file's
+# temporary (what a kill between the module's write and its rename leaves) beside a third. Checks that every
 # frame arrives exactly once, that the truncated file was replaced, and that the Spindrift layer EXRs are
 # byte-identical and the composited frames pixel-identical to the local render. Then deletes one frame's
 # layer file and submits the shot again: only that frame is rendered again.
@@ -11,7 +12,7 @@
 set -euo pipefail
 source_dir="$(cd "$(dirname "$0")/../.." && pwd)"
 addon_zip="$(realpath "$1")" fixture="$(realpath "$2")"
-first=3 last=6 chunk=2 killed_task=0 truncated_frame=6 lost_layers_frame=5
+first=3 last=6 chunk=2 killed_task=0 truncated_frame=6 lost_layers_frame=5 stale_temporary_frame=5
 test_name=slurm-blender
 work="$(mktemp -d /tmp/spindrift-slurm-blender-XXXXXX)"
 # shellcheck source=tests/farm/slurm_cluster.sh
@@ -38,6 +39,8 @@ for name in "${names[@]}"; do [ -f "$work/reference/$name" ] || fail "the local 
 mkdir -p "$work/farm"
 truncated="$(printf 'frame_%04d.exr' "$truncated_frame")"
 head -c "$(( $(stat -c %s "$work/reference/$truncated") / 2 ))" "$work/reference/$truncated" > "$work/farm/$truncated"
+stale_temporary="$(printf '.spindrift_%04d.exr.tmp-99999-0' "$stale_temporary_frame")"
+echo "half a layer file" > "$work/farm/$stale_temporary"
 job="$("$source_dir/scripts/farm-submit" "$work/shot/shot.blend" --frames "$first-$last" --chunk "$chunk" \
         --retries 2 --addon-zip "$addon_zip" -o "$work/farm/frame_####" --logs "$work/logs")" || fail "farm-submit"
 log "submitted job $job ($(( (last - first) / chunk + 1 )) tasks of $chunk frames)"
@@ -53,6 +56,8 @@ grep -q "attempt 2" "$killed_log" || fail "the killed task was not requeued"
 grep -q "^frame $first_of_chunk skipped" "$killed_log" || fail "the rerun did not skip the frame already written"
 grep -q "frame $truncated_frame: removed .*$truncated: no record" "$work"/logs/*.log \
   || fail "the truncated $truncated was not removed before rendering"
+grep -q "frame $stale_temporary_frame: removed .*$stale_temporary: a killed task's" "$work"/logs/*.log \
+  || fail "the stale $stale_temporary was not removed before rendering"
 expected="$(printf '%s\n' "${names[@]}" | sort)"
 actual="$(ls -A "$work/farm")"
 [ "$actual" = "$expected" ] || fail "the farm's output directory holds: $(echo $actual)"
