@@ -63,6 +63,7 @@ LiquidBounds liquidBounds(const Particles& particles, const LiquidParameters& pa
       parameters.anisotropy_smoothing * parameters.neighbour_radius * largestRadius;
   bounds.radius = 0.5f * glm::length(high - low) + reach;
   bounds.particleRadius = largestRadius;
+  bounds.detailRadius = std::max(1.0f, parameters.mesh_kernel_radius) * largestRadius;
   bounds.low = low - glm::vec3(reach);
   bounds.high = high + glm::vec3(reach);
   return bounds;
@@ -75,11 +76,11 @@ int lightViewSize(const LiquidBounds& bounds, const Camera& camera, const LightP
       std::max(glm::distance(camera.position(), bounds.centre) - bounds.radius, camera.nearClip);
   const float pixel = camera.pixelSizeAt(nearest);
   // A view frames the bounding sphere with a 2 % margin (framingCamera). The particles' radius bounds the
-  // detail a body of many particles has (its bumps are smoothed away); a body of a few large ones curves at
-  // its own size, which a view resolves in kDetailTexels.
+  // detail a body of many particles has (its bumps are smoothed away), Mantaflow's kernel radius that of its
+  // surface; a body of a few large ones curves at its own size, which a view resolves in kDetailTexels.
   constexpr float kDetailTexels = 128.0f;
   const float side = 2.04f * bounds.radius;
-  const float detail = std::min(bounds.particleRadius / parameters.texels_per_radius, side / kDetailTexels);
+  const float detail = std::min(bounds.detailRadius / parameters.texels_per_radius, side / kDetailTexels);
   const float wanted = std::ceil(side / std::max(detail, pixel));
   constexpr int kSmallest = 32;
   if (!(wanted < float(largest))) return largest;

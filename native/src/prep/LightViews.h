@@ -17,15 +17,19 @@ namespace spindrift {
 /// A sphere around every liquid particle's drawn ellipsoid.
 struct LiquidBounds {
   glm::vec3 centre{0.0f};
-  float radius = 0.0f;              ///< 0 when there is no liquid.
-  float particleRadius = 0.0f;      ///< The largest liquid particle's.
+  float radius = 0.0f;          ///< 0 when there is no liquid.
+  float particleRadius = 0.0f;  ///< The largest liquid particle's.
+  /// The smallest feature the liquid's surface holds: the particle radius, or Mantaflow's kernel radius r_m
+  /// where the surface is Mantaflow's (liquid.mesh_kernel_radius above 1): its level set averages the
+  /// particles over r_m, so it has no bump smaller (docs/liquid.md, "The lights' views").
+  float detailRadius = 0.0f;
   glm::vec3 low{0.0f}, high{0.0f};  ///< A box around all the liquid drawn, tighter than the sphere when flat.
 };
 
 /// The side in texels of the lights' views: each texel as wide as the coarser of the camera's pixel where the
-/// liquid comes nearest and the body's detail, a particle radius over light.texels_per_radius or 1/128 of
-/// the view where that is finer (finer than both shows nothing the frame can use), within
-/// [32, light.shadow_map_size]; light.shadow_map_size itself when light.texels_per_radius is 0.
+/// liquid comes nearest and the body's detail, LiquidBounds::detailRadius over light.texels_per_radius or
+/// 1/128 of the view where that is finer (finer than both shows nothing the frame can use), within [32,
+/// light.shadow_map_size]; light.shadow_map_size itself when light.texels_per_radius is 0.
 int lightViewSize(const LiquidBounds& bounds, const Camera& camera, const LightParameters& parameters);
 
 LiquidBounds liquidBounds(const Particles& particles, const LiquidParameters& parameters);

@@ -1,0 +1,65 @@
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "prep/LightViews.h"
+
+namespace spindrift {
+namespace {
+
+constexpr float kRadius = 0.02f;
+
+// A sheet of liquid 3 m across and 5 particles thick, 1.2 radii apart: the bounds span ~3 m, 75 radii
+// each side of the centre, so a view of a particle radius per half texel is far finer than 128 texels.
+Particles sheet() {
+  Particles particles;
+  const float spacing = 1.2f * kRadius;
+  const int across = int(3.0f / spacing);
+  for (int i = 0; i < across; ++i)
+    for (int j = 0; j < across; ++j)
+      for (int k = 0; k < 5; ++k)
+        particles.append({float(i) * spacing - 1.5f, float(j) * spacing - 1.5f, float(k) * spacing}, kRadius,
+                         ParticleKind::Liquid, 0.0f, {});
+  return particles;
+}
+
+// A camera whose pixels at the liquid (2.6 mm) are finer than any detail the rule asks for: the detail
+// decides.
+Camera distantCamera() {
+  return Camera::lookAt(512, 512, 1.0f, {0, -40, 10}, {0, 0, 0}, {0, 0, 1});
+}
+
+float texelOf(const LiquidBounds& bounds, int side) {
+  return 2.04f * bounds.radius / float(side);
+}
+
+TEST(LightViews, PlainParticlesGetLightTexelsPerParticleRadius) {
+  LiquidParameters liquid;
+  const LiquidBounds bounds = liquidBounds(sheet(), liquid);
+  EXPECT_FLOAT_EQ(bounds.detailRadius, kRadius);
+  LightParameters light;
+  const int side = lightViewSize(bounds, distantCamera(), light);
+  ASSERT_LT(side, light.shadow_map_size);
+  EXPECT_NEAR(texelOf(bounds, side), kRadius / light.texels_per_radius, 0.01f * kRadius);
+}
+
+// Mantaflow's mesh averages the particles over its kernel radius r_m, so the surface the user's render shows
+// has no bump smaller than r_m: a view resolves r_m, not the particle radius, and is r_m / r times coarser.
+TEST(LightViews, MantaflowSurfaceGetsLightTexelsPerKernelRadius) {
+  LiquidParameters liquid;
+  liquid.mesh_kernel_radius = 2.5f;
+  const LiquidBounds bounds = liquidBounds(sheet(), liquid);
+  EXPECT_FLOAT_EQ(bounds.detailRadius, 2.5f * kRadius);
+  LightParameters light;
+  const int side = lightViewSize(bounds, distantCamera(), light);
+  EXPECT_NEAR(texelOf(bounds, side), 2.5f * kRadius / light.texels_per_radius, 0.025f * kRadius);
+  // Never coarser than 128 texels across (a body of a few large particles curves at its own size).
+  liquid.mesh_kernel_radius = 40.0f;
+  EXPECT_EQ(lightViewSize(liquidBounds(sheet(), liquid), distantCamera(), light), 128);
+  // A kernel below the particle radius does not make the view finer than the particles' own detail.
+  liquid.mesh_kernel_radius = 0.5f;
+  EXPECT_FLOAT_EQ(liquidBounds(sheet(), liquid).detailRadius, kRadius);
+}
+
+}  // namespace
+}  // namespace spindrift
