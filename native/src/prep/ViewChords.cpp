@@ -73,31 +73,8 @@ void ViewGrid::clipToBox(const DomainBox& domain, const glm::dmat4& boxFromCamer
   }
 }
 
-void ViewGrid::clip(std::size_t pixel, double& entry, double& exit) const {
-  if (boxEnter.empty()) return;
-  entry = std::max(entry, boxEnter[pixel]);
-  exit = std::min(exit, boxLeave[pixel]);
-}
-
 glm::vec2 ViewGrid::pixelOf(const glm::vec3& point) const {
   return {0.5f * width + focal * point.x / -point.z, 0.5f * height - focal * point.y / -point.z};
-}
-
-void ViewGrid::rowSpan(const RowQuadratic& cone, int low, int high, int& first, int& last) const {
-  first = low;
-  last = high;
-  if (!(cone.q2 < 0.0)) return;
-  const double discriminant = 0.25 * cone.q1 * cone.q1 - cone.q2 * cone.q0;
-  if (!(discriminant >= 0.0)) {
-    if (discriminant < 0.0) first = high + 1;  // a NaN keeps the whole row
-    return;
-  }
-  const double root = std::sqrt(discriminant);
-  const double u0 = (-0.5 * cone.q1 + root) / cone.q2, u1 = (-0.5 * cone.q1 - root) / cone.q2;  // u0 <= u1
-  const double x0 = std::floor(u0 * focal + 0.5 * width - 0.5) - 1.0;
-  const double x1 = std::ceil(u1 * focal + 0.5 * width - 0.5) + 1.0;
-  if (x0 > double(low)) first = x0 > double(high) ? high + 1 : int(x0);
-  if (x1 < double(high)) last = x1 < double(low) ? low - 1 : int(x1);
 }
 
 void ViewGrid::rectangle(const glm::vec3& centre, const glm::vec3& halfExtents, glm::ivec2& low,

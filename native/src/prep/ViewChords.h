@@ -1,5 +1,7 @@
 #pragma once
 
+#include <algorithm>
+#include <cmath>
 #include <cstddef>
 #include <vector>
 
@@ -97,8 +99,8 @@ struct ViewGrid {
   // A chord clipped to the box, as the impostor pass clips it (lib/ellipsoid_ray.glsl).
   void clip(std::size_t pixel, double& entry, double& exit) const;
   // The pixels of a row (clamped to [low, high]) whose centres' rays may meet an ellipsoid, from its cone's
-  // quadratic along the row, widened by a pixel each side for rounding (a row the quadratic cannot bound
-  // keeps [low, high]). Leaves first > last where the row misses it.
+  // quadratic along the row, widened by a hundredth of a pixel each side for rounding (a row the quadratic
+  // cannot bound keeps [low, high]). Leaves first > last where the row misses it.
   void rowSpan(const RowQuadratic& cone, int low, int high, int& first, int& last) const;
   // The pixels whose centres may see a box about `centre` (camera space, wholly in front of the eye): its
   // corners projected, which bound its projection.
@@ -107,5 +109,34 @@ struct ViewGrid {
   // The window position (x right, y down) of a camera-space point in front of the eye.
   glm::vec2 pixelOf(const glm::vec3& point) const;
 };
+
+// Inline: called for every row and pixel of every ellipsoid the occlusion test visits.
+inline void ViewGrid::clip(std::size_t pixel, double& entry, double& exit) const {
+  if (boxEnter.empty()) return;
+  entry = std::max(entry, boxEnter[pixel]);
+  exit = std::min(exit, boxLeave[pixel]);
+}
+
+inline void ViewGrid::rowSpan(const RowQuadratic& cone, int low, int high, int& first, int& last) const {
+  first = low;
+  last = high;
+  if (!(cone.q2 < 0.0)) return;
+  const double discriminant = 0.25 * cone.q1 * cone.q1 - cone.q2 * cone.q0;
+  if (!(discriminant >= 0.0)) {
+    if (discriminant < 0.0) first = high + 1;  // a NaN keeps the whole row
+    return;
+  }
+  const double root = std::sqrt(discriminant);
+  const double u0 = (-0.5 * cone.q1 + root) / cone.q2, u1 = (-0.5 * cone.q1 - root) / cone.q2;  // u0 <= u1
+  // The pixels whose centres (x + 0.5 - width / 2) / focal lie in [u0, u1], widened by kSpanMargin pixels:
+  // the roots' rounding is far below it (about 1e-8 of u where the row grazes the ellipsoid, 1e-5 pixels),
+  // and an ellipsoid is grown (shrunk) by 1e-3 of itself for the GPU's rounding besides. A whole pixel each
+  // side evaluated up to four pixels more per row than the 2-3 a small ellipsoid covers.
+  constexpr double kSpanMargin = 0.01;
+  const double x0 = std::ceil(u0 * focal + 0.5 * width - 0.5 - kSpanMargin);
+  const double x1 = std::floor(u1 * focal + 0.5 * width - 0.5 + kSpanMargin);
+  if (x0 > double(low)) first = x0 > double(high) ? high + 1 : int(x0);
+  if (x1 < double(high)) last = x1 < double(low) ? low - 1 : int(x1);
+}
 
 }  // namespace spindrift::view_chords
