@@ -17,8 +17,16 @@ flat in vec3 vUnitSphereCamera;
 flat in mat3 vInverseAxesCamera;
 flat in uint vEllipsoid;
 
+#ifdef DEPTH_RANGE
+// Both layers' depths in one draw, for a view that needs depth alone (the sky's): blending keeps the nearest
+// entry (GL_MIN) and the farthest exit (GL_MAX); no depth test, no winner. Cast with backFaces set, so that
+// eyeDepth is the exit and nearDepth the entry, each computed as the two-draw layers compute it.
+layout(location = 0) out float outEntry;
+layout(location = 1) out float outExit;
+#else
 layout(location = 0) out float outEyeDepth;
 layout(location = 1) out uint outEllipsoid;  // the ellipsoid's index + 1; 0 where the layer is empty
+#endif
 
 void main() {
   float eyeDepth, nearDepth;
@@ -29,6 +37,10 @@ void main() {
   hit = hit && nearDepth < texelFetch(backgroundEyeDepth, ivec2(gl_FragCoord.xy), 0).r;
 #endif
   if (!hit) discard;
+#ifdef DEPTH_RANGE
+  outEntry = nearDepth;
+  outExit = eyeDepth;
+#else
   outEyeDepth = eyeDepth;
   outEllipsoid = vEllipsoid + 1u;
   // Every ellipsoid the domain box cuts at this pixel puts the same face at the same depth, and one whose own
@@ -40,4 +52,5 @@ void main() {
   if (clipToDomain && castOnDomainFace)
     bufferDepth = uintBitsToFloat(backFaces ? bufferBits + 1u : bufferBits - 1u);
   gl_FragDepth = bufferDepth;
+#endif
 }

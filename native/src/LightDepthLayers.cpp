@@ -8,12 +8,12 @@ namespace spindrift {
 LightDepthLayers::LightDepthLayers(const ShaderLibrary& shaders)
     : impostors_(shaders), frontSmoothing_(shaders), backSmoothing_(shaders) {}
 
-SurfaceLayers LightDepthLayers::draw(const LightPreparation& light, bool normals) {
+SurfaceLayers LightDepthLayers::draw(const LightPreparation& light) {
   // The impostor and smoothing shaders read the view from binding 0: give them the light's for a while.
   lightUniforms_.update(light.view.camera, 0);
   // A light's view has no background: nothing hides the liquid from it.
   return impostors_.run(light.liquid.aggregates, light.liquid.aggregateLayers, nullptr, light.view.camera,
-                        nullptr, normals);
+                        nullptr);
 }
 
 void LightDepthLayers::restoreViews(const LightPreparation& light, const Camera& camera) {
@@ -22,7 +22,8 @@ void LightDepthLayers::restoreViews(const LightPreparation& light, const Camera&
 }
 
 SurfaceLayers LightDepthLayers::runDepthOnly(const LightPreparation& light, const Camera& camera) {
-  const SurfaceLayers drawn = draw(light, false);
+  lightUniforms_.update(light.view.camera, 0);
+  const SurfaceLayers drawn = impostors_.runDepthRange(light.liquid.aggregates, light.view.camera);
   restoreViews(light, camera);
   return drawn;
 }
@@ -30,7 +31,7 @@ SurfaceLayers LightDepthLayers::runDepthOnly(const LightPreparation& light, cons
 SurfaceLayers LightDepthLayers::run(const LightPreparation& light, const Camera& camera, float particleRadius,
                                     const LiquidParameters& parameters) {
   const int size = light.view.camera.width;
-  const SurfaceLayers drawn = draw(light, true);
+  const SurfaceLayers drawn = draw(light);
   if (parameters.smoothing == "none") {
     restoreViews(light, camera);
     return drawn;

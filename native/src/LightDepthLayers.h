@@ -21,12 +21,13 @@ class LightDepthLayers {
   explicit LightDepthLayers(const ShaderLibrary& shaders);
   SurfaceLayers run(const LightPreparation& light, const Camera& camera, float particleRadius,
                     const LiquidParameters& parameters);
-  /// The depths alone, unsmoothed and without normals (left zero): what the sky's view needs.
+  /// The depths alone, unsmoothed and without normals (left zero), in one draw
+  /// (EllipsoidImpostorPass::runDepthRange): what the sky's view needs.
   SurfaceLayers runDepthOnly(const LightPreparation& light, const Camera& camera);
 
  private:
-  /// The light's view bound at binding 0 and its impostors drawn.
-  SurfaceLayers draw(const LightPreparation& light, bool normals);
+  /// The light's view bound at binding 0 and its impostors drawn, with their normals.
+  SurfaceLayers draw(const LightPreparation& light);
   /// The light's view to binding 2 (lib/light_view.glsl), the camera's back to binding 0.
   void restoreViews(const LightPreparation& light, const Camera& camera);
 

@@ -15,6 +15,9 @@ EllipsoidImpostorPass::EllipsoidImpostorPass(const ShaderLibrary& shaders)
           shaders.program({"ellipsoid_impostor.vert", "ellipsoid_impostor.frag"}, {"NO_SOLIDS"})),
       normalsProgram_(shaders.program({"fullscreen.vert", "ellipsoid_normals.frag"})),
       clipNormalsProgram_(shaders.program({"fullscreen.vert", "ellipsoid_normals.frag"}, {"CLIP_TO_DOMAIN"})),
+      depthRangeProgram_(shaders.program({"ellipsoid_impostor.vert", "ellipsoid_impostor.frag"},
+                                         {"NO_SOLIDS", "DEPTH_RANGE"})),
+      depthRangeEmptyProgram_(shaders.program({"fullscreen.vert", "depth_range_empty.frag"})),
       resolveFramebuffer_(createFramebuffer()),
       emptyVertexArray_(createVertexArray()),
       ellipsoidBuffer_(createBuffer()) {
@@ -32,7 +35,13 @@ SurfaceLayers EllipsoidImpostorPass::run(const std::vector<EllipsoidInstance>& i
     draws = orderForDomainClip(ordered_, split, *domain);
     list = &ordered_;
   }
-  const std::vector<EllipsoidInstance>& ellipsoids = *list;
+  upload(*list);
+  drawLayer(front_, false, draws.front, background, view, domain, normals);
+  drawLayer(back_, true, draws.back, background, view, domain, normals);
+  return {{front_.eyeDepth, front_.normal}, {back_.eyeDepth, back_.normal}};
+}
+
+void EllipsoidImpostorPass::upload(const std::vector<EllipsoidInstance>& ellipsoids) {
   // Grow-only storage: a sequence reallocates only when a frame has more particles than any before it.
   const std::size_t bytes = ellipsoids.size() * sizeof(EllipsoidInstance);
   if (bytes > ellipsoidBufferBytes_) {
@@ -54,9 +63,6 @@ SurfaceLayers EllipsoidImpostorPass::run(const std::vector<EllipsoidInstance>& i
     quadCount_ = ellipsoids.size();
   }
   checkGlError("uploading liquid particles");
-  drawLayer(front_, false, draws.front, background, view, domain, normals);
-  drawLayer(back_, true, draws.back, background, view, domain, normals);
-  return {{front_.eyeDepth, front_.normal}, {back_.eyeDepth, back_.normal}};
 }
 
 namespace {
@@ -79,6 +85,51 @@ void setRayUniforms(GLuint program, bool backFaces, const Camera& view, const Do
 }
 
 }  // namespace
+
+SurfaceLayers EllipsoidImpostorPass::runDepthRange(const std::vector<EllipsoidInstance>& ellipsoids,
+                                                   const Camera& view) {
+  const int width = view.width, height = view.height;
+  upload(ellipsoids);
+  ensureTexture(front_.eyeDepth, GL_R32F, width, height);
+  ensureTexture(back_.eyeDepth, GL_R32F, width, height);
+  ensureTexture(farthestExit_, GL_R32F, width, height);
+  for (Target* target : {&front_, &back_}) {
+    ensureTexture(target->normal, GL_RGBA16F, width, height);
+    const float noNormal[4] = {0.0f, 0.0f, 0.0f, 0.0f};
+    glClearTexImage(target->normal.id(), 0, GL_RGBA, GL_FLOAT, noNormal);
+  }
+  const float noSurface = 1e10f, noExit = 0.0f;
+  glClearTexImage(front_.eyeDepth.id(), 0, GL_RED, GL_FLOAT, &noSurface);
+  glClearTexImage(farthestExit_.id(), 0, GL_RED, GL_FLOAT, &noExit);
+
+  if (!ellipsoids.empty()) {
+    bindColorTargets(resolveFramebuffer_.id(), {&front_.eyeDepth, &farthestExit_});
+    glDisable(GL_DEPTH_TEST);
+    glEnable(GL_BLEND);
+    glBlendFunc(GL_ONE, GL_ONE);  // GL_MIN and GL_MAX ignore the factors
+    glBlendEquationi(0, GL_MIN);
+    glBlendEquationi(1, GL_MAX);
+    const GLuint program = depthRangeProgram_.id();
+    glUseProgram(program);
+    setRayUniforms(program, true, view, nullptr);
+    glUniform1i(uniformLocation(program, "firstEllipsoid"), 0);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, ellipsoidBuffer_.id());
+    glBindVertexArray(emptyVertexArray_.id());
+    glVertexArrayElementBuffer(emptyVertexArray_.id(), quadIndices_.id());
+    glDrawElements(GL_TRIANGLES, GLsizei(6 * ellipsoids.size()), GL_UNSIGNED_INT, nullptr);
+    glBlendEquation(GL_FUNC_ADD);
+    glDisable(GL_BLEND);
+    checkGlError("drawing the liquid particles' depth range");
+  }
+
+  glUseProgram(depthRangeEmptyProgram_.id());
+  bindColorTargets(resolveFramebuffer_.id(), {&back_.eyeDepth});
+  glBindTextureUnit(0, front_.eyeDepth.id());
+  glBindTextureUnit(1, farthestExit_.id());
+  drawFullscreenTriangle(emptyVertexArray_.id());
+  checkGlError("marking the depth range's empty pixels");
+  return {{front_.eyeDepth, front_.normal}, {back_.eyeDepth, back_.normal}};
+}
 
 void EllipsoidImpostorPass::drawLayer(Target& target, bool backFaces, const std::vector<ImpostorDraw>& draws,
                                       const BackgroundData* background, const Camera& view,

@@ -26,6 +26,12 @@ class EllipsoidImpostorPass {
   SurfaceLayers run(const std::vector<EllipsoidInstance>& ellipsoids, const LayerSplit& split,
                     const BackgroundData* background, const Camera& view, const DomainBox* domain = nullptr,
                     bool normals = true);
+  /// The two layers' depths alone, for a view without solids or a domain (the sky's): one draw of every
+  /// ellipsoid keeps each pixel's nearest entry and farthest exit by blending, where `run` draws twice with
+  /// opposite depth tests. On llvmpipe each draw pays for its vertices and triangles on one thread (the dam
+  /// break's sky view: about 35 ms a draw; docs/frame-cost.md). Drawing an ellipsoid into a layer it is
+  /// hidden from changes nothing there, so a LayerSplit is not needed. The normals are left zero.
+  SurfaceLayers runDepthRange(const std::vector<EllipsoidInstance>& ellipsoids, const Camera& view);
 
  private:
   struct Target {
@@ -35,6 +41,7 @@ class EllipsoidImpostorPass {
     Texture2D normal;  ///< Resolved from the winners after the draw.
     Texture2D depthBuffer;
   };
+  void upload(const std::vector<EllipsoidInstance>& ellipsoids);
   void drawLayer(Target& target, bool backFaces, const std::vector<ImpostorDraw>& draws,
                  const BackgroundData* background, const Camera& view, const DomainBox* domain, bool normals);
 
@@ -46,6 +53,9 @@ class EllipsoidImpostorPass {
   ProgramObject noSolidsProgram_;
   ProgramObject normalsProgram_;  // the normal resolve: the winners' ray casts repeated, one per pixel
   ProgramObject clipNormalsProgram_;
+  ProgramObject depthRangeProgram_;         // runDepthRange's draw (DEPTH_RANGE, NO_SOLIDS)
+  ProgramObject depthRangeEmptyProgram_;    // marks its back layer empty where nothing was drawn
+  Texture2D farthestExit_;                  // runDepthRange's GL_MAX target, cleared to 0
   std::vector<EllipsoidInstance> ordered_;  // the list in draw order, when a domain reorders it
   FramebufferObject resolveFramebuffer_;
   VertexArrayObject emptyVertexArray_;

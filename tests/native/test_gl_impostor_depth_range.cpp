@@ -1,0 +1,111 @@
+// The sky view's one-draw depth range (EllipsoidImpostorPass::runDepthRange: the nearest entry and farthest
+// exit kept by GL_MIN and GL_MAX blending) against the two draws with opposite depth tests that every other
+// view makes: the same layers bit for bit, on a wavy sheet seen from above as the sky sees it, with the
+// occlusion test's split (which runDepthRange ignores: it draws every ellipsoid into both layers), and empty
+// layers for an empty list.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <random>
+#include <vector>
+
+#include <glm/glm.hpp>
+
+#include "LiquidTestScenes.h"
+#include "Readback.h"
+#include "gl/GlThread.h"
+#include "gl/ShaderLibrary.h"
+#include "passes/EllipsoidImpostorPass.h"
+#include "passes/FrameUniforms.h"
+#include "prep/HiddenInterior.h"
+#include "prep/LiquidPreparation.h"
+
+using namespace spindrift;
+
+namespace {
+
+// A wavy sheet of liquid five particles thick with jitter, 0.8 m across.
+Particles wavySheet() {
+  std::mt19937 random(11);
+  std::uniform_real_distribution<float> jitter(-0.004f, 0.004f);
+  std::vector<glm::vec3> positions;
+  const float spacing = 0.02f;
+  for (int i = 0; i < 40; ++i)
+    for (int j = 0; j < 40; ++j)
+      for (int k = 0; k < 5; ++k) {
+        const float x = -0.4f + i * spacing, y = -0.4f + j * spacing;
+        const float z = 0.05f * std::sin(6.0f * x) * std::cos(5.0f * y) + k * spacing;
+        positions.emplace_back(x + jitter(random), y + jitter(random), z + jitter(random));
+      }
+  return liquid_test::particlesOf(positions, 0.02f);
+}
+
+// Straight down from far above, as the sky's view looks (prep/LightViews.cpp frames the bounds likewise).
+Camera skyLikeView() {
+  Camera camera = Camera::lookAt(96, 96, 4.0f, {0.0f, 0.0f, 20.0f}, {0.0f, 0.0f, 0.0f}, {0.0f, 1.0f, 0.0f});
+  camera.nearClip = 10.0f;
+  camera.farClip = 30.0f;
+  return camera;
+}
+
+struct Layers {
+  std::vector<float> front, back;
+};
+
+// Both ways of drawing the layers, on one GL thread.
+void drawBothWays(const LiquidPreparation& liquid, const Camera& camera, Layers& twoDraws, Layers& oneDraw) {
+  GlThread glThread;
+  glThread.run([&] {
+    const ShaderLibrary shaders(findShaderDirectory());
+    FrameUniformBuffer frameUniforms;
+    frameUniforms.update(camera);
+    EllipsoidImpostorPass impostors(shaders);
+    const SurfaceLayers drawn =
+        impostors.run(liquid.aggregates, liquid.aggregateLayers, nullptr, camera, nullptr, false);
+    twoDraws = {readLayer(drawn.front.eyeDepth, "front", {"Z"}).pixels,
+                readLayer(drawn.back.eyeDepth, "back", {"Z"}).pixels};
+    const SurfaceLayers range = impostors.runDepthRange(liquid.aggregates, camera);
+    oneDraw = {readLayer(range.front.eyeDepth, "front", {"Z"}).pixels,
+               readLayer(range.back.eyeDepth, "back", {"Z"}).pixels};
+    const std::vector<float> normal = readLayer(range.front.normal, "normal", {"X", "Y", "Z", "W"}).pixels;
+    for (float value : normal)
+      ASSERT_EQ(value, 0.0f) << "the depth range leaves its normals zero";
+  });
+}
+
+}  // namespace
+
+TEST(GLImpostorDepthRange, OneDrawKeepsWhatTheTwoDrawsKeep) {
+  const Camera camera = skyLikeView();
+  LiquidPreparation liquid = prepareLiquid(wavySheet(), camera, LiquidParameters{});
+  // The occlusion test splits the list into front-only, both and back-only ellipsoids, as it does for the
+  // sky's view of a deep body.
+  const HiddenInteriorResult hidden = dropHiddenAggregates(liquid, camera, nullptr);
+  ASSERT_GT(hidden.occluded.hiddenFromFront + hidden.occluded.hiddenFromBack, 0u)
+      << "the test needs a split for the one draw to ignore";
+  Layers twoDraws, oneDraw;
+  drawBothWays(liquid, camera, twoDraws, oneDraw);
+
+  std::size_t covered = 0, frontDiffers = 0, backDiffers = 0;
+  for (std::size_t i = 0; i < twoDraws.front.size(); ++i) {
+    ASSERT_TRUE(std::isfinite(oneDraw.front[i]) && std::isfinite(oneDraw.back[i]));
+    covered += twoDraws.front[i] < 1e9f;
+    frontDiffers += oneDraw.front[i] != twoDraws.front[i];
+    backDiffers += oneDraw.back[i] != twoDraws.back[i];
+  }
+  RecordProperty("covered_pixels", int(covered));
+  EXPECT_GT(covered, 3000u) << "the sheet fills much of the view";
+  EXPECT_LT(covered, twoDraws.front.size()) << "and leaves empty pixels, which both layers must mark";
+  EXPECT_EQ(frontDiffers, 0u);
+  EXPECT_EQ(backDiffers, 0u);
+}
+
+TEST(GLImpostorDepthRange, EmptyListLeavesBothLayersEmpty) {
+  LiquidPreparation nothing;
+  Layers twoDraws, oneDraw;
+  drawBothWays(nothing, skyLikeView(), twoDraws, oneDraw);
+  for (std::size_t i = 0; i < oneDraw.front.size(); ++i) {
+    ASSERT_EQ(oneDraw.front[i], 1e10f);
+    ASSERT_EQ(oneDraw.back[i], 1e10f);
+  }
+}
