@@ -11,8 +11,9 @@ written in `render_write` (which Blender calls after the frame's file is closed)
 Placeholders stay off: a placeholder left by a killed task is an empty file that Overwrite off would skip.
 Spindrift's own layer EXR (spindrift_NNNN.exr) is written under a temporary name and renamed by the module,
 and before the frame's render: a frame with a record has its layers. The temporary a killed task leaves
-beside a layer file (".spindrift_NNNN.exr.tmp-<pid>-<n>") is removed before the task renders. A frame whose layers fail stops the task
-(On Error = Stop, exit code 1) instead of rendering a frame without them, so the task is retried.
+beside a layer file (".spindrift_NNNN.exr.tmp-<pid>-<n>") is removed before the task renders. A frame whose
+layers fail stops the task (On Error = Stop, exit code 1) instead of rendering a frame without them, so the
+task is retried.
 
   blender -b shot.blend --python farm-blender.py -s A -e B -a -- --done DONE_DIR
 """

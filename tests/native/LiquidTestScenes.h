@@ -1,7 +1,9 @@
 #pragma once
 
 #include <cmath>
+#include <random>
 #include <string>
+#include <vector>
 
 #include <gtest/gtest.h>
 
@@ -21,6 +23,23 @@ inline spindrift::Particles particlesOf(const std::vector<glm::vec3>& positions,
   for (const glm::vec3& position : positions)
     particles.append(position, radius, spindrift::ParticleKind::Liquid, 0.0f, glm::vec3(0.0f));
   return particles;
+}
+
+// A wavy sheet of liquid `layers` particles thick, 0.8 m across, 0.02 apart with jitter (radius 0.02): its
+// surface particles become flattened ellipsoids.
+inline spindrift::Particles wavySheet(int layers, unsigned seed) {
+  std::mt19937 random(seed);
+  std::uniform_real_distribution<float> jitter(-0.004f, 0.004f);
+  std::vector<glm::vec3> positions;
+  const float spacing = 0.02f;
+  for (int i = 0; i < 40; ++i)
+    for (int j = 0; j < 40; ++j)
+      for (int k = 0; k < layers; ++k) {
+        const float x = -0.4f + i * spacing, y = -0.4f + j * spacing;
+        const float z = 0.05f * std::sin(6.0f * x) * std::cos(5.0f * y) + k * spacing;
+        positions.emplace_back(x + jitter(random), y + jitter(random), z + jitter(random));
+      }
+  return particlesOf(positions, 0.02f);
 }
 
 // A regular block of particles, spacing `spacing`, filling [low, high].

@@ -56,18 +56,7 @@ CpuLayers rayCast(const std::vector<EllipsoidInstance>& ellipsoids, const Camera
 
 // A wavy sheet of liquid four particles thick with jitter: its surface particles become flattened ellipsoids.
 Particles wavySheet() {
-  std::mt19937 random(7);
-  std::uniform_real_distribution<float> jitter(-0.004f, 0.004f);
-  std::vector<glm::vec3> positions;
-  const float spacing = 0.02f;
-  for (int i = 0; i < 40; ++i)
-    for (int j = 0; j < 40; ++j)
-      for (int k = 0; k < 4; ++k) {
-        const float x = -0.4f + i * spacing, y = -0.4f + j * spacing;
-        const float z = 0.05f * std::sin(6.0f * x) * std::cos(5.0f * y) + k * spacing;
-        positions.emplace_back(x + jitter(random), y + jitter(random), z + jitter(random));
-      }
-  return liquid_test::particlesOf(positions, 0.02f);
+  return liquid_test::wavySheet(4, 7);
 }
 
 // The sheet seen at a grazing angle, where the rectangles shrink most.

@@ -6,7 +6,6 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
-#include <random>
 #include <vector>
 
 #include <glm/glm.hpp>
@@ -23,22 +22,6 @@
 using namespace spindrift;
 
 namespace {
-
-// A wavy sheet of liquid five particles thick with jitter, 0.8 m across.
-Particles wavySheet() {
-  std::mt19937 random(11);
-  std::uniform_real_distribution<float> jitter(-0.004f, 0.004f);
-  std::vector<glm::vec3> positions;
-  const float spacing = 0.02f;
-  for (int i = 0; i < 40; ++i)
-    for (int j = 0; j < 40; ++j)
-      for (int k = 0; k < 5; ++k) {
-        const float x = -0.4f + i * spacing, y = -0.4f + j * spacing;
-        const float z = 0.05f * std::sin(6.0f * x) * std::cos(5.0f * y) + k * spacing;
-        positions.emplace_back(x + jitter(random), y + jitter(random), z + jitter(random));
-      }
-  return liquid_test::particlesOf(positions, 0.02f);
-}
 
 // Straight down from far above, as the sky's view looks (prep/LightViews.cpp frames the bounds likewise).
 Camera skyLikeView() {
@@ -77,7 +60,7 @@ void drawBothWays(const LiquidPreparation& liquid, const Camera& camera, Layers&
 
 TEST(GLImpostorDepthRange, OneDrawKeepsWhatTheTwoDrawsKeep) {
   const Camera camera = skyLikeView();
-  LiquidPreparation liquid = prepareLiquid(wavySheet(), camera, LiquidParameters{});
+  LiquidPreparation liquid = prepareLiquid(liquid_test::wavySheet(5, 11), camera, LiquidParameters{});
   // The occlusion test splits the list into front-only, both and back-only ellipsoids, as it does for the
   // sky's view of a deep body.
   const HiddenInteriorResult hidden = dropHiddenAggregates(liquid, camera, nullptr);

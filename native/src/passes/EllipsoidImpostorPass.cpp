@@ -105,8 +105,7 @@ SurfaceLayers EllipsoidImpostorPass::runDepthRange(const std::vector<EllipsoidIn
   if (!ellipsoids.empty()) {
     bindColorTargets(resolveFramebuffer_.id(), {&front_.eyeDepth, &farthestExit_});
     glDisable(GL_DEPTH_TEST);
-    glEnable(GL_BLEND);
-    glBlendFunc(GL_ONE, GL_ONE);  // GL_MIN and GL_MAX ignore the factors
+    glEnable(GL_BLEND);  // GL_MIN and GL_MAX ignore the blend factors
     glBlendEquationi(0, GL_MIN);
     glBlendEquationi(1, GL_MAX);
     const GLuint program = depthRangeProgram_.id();

@@ -21,7 +21,7 @@ struct LiquidBounds {
   float particleRadius = 0.0f;  ///< The largest liquid particle's.
   /// The smallest feature the liquid's surface holds: the particle radius, or Mantaflow's kernel radius r_m
   /// where the surface is Mantaflow's (liquid.mesh_kernel_radius above 1): its level set averages the
-  /// particles over r_m, so it has no bump smaller (docs/liquid.md, "The lights' views").
+  /// particles over r_m, so it has no bump smaller (docs/liquid.md, "Light through the liquid", step 1).
   float detailRadius = 0.0f;
   glm::vec3 low{0.0f}, high{0.0f};  ///< A box around all the liquid drawn, tighter than the sphere when flat.
 };
