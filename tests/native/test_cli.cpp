@@ -84,6 +84,47 @@ TEST(CLI, RendersExrPngAndStats) {
   EXPECT_FALSE(json["gl_renderer"].get<std::string>().empty());
 }
 
+// --exr-compression and --exr-half reach the file: its header names the compression, colour channels are
+// half and depth stays float, and the pixels are those of the default float ZIP file (to half's precision).
+TEST(CLI, ExrCompressionAndHalfColourReachTheFile) {
+  TempDirectory directory;
+  const std::filesystem::path scene = writeScene(directory);
+  const auto plain = directory.path() / "plain.exr", small = directory.path() / "small.exr";
+  ASSERT_EQ(runCli("render " + scene.string() + " -q -o " + plain.string()).exitCode, 0);
+  const CommandResult result =
+      runCli("render " + scene.string() + " -q --exr-compression piz --exr-half -o " + small.string());
+  ASSERT_EQ(result.exitCode, 0) << result.stderrText;
+
+  auto read = [](const std::filesystem::path& path, OIIO::ImageSpec& spec) {
+    auto input = OIIO::ImageInput::open(path.string());
+    EXPECT_TRUE(input) << OIIO::geterror();
+    spec = input->spec();
+    std::vector<float> pixels(std::size_t(spec.width) * spec.height * spec.nchannels);
+    EXPECT_TRUE(input->read_image(0, 0, 0, spec.nchannels, OIIO::TypeDesc::FLOAT, pixels.data()));
+    return pixels;
+  };
+  OIIO::ImageSpec plainSpec, smallSpec;
+  const std::vector<float> plainPixels = read(plain, plainSpec), smallPixels = read(small, smallSpec);
+  EXPECT_EQ(plainSpec.get_string_attribute("compression"), "zip");
+  EXPECT_EQ(smallSpec.get_string_attribute("compression"), "piz");
+  ASSERT_EQ(plainSpec.channelnames, smallSpec.channelnames);
+  for (int c = 0; c < smallSpec.nchannels; ++c) {
+    const std::string& name = smallSpec.channelnames[std::size_t(c)];
+    const bool keepsFloat = name == "depth.Z" || name.rfind("refraction_uv.", 0) == 0;
+    EXPECT_EQ(smallSpec.channelformat(c), keepsFloat ? OIIO::TypeFloat : OIIO::TypeHalf) << name;
+    EXPECT_EQ(plainSpec.channelformat(c), OIIO::TypeFloat) << name;
+  }
+  std::size_t differ = 0;
+  for (std::size_t i = 0; i < plainPixels.size(); ++i) {
+    ASSERT_TRUE(std::isfinite(smallPixels[i]));
+    differ += std::abs(smallPixels[i] - plainPixels[i]) > 1e-3f * std::max(1.0f, std::abs(plainPixels[i]));
+  }
+  EXPECT_EQ(differ, 0u) << "half keeps 11 bits of mantissa";
+
+  const CommandResult misspelt = runCli("render " + scene.string() + " --exr-compression zpi -o x.exr");
+  EXPECT_EQ(misspelt.exitCode, 2) << "an unknown compression is a usage error";
+}
+
 TEST(CLI, SequenceWritesOneFilePerFrame) {
   TempDirectory directory;
   const std::filesystem::path scene = writeScene(directory);

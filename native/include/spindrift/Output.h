@@ -19,6 +19,9 @@ struct ExrOptions {
   std::vector<std::string> layers;
 };
 
+/// OpenEXR's compressions as OpenImageIO's writer names them (ExrOptions::compression).
+const std::vector<std::string>& exrCompressionNames();
+
 /// True for the layers writeExr keeps in 32-bit float under `halfColor`: depths (eye depth in scene units,
 /// and the 1e10 "nothing" value, which half cannot hold) and `refraction_uv` (image coordinates).
 bool exrLayerNeedsFloat(const std::string& layerName);

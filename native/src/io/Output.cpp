@@ -121,11 +121,10 @@ bool endsWith(const std::string& text, const std::string& suffix) {
          text.compare(text.size() - suffix.size(), suffix.size(), suffix) == 0;
 }
 
-// OpenEXR's compressions as OpenImageIO's writer names them; a misspelt name would silently fall back to ZIP.
+// A misspelt name would make OpenImageIO's writer fall back to ZIP silently.
 bool knownCompression(const std::string& name) {
-  static const std::set<std::string> names = {"none",  "rle", "zip",  "zips", "piz",
-                                              "pxr24", "b44", "b44a", "dwaa", "dwab"};
-  return names.count(name) > 0;
+  const std::vector<std::string>& names = exrCompressionNames();
+  return std::find(names.begin(), names.end(), name) != names.end();
 }
 
 // Rows per call to the writer: a multiple of every OpenEXR compression's block (1, 16 or 32 scanlines), and a
@@ -173,6 +172,12 @@ bool writeInterleavedRows(OIIO::ImageOutput& output, const std::vector<const Ima
 }
 
 }  // namespace
+
+const std::vector<std::string>& exrCompressionNames() {
+  static const std::vector<std::string> names = {"none",  "rle", "zip",  "zips", "piz",
+                                                 "pxr24", "b44", "b44a", "dwaa", "dwab"};
+  return names;
+}
 
 bool exrLayerNeedsFloat(const std::string& layerName) {
   return layerName == "depth" || layerName == "refraction_uv" || endsWith(layerName, "_depth");
