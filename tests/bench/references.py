@@ -45,6 +45,10 @@ from mathutils import Vector
 ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
 sys.path.insert(0, os.path.join(ROOT, "examples"))
 from bakelib import render as example_render, scene_file  # noqa: E402 (Blender runs this file by path)
+# The add-on's own lamp export, so that scene_sun.json holds what a user's scene file would; the add-on loads
+# its native module only when it renders, so importing it here needs no build.
+sys.path.insert(0, os.path.join(ROOT, "addon"))
+from spindrift import export as addon_export  # noqa: E402
 
 
 def log(message):
@@ -167,26 +171,25 @@ LIGHT_PASSES = ("use_pass_diffuse_direct", "use_pass_diffuse_indirect", "use_pas
                 "use_pass_glossy_direct", "use_pass_glossy_indirect", "use_pass_glossy_color")
 
 
-def sun_lights(scene):
-    """The scene's suns as a scene file's lights, as the add-on exports them (docs/scene-format.md): the
-    direction the lamp's -Z axis, Blender's colour and strength. The examples light their scene with one sun
-    and the world (examples/bakelib/blender_scene.py)."""
-    lights = []
-    for obj in scene.objects:
-        if obj.type == 'LIGHT' and obj.data.type == 'SUN' and not obj.hide_render:
-            lights.append({"type": "sun",
-                           "direction": [scene_file.clean_number(-c) for c in obj.matrix_world.col[2][:3]],
-                           "color": [scene_file.clean_number(c) for c in obj.data.color],
-                           "strength": scene_file.clean_number(obj.data.energy)})
-    return lights
+def scene_lights():
+    """The scene's lamps as the Blender add-on exports them (addon/spindrift/export.py; the examples light
+    their scene with one sun and the world, examples/bakelib/blender_scene.py), rounded as the rest of the
+    scene file."""
+    def rounded(value):
+        if isinstance(value, list):
+            return [rounded(v) for v in value]
+        return scene_file.clean_number(value) if isinstance(value, float) else value
+
+    lights = addon_export.scene_lights(bpy.context.evaluated_depsgraph_get())
+    return [{key: rounded(value) for key, value in light.items()} for light in lights]
 
 
 def write_sun_scene_file(directory):
-    """scene_sun.json: the camera's scene file with the scene's suns, over the background with light passes."""
+    """scene_sun.json: the camera's scene file with the scene's lamps, over the background with light passes."""
     with open(os.path.join(directory, "scene.json"), encoding="utf-8") as handle:
         description = json.load(handle)
     description["background"]["image"] = "background_light_passes.exr"
-    description["lights"] = sun_lights(bpy.context.scene)
+    description["lights"] = scene_lights()
     with open(os.path.join(directory, "scene_sun.json"), "w", encoding="utf-8") as handle:
         handle.write(scene_file.format_scene_json(description))
 
