@@ -114,7 +114,8 @@ FrameRequest readFrameRequest(PyObject* args, PyObject* kwargs) {
   PyObject *layers = Py_None, *exrLayers = Py_None, *crop = Py_None;
   int exrHalfColor = 0, display = 0;
   PyObject* displayInto = Py_None;
-  const char* exrCompression = "zip";
+  const std::string defaultCompression = ExrOptions{}.compression;
+  const char* exrCompression = defaultCompression.c_str();
   if (!PyArg_ParseTupleAndKeywords(args, kwargs, "si|$sOOOOzOOpsOpO", const_cast<char**>(keywords),
                                    &sceneJson, &frame, &baseDir, &particles, &occluders, &liquidMesh,
                                    &background, &exrPath, &layers, &exrLayers, &exrHalfColor, &exrCompression,

@@ -238,7 +238,8 @@ PyMethodDef rendererMethods[] = {
      METH_VARARGS | METH_KEYWORDS,
      "render(scene_json, frame, *, base_dir='', particles=None, occluders=None, liquid_mesh=None, "
      "background=None, exr_path=None, layers=None, exr_layers=None, exr_half_color=False, "
-     "exr_compression='zip', crop=None, display=False, display_into=None) -> dict\n\nRenders one frame; see "
+     "exr_compression='zip:1', crop=None, display=False, display_into=None) -> dict\n\nRenders one frame; "
+     "see "
      "docs/python-module.md."},
     {"submit", reinterpret_cast<PyCFunction>(reinterpret_cast<void (*)()>(rendererSubmit)),
      METH_VARARGS | METH_KEYWORDS,

@@ -105,7 +105,7 @@ TEST(CLI, ExrCompressionAndHalfColourReachTheFile) {
   };
   OIIO::ImageSpec plainSpec, smallSpec;
   const std::vector<float> plainPixels = read(plain, plainSpec), smallPixels = read(small, smallSpec);
-  EXPECT_EQ(plainSpec.get_string_attribute("compression"), "zip");
+  EXPECT_EQ(plainSpec.get_string_attribute("compression"), "zip") << "the default, zip:1";
   EXPECT_EQ(smallSpec.get_string_attribute("compression"), "piz");
   ASSERT_EQ(plainSpec.channelnames, smallSpec.channelnames);
   for (int c = 0; c < smallSpec.nchannels; ++c) {
@@ -123,6 +123,9 @@ TEST(CLI, ExrCompressionAndHalfColourReachTheFile) {
 
   const CommandResult misspelt = runCli("render " + scene.string() + " --exr-compression zpi -o x.exr");
   EXPECT_EQ(misspelt.exitCode, 2) << "an unknown compression is a usage error";
+  for (const char* level : {"zip:0", "piz:3"})
+    EXPECT_EQ(runCli("render " + scene.string() + " --exr-compression " + level + " -o x.exr").exitCode, 2)
+        << level;
 }
 
 TEST(CLI, SequenceWritesOneFilePerFrame) {

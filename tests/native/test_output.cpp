@@ -167,6 +167,53 @@ TEST_F(OutputTest, ExrWritesTheChosenLayersWithHalfColourAcrossRowChunks) {
   EXPECT_EQ(wrong, 0u);
 }
 
+// zlib's level is an encoder setting: every level stores the same pixels under OpenEXR's one ZIP, and the
+// lower level spends less effort and so writes more bytes. A level OpenImageIO would not parse (it would fall
+// back to its default silently) or a level on a codec without one is an error, as a misspelt name is.
+TEST_F(OutputTest, ZipLevelsStoreTheSamePixelsAndTheFastestTheMostBytes) {
+  RenderResult result;
+  result.width = 160;
+  result.height = 96;
+  std::vector<float> colour(std::size_t(result.width) * result.height * 4);
+  for (std::size_t i = 0; i < colour.size(); ++i)  // smooth ramps with some noise: what zlib's effort changes
+    colour[i] = float(i % 613) / 613.0f + float((i * 2654435761u) % 17) * 1e-4f;
+  result.layers.push_back(makeLayer("composite", {"R", "G", "B", "A"}, colour));
+  std::map<std::string, std::uintmax_t> bytes;
+  for (const std::string compression : {"zip:1", "zip:9", "zips:1"}) {
+    const std::filesystem::path path = directory_ / ("level_" + compression.substr(0, 3) +
+                                                     compression.substr(compression.size() - 1) + ".exr");
+    ExrOptions options;
+    options.compression = compression;
+    writeExr(result, path, options);
+    bytes[compression] = std::filesystem::file_size(path);
+    std::unique_ptr<OIIO::ImageInput> input = OIIO::ImageInput::open(path.string());
+    ASSERT_TRUE(input) << OIIO::geterror();
+    EXPECT_EQ(input->spec().get_string_attribute("compression"),
+              compression.substr(0, compression.find(':')));
+    std::vector<float> read(colour.size());
+    ASSERT_TRUE(input->read_image(0, 0, 0, 4, OIIO::TypeFloat, read.data()));
+    std::size_t wrong = 0;
+    for (int channel = 0; channel < 4; ++channel) {  // stored sorted by name: A, B, G, R
+      const int c = int(std::string("RGBA").find(input->spec().channelnames[std::size_t(channel)].back()));
+      for (std::size_t pixel = 0; pixel < colour.size() / 4; ++pixel)
+        wrong += read[pixel * 4 + std::size_t(channel)] != colour[pixel * 4 + std::size_t(c)];
+    }
+    EXPECT_EQ(wrong, 0u) << compression;
+  }
+  EXPECT_GT(bytes["zip:1"], bytes["zip:9"]);
+  EXPECT_EQ(ExrOptions{}.compression, "zip:1");
+
+  for (const char* valid : {"zip", "zip:1", "zips:9", "none", "piz", "dwaa"})
+    EXPECT_TRUE(exrCompressionIsValid(valid)) << valid;
+  for (const char* invalid : {"zip:0", "zip:10", "zip:", "zip:a", "piz:3", "none:1", "zpi", ""}) {
+    EXPECT_FALSE(exrCompressionIsValid(invalid)) << invalid;
+    ExrOptions options;
+    options.compression = invalid;
+    EXPECT_THROW(writeExr(result, directory_ / "invalid.exr", options), Error) << invalid;
+  }
+  EXPECT_FALSE(std::filesystem::exists(directory_ / "invalid.exr"));
+}
+
 TEST_F(OutputTest, PngEncodesLinearValuesWithTheSrgbTransferFunction) {
   RenderResult result;
   result.width = 7;

@@ -8,19 +8,30 @@
 
 namespace spindrift {
 
-/// How writeExr stores the pixels. The defaults (every channel 32-bit float, ZIP) are the command line's.
+/// How writeExr stores the pixels. The defaults (every channel 32-bit float, ZIP at level 1) are the command
+/// line's and the Python module's.
 struct ExrOptions {
   /// Colour layers as 16-bit half float. Layers whose values are positions stay 32-bit float (see
   /// exrLayerNeedsFloat): a half's 11-bit mantissa would move a refraction UV by up to ~1 px at 1920 px.
   bool halfColor = false;
-  /// An OpenEXR compression as OpenImageIO names it: "none", "zip", "zips", "piz", "rle", "dwaa", ...
-  std::string compression = "zip";
+  /// An OpenEXR compression as OpenImageIO names it: "none", "zip", "zips", "piz", "rle", "dwaa", ...; ZIP
+  /// may name zlib's level ("zip:1"). Level 1 writes the examples' frames 4-5 % larger than OpenEXR's
+  /// default (4) in half the time (docs/farm.md); reading is as fast.
+  std::string compression = "zip:1";
   /// The layers to write (by name, in the result's order); empty: every layer.
   std::vector<std::string> layers;
 };
 
 /// OpenEXR's compressions as OpenImageIO's writer names them (ExrOptions::compression).
 const std::vector<std::string>& exrCompressionNames();
+
+/// True for one of exrCompressionNames(), or "zip:N" / "zips:N" with zlib's level N from 1 (fastest) to 9.
+bool exrCompressionIsValid(const std::string& compression);
+
+/// From now on, in this process, writeExr compresses on the thread that calls it instead of OpenEXR's pool
+/// of one worker per core, so that a write given a low priority (a sequence's, overlapping the next frame)
+/// stays low. Process-wide, like OpenImageIO's attribute behind it.
+void compressExrOnTheWritingThread();
 
 /// True for the layers writeExr keeps in 32-bit float under `halfColor`: depths (eye depth in scene units,
 /// and the 1e10 "nothing" value, which half cannot hold) and `refraction_uv` (image coordinates).

@@ -121,12 +121,6 @@ bool endsWith(const std::string& text, const std::string& suffix) {
          text.compare(text.size() - suffix.size(), suffix.size(), suffix) == 0;
 }
 
-// A misspelt name would make OpenImageIO's writer fall back to ZIP silently.
-bool knownCompression(const std::string& name) {
-  const std::vector<std::string>& names = exrCompressionNames();
-  return std::find(names.begin(), names.end(), name) != names.end();
-}
-
 // Rows per call to the writer: a multiple of every OpenEXR compression's block (1, 16 or 32 scanlines), and a
 // buffer small enough to be reused warm. Interleaving the whole image at once allocated tens of MB per frame,
 // and first touching those pages cost more than compressing them (docs/blender.md, "Per-final-frame
@@ -179,6 +173,23 @@ const std::vector<std::string>& exrCompressionNames() {
   return names;
 }
 
+// A misspelt name would make OpenImageIO's writer fall back to ZIP silently, and a level it cannot parse to
+// its default.
+bool exrCompressionIsValid(const std::string& compression) {
+  const std::size_t colon = compression.find(':');
+  const std::string name = compression.substr(0, colon);
+  const std::vector<std::string>& names = exrCompressionNames();
+  if (std::find(names.begin(), names.end(), name) == names.end()) return false;
+  if (colon == std::string::npos) return true;
+  const std::string level = compression.substr(colon + 1);
+  return (name == "zip" || name == "zips") && level.size() == 1 && level[0] >= '1' && level[0] <= '9';
+}
+
+void compressExrOnTheWritingThread() {
+  // OpenImageIO: -1 gives OpenEXR no worker threads (0, its default, gives it one per core).
+  OIIO::attribute("exr_threads", -1);
+}
+
 bool exrLayerNeedsFloat(const std::string& layerName) {
   return layerName == "depth" || layerName == "refraction_uv" || endsWith(layerName, "_depth");
 }
@@ -201,7 +212,7 @@ void writeExr(const RenderResult& result, const std::filesystem::path& path, con
   const std::set<std::string> uniqueNames(channelNames.begin(), channelNames.end());
   if (uniqueNames.size() != channelNames.size()) fail(path, "two layers have a channel of the same name");
 
-  if (!knownCompression(options.compression))
+  if (!exrCompressionIsValid(options.compression))
     fail(path, "unknown EXR compression \"" + options.compression + "\"");
   OIIO::ImageSpec spec(result.width, result.height, int(channelNames.size()), OIIO::TypeFloat);
   spec.channelnames = channelNames;
