@@ -18,8 +18,8 @@ from .scene_json import BadInput
 
 # The frame's EXR is temporary (the compositor reads it once), so it is written for speed: only the layers the
 # compositing group reads are rendered at all, colour layers as half float (depth and refraction_uv stay
-# float32: half moves a UV by up to ~1 px at 1920 px), compressed as measured fastest (docs/blender.md).
-EXR_OPTIONS = {"exr_half_color": True, "exr_compression": "zips"}
+# float32: half moves a UV by up to ~1 px at 1920 px), compressed by zlib at its fastest level (docs/blender.md).
+EXR_OPTIONS = {"exr_half_color": True, "exr_compression": "zips:1"}
 
 _state = {"pending": None, "frames_done": 0, "frames_total": 0, "progress": False, "started": 0.0}
 
