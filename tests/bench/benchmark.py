@@ -129,6 +129,8 @@ def prepare_example(arguments, example, plan, absorption_rgb):
             "--background-spp", str(plan["background_spp"]), "--reference-spp", str(plan["reference_spp"]),
             "--sweep-camera", plan["cameras"][0], "--sweep-spp", ",".join(map(str, plan["sweep_spp"])),
             "--absorption-rgb", ",".join(map(str, absorption_rgb)),
+            # Cycles' sweep is timed again in every run, so its times and Spindrift's share the host's state.
+            "--retime-sweep",
             *(["--full-references"] if plan.get("users_render") else []))
     log(f"{example}: references ready ({time.perf_counter() - started:.0f} s)")
     return references

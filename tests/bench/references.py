@@ -16,6 +16,9 @@ EXAMPLE/cameras.json it writes into OUTPUT/CAMERA/:
   matching liquid.absorption_rgb) at --reference-spp samples;
 - scene.json: the Spindrift scene file for this camera, pointing at the example's cache and background.exr;
 - for --sweep-camera, cycles_spp_NNNN.exr for every --sweep-spp, and cycles_timings.json (wall seconds).
+  With --retime-sweep every sweep render is made again (same seed: the same image), so that the times are
+  this run's, on this host's load, as Spindrift's are; the previous times stay in the file as
+  "earlier" for comparison.
 
 In reference.exr the water casts no shadow (Cycles ray visibility): Spindrift refracts the background render,
 whose floor is lit, so a shadowed floor under the water would measure the light model rather than the
@@ -67,6 +70,8 @@ def parse_arguments():
     parser.add_argument("--reference-spp", type=int, default=256)
     parser.add_argument("--sweep-camera", default="oblique")
     parser.add_argument("--sweep-spp", default="", help="comma-separated sample counts to time, e.g. 1,4,16")
+    parser.add_argument("--retime-sweep", action="store_true",
+                        help="render the sweep again even where it exists, for this run's times")
     parser.add_argument("--full-references", action="store_true",
                         help="also the references with the water's shadow and what Spindrift needs for them")
     parser.add_argument("--absorption-rgb", default="0.9,0.3,0.15",
@@ -256,7 +261,8 @@ def render_camera(arguments, example, camera, domain, liquid, definition, exampl
         seconds = render(os.path.join(directory, "reference.exr"), arguments.reference_spp)
         log(f"{definition['name']}: reference ({arguments.reference_spp} spp) in {seconds:.1f} s")
     if definition["name"] == arguments.sweep_camera and arguments.sweep_spp:
-        sweep(directory, definition["name"], arguments.sweep_spp, "cycles_spp", "cycles_timings.json")
+        sweep(directory, definition["name"], arguments.sweep_spp, "cycles_spp", "cycles_timings.json",
+              arguments.retime_sweep)
     if not arguments.full_references:
         return
     write_sun_scene_file(directory)
@@ -276,21 +282,28 @@ def render_camera(arguments, example, camera, domain, liquid, definition, exampl
         log(f"{definition['name']}: reference with the water's shadow ({arguments.reference_spp} spp) in "
             f"{seconds:.1f} s")
     if definition["name"] == arguments.sweep_camera and arguments.sweep_spp:
-        sweep(directory, definition["name"], arguments.sweep_spp, "cycles_full_spp", "cycles_full_timings.json")
+        sweep(directory, definition["name"], arguments.sweep_spp, "cycles_full_spp", "cycles_full_timings.json",
+              arguments.retime_sweep)
     liquid.visible_shadow = False
 
 
-def sweep(directory, camera_name, sample_counts, prefix, timings_name):
-    """Renders the scene as it is set up at each sample count (missing ones only) and records the wall times."""
+def sweep(directory, camera_name, sample_counts, prefix, timings_name, retime=False):
+    """Renders the scene as it is set up at each sample count (missing ones only, or all with `retime`) and
+    records the wall times: {"1": seconds, ...}, and with `retime` the replaced times under "earlier"."""
     timings_path = os.path.join(directory, timings_name)
     timings = json.load(open(timings_path)) if os.path.isfile(timings_path) else {}
+    earlier = timings.pop("earlier", {})
     for samples in [int(s) for s in sample_counts.split(",")]:
         name = f"{prefix}_{samples:04d}.exr"
-        if str(samples) in timings and os.path.isfile(os.path.join(directory, name)):
+        if str(samples) in timings and os.path.isfile(os.path.join(directory, name)) and not retime:
             continue
+        if str(samples) in timings:
+            earlier[str(samples)] = timings[str(samples)]
         # Another seed than the reference's, so the sweep's noise is independent of the reference's.
         timings[str(samples)] = render(os.path.join(directory, name), samples, seed=1)
         log(f"{camera_name}: {prefix} {samples} spp in {timings[str(samples)]:.2f} s")
+    if earlier:
+        timings["earlier"] = earlier
     with open(timings_path, "w", encoding="utf-8") as handle:
         json.dump(timings, handle, indent=1)
 

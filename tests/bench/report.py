@@ -135,7 +135,13 @@ def peers_table(data):
              number(row["errors"]["ssim"])] for row in data["vtk"]]
     rows += [[f"Cycles {p['spp']} spp", number(p["time_s"] * 1e3, 4), "", number(p["mae"]), number(p["ssim"])]
              for p in data["cycles"]]
-    return table(["method", "frame ms", "first frame ms", "MAE", "SSIM"], rows)
+    table_text = table(["method", "frame ms", "first frame ms", "MAE", "SSIM"], rows)
+    earlier = [p for p in data["cycles"] if p.get("earlier_time_s")]
+    if earlier:
+        table_text += ("\n\nCycles' renders were timed again in this run (the same images); the times they "
+                       "replaced, from when the references were rendered: " +
+                       ", ".join(f"{p['spp']} spp {number(p['earlier_time_s'] * 1e3, 4)} ms" for p in earlier) + ".")
+    return table_text
 
 
 def users_render_table(users, cameras):

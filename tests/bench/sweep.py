@@ -142,7 +142,9 @@ def cycles_points(references, plan):
         exr = os.path.join(camera_directory, f"cycles_spp_{samples:04d}.exr")
         errors = runs.frame_errors(exr, camera_directory, 1.0,
                                    {"composite": ["Combined.R", "Combined.G", "Combined.B"]})
-        points.append({"spp": samples, "time_s": timings[str(samples)], **errors})
+        # "earlier": the times this run replaced (references.py --retime-sweep), for the page to show the drift.
+        points.append({"spp": samples, "time_s": timings[str(samples)],
+                       "earlier_time_s": timings.get("earlier", {}).get(str(samples)), **errors})
     return points
 
 
