@@ -1,6 +1,5 @@
 #include "Sequence.h"
 
-#include <sched.h>
 #include <unistd.h>
 
 #include <atomic>
@@ -74,12 +73,6 @@ int removeStaleTemporaries(const std::filesystem::path& target) {
       ++removed;
   }
   return removed;
-}
-
-void yieldToOtherThreads() {
-  // Lowering one's own priority needs no privilege; where it fails the write only competes as before.
-  sched_param parameter{};
-  sched_setscheduler(0, SCHED_IDLE, &parameter);
 }
 
 void writeTextFile(const std::filesystem::path& path, const std::string& text) {

@@ -44,11 +44,6 @@ bool allExist(const std::vector<std::filesystem::path>& outputs);
 /// it. Only the task rendering a frame writes its files, so any such temporary is stale. Returns how many.
 int removeStaleTemporaries(const std::filesystem::path& target);
 
-/// Gives the calling thread the lowest priority there is (Linux's SCHED_IDLE): it runs only on a core no
-/// other thread wants. For the writes that overlap the next frame's render; the render waits for a write only
-/// after its own frame, when the cores are free.
-void yieldToOtherThreads();
-
 /// Writes text to `path` through a temporary name and a rename, like the image writers.
 void writeTextFile(const std::filesystem::path& path, const std::string& text);
 

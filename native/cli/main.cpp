@@ -110,10 +110,6 @@ int runRender(const RenderOptions& options) {
   // its frame when the next frame (or the end) waits for it; a stop signal waits for the write in flight, so
   // every file the sequence leaves is complete. "frame N done" is printed only once N's files are on disk:
   // farm wrappers and people read it as "this frame will be skipped if the job is rerun".
-  // The write runs when the render leaves a core idle (on llvmpipe its serial parts, vertices and triangle
-  // setup, leave one of two idle), compressing on its own thread: competing for the cores, it took
-  // 50-60 ms from each 480x270 frame on 2 cores (docs/farm.md).
-  if (frames.size() > 1) compressExrOnTheWritingThread();
   std::future<void> pendingWrite;
   int pendingFrame = 0;
   double pendingSeconds = 0.0;
@@ -161,7 +157,6 @@ int runRender(const RenderOptions& options) {
     allStats.push_back(statsJson(*result, scene));
     pendingFrame = frame;
     pendingWrite = std::async(std::launch::async, [&options, &scene, result, frame] {
-      cli::yieldToOtherThreads();
       if (!options.exrPath.empty()) writeExr(*result, pathForFrame(options.exrPath, frame), options.exr);
       if (!options.pngPath.empty()) writePng(*result, pathForFrame(options.pngPath, frame));
       if (!options.statsPath.empty() && hasFramePattern(options.statsPath))
@@ -262,8 +257,9 @@ int main(int argc, char** argv) {
   renderCommand
       ->add_option("--threads", render.threads, "Worker threads of the CPU preparation (default: all)")
       ->check(CLI::PositiveNumber);
-  // Writing every layer as 32-bit float with ZIP costs about 100 ms a frame at 480x270 on 2 cores, 16 times
-  // that at 1920x1080 (docs/farm.md); the write overlaps the next frame's render but takes its CPU.
+  // Writing every layer as 32-bit float with ZIP at OpenEXR's level 4 cost about 100 ms a frame at 480x270 on
+  // 2 cores, 16 times that at 1920x1080; level 1 about half (docs/farm.md). The write overlaps the next
+  // frame's render but takes its CPU.
   renderCommand
       ->add_option("--exr-compression", render.exr.compression,
                    "OpenEXR compression of -o (default: " + ExrOptions{}.compression + ")")

@@ -141,8 +141,8 @@ def write_page(arguments, rows, load_start, load_end, renderer):
     lines += ["", "*Process*: the whole command's wall time; *setup*: the EGL context and the programs (from the "
               "program binary cache, or compiled); *first frame*: `total_ms` of the process's first frame "
               "(loading, preparation, every pass, readback; not the EXR's write); *later frames*: the "
-              "sequence's frames after the first, whose EXR writes overlap the next frame's render at the "
-              "lowest priority (`docs/farm.md`). What each lever costs and saves: `docs/frame-cost.md`."]
+              "sequence's frames after the first, whose EXR writes overlap the next frame's render "
+              "(`docs/farm.md`). What each lever costs and saves: `docs/frame-cost.md`."]
     os.makedirs(arguments.output, exist_ok=True)
     with open(os.path.join(arguments.output, "frame-overheads.md"), "w") as handle:
         handle.write("\n".join(lines) + "\n")

@@ -28,11 +28,6 @@ const std::vector<std::string>& exrCompressionNames();
 /// True for one of exrCompressionNames(), or "zip:N" / "zips:N" with zlib's level N from 1 (fastest) to 9.
 bool exrCompressionIsValid(const std::string& compression);
 
-/// From now on, in this process, writeExr compresses on the thread that calls it instead of OpenEXR's pool
-/// of one worker per core, so that a write given a low priority (a sequence's, overlapping the next frame)
-/// stays low. Process-wide, like OpenImageIO's attribute behind it.
-void compressExrOnTheWritingThread();
-
 /// True for the layers writeExr keeps in 32-bit float under `halfColor`: depths (eye depth in scene units,
 /// and the 1e10 "nothing" value, which half cannot hold) and `refraction_uv` (image coordinates).
 bool exrLayerNeedsFloat(const std::string& layerName);

@@ -185,11 +185,6 @@ bool exrCompressionIsValid(const std::string& compression) {
   return (name == "zip" || name == "zips") && level.size() == 1 && level[0] >= '1' && level[0] <= '9';
 }
 
-void compressExrOnTheWritingThread() {
-  // OpenImageIO: -1 gives OpenEXR no worker threads (0, its default, gives it one per core).
-  OIIO::attribute("exr_threads", -1);
-}
-
 bool exrLayerNeedsFloat(const std::string& layerName) {
   return layerName == "depth" || layerName == "refraction_uv" || endsWith(layerName, "_depth");
 }
