@@ -92,6 +92,8 @@ CASES = {
     "crop_not_a_tuple": (dict(crop=[0, 0, 4, 4]), "TypeError", "crop: expected a tuple"),
     "unknown_exr_compression": (dict(exr_path=__file__ + ".exr", exr_compression="zipp"), "Error",
                                 'unknown EXR compression "zipp"'),
+    "exr_compression_level_out_of_range": (dict(exr_path=__file__ + ".exr", exr_compression="zip:0"), "Error",
+                                           'unknown EXR compression "zip:0"'),
     "bad_scene_json": (dict(scene_json="{"), "Error", "not valid JSON"),
     "scene_unknown_key": (dict(scene_json='{"version": 1, "camera": {}, "particles": [], "bogus": 1}'), "Error",
                           "bogus"),
