@@ -2,6 +2,7 @@
 
 #include <unistd.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <filesystem>
@@ -180,8 +181,9 @@ TEST_F(OutputTest, ZipLevelsStoreTheSamePixelsAndTheFastestTheMostBytes) {
   result.layers.push_back(makeLayer("composite", {"R", "G", "B", "A"}, colour));
   std::map<std::string, std::uintmax_t> bytes;
   for (const std::string compression : {"zip:1", "zip:9", "zips:1"}) {
-    const std::filesystem::path path = directory_ / ("level_" + compression.substr(0, 3) +
-                                                     compression.substr(compression.size() - 1) + ".exr");
+    std::string name = compression;
+    std::replace(name.begin(), name.end(), ':', '_');
+    const std::filesystem::path path = directory_ / (name + ".exr");
     ExrOptions options;
     options.compression = compression;
     writeExr(result, path, options);
