@@ -44,7 +44,7 @@ void drawBothWays(const LiquidPreparation& liquid, const Camera& camera, Layers&
     frameUniforms.update(camera);
     EllipsoidImpostorPass impostors(shaders);
     const SurfaceLayers drawn =
-        impostors.run(liquid.aggregates, liquid.aggregateLayers, nullptr, camera, nullptr, false);
+        impostors.run(liquid.aggregates, liquid.aggregateLayers, nullptr, camera, nullptr);
     twoDraws = {readLayer(drawn.front.eyeDepth, "front", {"Z"}).pixels,
                 readLayer(drawn.back.eyeDepth, "back", {"Z"}).pixels};
     const SurfaceLayers range = impostors.runDepthRange(liquid.aggregates, camera);

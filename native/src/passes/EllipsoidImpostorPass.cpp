@@ -27,7 +27,7 @@ EllipsoidImpostorPass::EllipsoidImpostorPass(const ShaderLibrary& shaders)
 
 SurfaceLayers EllipsoidImpostorPass::run(const std::vector<EllipsoidInstance>& input, const LayerSplit& split,
                                          const BackgroundData* background, const Camera& view,
-                                         const DomainBox* domain, bool normals) {
+                                         const DomainBox* domain) {
   ImpostorDraws draws = unclippedDraws(input.size(), split);
   const std::vector<EllipsoidInstance>* list = &input;
   if (domain) {
@@ -36,8 +36,8 @@ SurfaceLayers EllipsoidImpostorPass::run(const std::vector<EllipsoidInstance>& i
     list = &ordered_;
   }
   upload(*list);
-  drawLayer(front_, false, draws.front, background, view, domain, normals);
-  drawLayer(back_, true, draws.back, background, view, domain, normals);
+  drawLayer(front_, false, draws.front, background, view, domain);
+  drawLayer(back_, true, draws.back, background, view, domain);
   return {{front_.eyeDepth, front_.normal}, {back_.eyeDepth, back_.normal}};
 }
 
@@ -132,7 +132,7 @@ SurfaceLayers EllipsoidImpostorPass::runDepthRange(const std::vector<EllipsoidIn
 
 void EllipsoidImpostorPass::drawLayer(Target& target, bool backFaces, const std::vector<ImpostorDraw>& draws,
                                       const BackgroundData* background, const Camera& view,
-                                      const DomainBox* domain, bool normals) {
+                                      const DomainBox* domain) {
   const int width = view.width, height = view.height;
   ensureTexture(target.eyeDepth, GL_R32F, width, height);
   ensureTexture(target.winner, GL_R32UI, width, height);
@@ -153,8 +153,10 @@ void EllipsoidImpostorPass::drawLayer(Target& target, bool backFaces, const std:
   glClearNamedFramebufferuiv(framebuffer, GL_COLOR, 1, noWinner);
   glClearNamedFramebufferfv(framebuffer, GL_DEPTH, 0, &clearDepth);
   const float noNormal[4] = {0.0f, 0.0f, 0.0f, 0.0f};
-  if (draws.empty() || !normals) glClearTexImage(target.normal.id(), 0, GL_RGBA, GL_FLOAT, noNormal);
-  if (draws.empty()) return;
+  if (draws.empty()) {
+    glClearTexImage(target.normal.id(), 0, GL_RGBA, GL_FLOAT, noNormal);
+    return;
+  }
 
   glBindFramebuffer(GL_FRAMEBUFFER, framebuffer);
   glViewport(0, 0, width, height);
@@ -180,7 +182,6 @@ void EllipsoidImpostorPass::drawLayer(Target& target, bool backFaces, const std:
   checkGlError(backFaces ? "drawing back faces of liquid particles"
                          : "drawing front faces of liquid particles");
 
-  if (!normals) return;
   // The normals of the winning ellipsoids only.
   const GLuint normalsProgram = anyClipped ? clipNormalsProgram_.id() : normalsProgram_.id();
   glUseProgram(normalsProgram);

@@ -22,10 +22,9 @@ class EllipsoidImpostorPass {
   /// `split` says which ellipsoids each layer draws (all of them by default); `background`, when not null,
   /// hides the ellipsoids whose front lies behind its solids (a light's view has none); `view` is the camera
   /// whose frame block is bound (binding 0); `domain`, when not null, clips the surfaces to a Mantaflow
-  /// domain's box. Without `normals` the layers' normals are left zero (a view that needs depth alone).
+  /// domain's box. A view that needs depth alone draws with runDepthRange.
   SurfaceLayers run(const std::vector<EllipsoidInstance>& ellipsoids, const LayerSplit& split,
-                    const BackgroundData* background, const Camera& view, const DomainBox* domain = nullptr,
-                    bool normals = true);
+                    const BackgroundData* background, const Camera& view, const DomainBox* domain = nullptr);
   /// The two layers' depths alone, for a view without solids or a domain (the sky's): one draw of every
   /// ellipsoid keeps each pixel's nearest entry and farthest exit by blending, where `run` draws twice with
   /// opposite depth tests. On llvmpipe each draw pays for its vertices and triangles on one thread (the dam
@@ -43,7 +42,7 @@ class EllipsoidImpostorPass {
   };
   void upload(const std::vector<EllipsoidInstance>& ellipsoids);
   void drawLayer(Target& target, bool backFaces, const std::vector<ImpostorDraw>& draws,
-                 const BackgroundData* background, const Camera& view, const DomainBox* domain, bool normals);
+                 const BackgroundData* background, const Camera& view, const DomainBox* domain);
 
   // The impostor program with and without the clip to a domain's box (lib/ellipsoid_ray.glsl; only the
   // ellipsoids that reach the box's faces are drawn with it, orderForDomainClip) and without the solids test
