@@ -22,10 +22,9 @@ struct ExrOptions {
   std::vector<std::string> layers;
 };
 
-/// OpenEXR's compressions as OpenImageIO's writer names them (ExrOptions::compression).
-const std::vector<std::string>& exrCompressionNames();
-
-/// True for one of exrCompressionNames(), or "zip:N" / "zips:N" with zlib's level N from 1 (fastest) to 9.
+/// True for one of OpenEXR's compressions as OpenImageIO's writer names them ("none", "rle", "zip", "zips",
+/// "piz", "pxr24", "b44", "b44a", "dwaa", "dwab"), or "zip:N" / "zips:N" with zlib's level N from 1 (fastest)
+/// to 9.
 bool exrCompressionIsValid(const std::string& compression);
 
 /// True for the layers writeExr keeps in 32-bit float under `halfColor`: depths (eye depth in scene units,

@@ -167,19 +167,14 @@ bool writeInterleavedRows(OIIO::ImageOutput& output, const std::vector<const Ima
 
 }  // namespace
 
-const std::vector<std::string>& exrCompressionNames() {
-  static const std::vector<std::string> names = {"none",  "rle", "zip",  "zips", "piz",
-                                                 "pxr24", "b44", "b44a", "dwaa", "dwab"};
-  return names;
-}
-
 // A misspelt name would make OpenImageIO's writer fall back to ZIP silently, and a level it cannot parse to
 // its default.
 bool exrCompressionIsValid(const std::string& compression) {
+  static const std::set<std::string> names = {"none",  "rle", "zip",  "zips", "piz",
+                                              "pxr24", "b44", "b44a", "dwaa", "dwab"};
   const std::size_t colon = compression.find(':');
   const std::string name = compression.substr(0, colon);
-  const std::vector<std::string>& names = exrCompressionNames();
-  if (std::find(names.begin(), names.end(), name) == names.end()) return false;
+  if (names.count(name) == 0) return false;
   if (colon == std::string::npos) return true;
   const std::string level = compression.substr(colon + 1);
   return (name == "zip" || name == "zips") && level.size() == 1 && level[0] >= '1' && level[0] <= '9';
