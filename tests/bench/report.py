@@ -139,7 +139,7 @@ def peers_table(data):
     earlier = [p for p in data["cycles"] if p.get("earlier_time_s")]
     if earlier:
         table_text += ("\n\nCycles' renders were timed again in this run (the same images); the times they "
-                       "replaced, from when the references were rendered: " +
+                       "replaced, from the last run that timed them (or the references' own renders): " +
                        ", ".join(f"{p['spp']} spp {number(p['earlier_time_s'] * 1e3, 4)} ms" for p in earlier) + ".")
     return table_text
 
