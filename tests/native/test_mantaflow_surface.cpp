@@ -214,6 +214,50 @@ TEST(MantaflowSurface, DropsNearABodyReachItsSurfaceOrAreSwallowedAndLoneDropsAr
   EXPECT_LE(reach, 1.25f * kKernelCells);
 }
 
+// Where φ = 0 lies from `from` along the unit `direction` by bisecting the exact sum, at most `maxRadius`.
+float exactReach(const ParticleCloud& cloud, const glm::vec3& from, const glm::vec3& direction,
+                 float maxRadius) {
+  if (exactLevelSet(cloud, from + maxRadius * direction, kKernelCells) <= 0.0f) return maxRadius;
+  float inside = 0.0f, outside = maxRadius;
+  for (int step = 0; step < 30; ++step) {
+    const float middle = 0.5f * (inside + outside);
+    (exactLevelSet(cloud, from + middle * direction, kKernelCells) <= 0.0f ? inside : outside) = middle;
+  }
+  return 0.5f * (inside + outside);
+}
+
+TEST(MantaflowSurface, ASplashInASheetIsAsThickAsTheSheetNotAsWide) {
+  // A sheet one particle thick. Near its edge the neighbours' mean pulls in along the sheet, so the outward
+  // direction runs along it, where Mantaflow's surface lies beyond the largest blob: a sphere of that reach
+  // stood out of the mesh on both faces. The inscribed sphere is as thick as the sheet, which the exact sum
+  // puts about r_m either side of it.
+  ParticleCloud cloud;
+  for (int i = -8; i <= 8; ++i)
+    for (int j = -8; j <= 8; ++j)
+      addParticle(cloud, {i * kSpacing, j * kSpacing, 0.0f});
+  const MantaflowLevelSet levelSet(cloud, kKernelCells);
+  const float maxRadius = 1.25f * kKernelCells;
+  const glm::vec3 nearEdge(6 * kSpacing, 1 * kSpacing, 0.0f);
+  glm::vec3 out;
+  EXPECT_GT(levelSet.surfaceDistance(nearEdge, maxRadius, 3, out), 0.95f * maxRadius) << "along the sheet";
+  EXPECT_GT(out.x, 0.9f) << "away from the sheet's middle";
+  const float inscribed = levelSet.inscribedRadius(nearEdge, maxRadius, 3);
+  const float thickness = exactReach(cloud, nearEdge, {0.0f, 0.0f, 1.0f}, maxRadius);
+  EXPECT_LT(thickness, 0.85f * maxRadius);
+  EXPECT_NEAR(inscribed, thickness, 0.1f * kKernelCells);
+  // The sphere lies inside the exact surface: no direction leaves it before 0.95 of the radius.
+  for (int k = 0; k < 64; ++k) {
+    const float z = 1.0f - (k + 0.5f) / 32.0f, ring = std::sqrt(1.0f - z * z), angle = 2.39996323f * k;
+    const glm::vec3 direction(ring * std::cos(angle), ring * std::sin(angle), z);
+    EXPECT_LE(exactLevelSet(cloud, nearEdge + 0.95f * inscribed * direction, kKernelCells), 0.0f) << k;
+  }
+  // A lone drop's blob is round: the inscribed sphere is the whole of it.
+  ParticleCloud lone;
+  addParticle(lone, {1.0f, 2.0f, 3.0f});
+  EXPECT_NEAR(MantaflowLevelSet(lone, kKernelCells).inscribedRadius({1.0f, 2.0f, 3.0f}, maxRadius, 3),
+              kKernelCells, 1e-3f);
+}
+
 TEST(MantaflowSurface, LumpedSurfaceDistancesMatchTheExactSum) {
   // A block with a ridge and stray drops: for particles of the upper layers and the drops, the distance to
   // φ = 0 along the same direction, from the lumped grid and by bisecting the exact sum.

@@ -166,8 +166,7 @@ float offsetToMantaflowSurface(const NeighbourGrid& grid, std::size_t i, const P
   // reaches (plus the smoothing's shift of its centre).
   const float longest = std::max({shape.semiAxes.x, shape.semiAxes.y, shape.semiAxes.z});
   const float farthest = longest + settings.surfaceOffset * radius + glm::length(centre - particle);
-  const float reach = settings.meshSurface->surfaceDistance(MantaflowSurfaceSearch::Purpose::Offset, i,
-                                                            particle, farthest, 0, out);
+  const float reach = settings.meshSurface->surfaceDistance(i, particle, farthest, 0, out);
   if (!(reach > 0.0f)) return 0.0f;
   const float target = (reach - glm::dot(centre - particle, out)) / radius;
   if (!(target > 0.0f)) return 0.0f;

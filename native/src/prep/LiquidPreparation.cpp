@@ -125,12 +125,10 @@ void classifyAndPack(const NeighbourGrid& grid, const ParticleShapes& shapes,
     const float maxRadius = kMaxBlobPerKernel * meshSurface->kernelRadius();
     tbb::parallel_for(tbb::blocked_range<std::size_t>(0, cloud.size(), 256),
                       [&](const tbb::blocked_range<std::size_t>& block) {
-                        glm::vec3 out;
                         for (std::size_t i = block.begin(); i != block.end(); ++i) {
                           if (shapes.kinds[i] == ShapeKind::Hidden || !isSplash(i)) continue;
                           const glm::vec3 particle(cloud.x[i], cloud.y[i], cloud.z[i]);
-                          splashRadii[i] = meshSurface->surfaceDistance(
-                              MantaflowSurfaceSearch::Purpose::Splash, i, particle, maxRadius, 3, out);
+                          splashRadii[i] = meshSurface->inscribedRadius(i, particle, maxRadius, 3);
                         }
                       });
   }

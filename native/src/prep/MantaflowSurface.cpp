@@ -124,6 +124,33 @@ float MantaflowLevelSet::surfaceDistance(const glm::vec3& particle, float maxRad
   // Out of the body, away from where the neighbours pull; a lone particle's blob is round, any way will do.
   const float pull = glm::length(towardsMean);
   out = pull > 1e-6f * kernelRadius_ ? -towardsMean / pull : glm::vec3(0.0f, 0.0f, 1.0f);
+  return reachAlong(particle, pull, out, maxRadius, refinements);
+}
+
+float MantaflowLevelSet::inscribedRadius(const glm::vec3& particle, float maxRadius, int refinements) const {
+  glm::vec3 out;
+  float least = surfaceDistance(particle, maxRadius, refinements, out);
+  if (!(least > 0.0f)) return 0.0f;
+  glm::vec3 towardsMean;
+  offsetToMean(particle, towardsMean);
+  const float pull = glm::length(towardsMean);
+  // A particle in a sheet or a filament has its neighbours' mean almost on itself, so `out` may run along the
+  // sheet, where the surface lies far: its blob is as thin as the sheet, which another direction finds.
+  const glm::vec3 helper = std::abs(out.x) < 0.7f ? glm::vec3(1.0f, 0.0f, 0.0f) : glm::vec3(0.0f, 1.0f, 0.0f);
+  const glm::vec3 u = glm::normalize(glm::cross(out, helper)), v = glm::cross(out, u);
+  for (int a = -1; a <= 1; ++a)
+    for (int b = -1; b <= 1; ++b)
+      for (int c = -1; c <= 1; ++c) {
+        if ((a == 0 && b == 0 && c == 0) || (a == 1 && b == 0 && c == 0)) continue;  // `out` is searched
+        const glm::vec3 direction = glm::normalize(float(a) * out + float(b) * u + float(c) * v);
+        // Bounded by the least so far: a search that gets there stops.
+        least = std::min(least, reachAlong(particle, pull, direction, least, refinements));
+      }
+  return least;
+}
+
+float MantaflowLevelSet::reachAlong(const glm::vec3& particle, float pull, const glm::vec3& direction,
+                                    float maxRadius, int refinements) const {
   float inside = 0.0f, insideValue = pull - kernelRadius_;
   if (insideValue >= 0.0f) return 0.0f;
   // x̄ follows x outwards (it never moves against it), so φ grows by at most one per unit: the zero lies at
@@ -131,7 +158,8 @@ float MantaflowLevelSet::surfaceDistance(const glm::vec3& particle, float maxRad
   if (-insideValue >= maxRadius) return maxRadius;
   const auto levelSet = [&](float t) {
     glm::vec3 offset;
-    return offsetToMean(particle + t * out, offset) ? glm::length(offset) - kernelRadius_ : kernelRadius_;
+    return offsetToMean(particle + t * direction, offset) ? glm::length(offset) - kernelRadius_
+                                                          : kernelRadius_;
   };
   // φ grows by about one per unit along `out` (x̄ moves little): first guess t = −φ(0), then secant steps
   // through the last two points. A lone particle needs none, as φ is then exactly linear.
@@ -153,16 +181,23 @@ float MantaflowLevelSet::surfaceDistance(const glm::vec3& particle, float maxRad
 MantaflowSurfaceSearch::MantaflowSurfaceSearch(MantaflowLevelSet levelSet, std::size_t particles)
     : levelSet_(std::move(levelSet)), offsetSearches_(particles), splashSearches_(particles) {}
 
-float MantaflowSurfaceSearch::surfaceDistance(Purpose purpose, std::size_t index, const glm::vec3& particle,
-                                              float maxRadius, int refinements, glm::vec3& out) {
-  Search& search = (purpose == Purpose::Offset ? offsetSearches_ : splashSearches_).at(index);
-  if (!(search.maxRadius == maxRadius && search.refinements == refinements && search.particle == particle)) {
-    search.distance = levelSet_.surfaceDistance(particle, maxRadius, refinements, search.out);
-    search.particle = particle;
-    search.maxRadius = maxRadius;
-    search.refinements = refinements;
+float MantaflowSurfaceSearch::surfaceDistance(std::size_t index, const glm::vec3& particle, float maxRadius,
+                                              int refinements, glm::vec3& out) {
+  Search& search = offsetSearches_.at(index);
+  if (!search.madeFor(particle, maxRadius, refinements)) {
+    glm::vec3 searchedOut;
+    const float distance = levelSet_.surfaceDistance(particle, maxRadius, refinements, searchedOut);
+    search = {particle, maxRadius, refinements, distance, searchedOut};
   }
   out = search.out;
+  return search.distance;
+}
+
+float MantaflowSurfaceSearch::inscribedRadius(std::size_t index, const glm::vec3& particle, float maxRadius,
+                                              int refinements) {
+  Search& search = splashSearches_.at(index);
+  if (!search.madeFor(particle, maxRadius, refinements))
+    search = {particle, maxRadius, refinements, levelSet_.inscribedRadius(particle, maxRadius, refinements)};
   return search.distance;
 }
 

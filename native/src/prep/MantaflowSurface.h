@@ -33,7 +33,18 @@ class MantaflowLevelSet {
   /// the first guess, each one more sum).
   float surfaceDistance(const glm::vec3& particle, float maxRadius, int refinements, glm::vec3& out) const;
 
+  /// The radius of the largest sphere about a particle at `particle` that Mantaflow's surface holds: the
+  /// least of surfaceDistance's reaches along 26 directions (a cube's faces, edges and corners, turned so
+  /// that a face looks along `out`), so never more than surfaceDistance. 0 when the particle lies outside the
+  /// surface; a lone particle gets r_m.
+  float inscribedRadius(const glm::vec3& particle, float maxRadius, int refinements) const;
+
  private:
+  /// How far φ = 0 lies from `particle` along the unit `direction`, at most `maxRadius`, for a particle
+  /// whose x̄ lies `pull` from it (less than r_m).
+  float reachAlong(const glm::vec3& particle, float pull, const glm::vec3& direction, float maxRadius,
+                   int refinements) const;
+
   float kernelRadius_;
   float cellSize_;
   glm::vec3 origin_{0.0f};
@@ -53,18 +64,20 @@ class MantaflowLevelSet {
 /// bit for bit the one a new search would give. One thread at a time may search a given index.
 class MantaflowSurfaceSearch {
  public:
-  /// What a search is for: a surface particle's offset (Anisotropy.cpp) or a splash's size (classifyAndPack).
-  /// Each keeps its own result per particle, as a particle may be a splash in one view and not in another.
-  enum class Purpose { Offset, Splash };
-
   MantaflowSurfaceSearch(MantaflowLevelSet levelSet, std::size_t particles);
 
   const MantaflowLevelSet& levelSet() const { return levelSet_; }
   float kernelRadius() const { return levelSet_.kernelRadius(); }
 
-  /// MantaflowLevelSet::surfaceDistance for particle `index` at `particle`, remembered.
-  float surfaceDistance(Purpose purpose, std::size_t index, const glm::vec3& particle, float maxRadius,
-                        int refinements, glm::vec3& out);
+  /// MantaflowLevelSet::surfaceDistance for particle `index` at `particle`, remembered: a surface particle's
+  /// offset (Anisotropy.cpp).
+  float surfaceDistance(std::size_t index, const glm::vec3& particle, float maxRadius, int refinements,
+                        glm::vec3& out);
+
+  /// MantaflowLevelSet::inscribedRadius for particle `index` at `particle`, remembered: a splash's size
+  /// (classifyAndPack). Kept apart from the offsets, as a particle may be a splash in one view and not in
+  /// another.
+  float inscribedRadius(std::size_t index, const glm::vec3& particle, float maxRadius, int refinements);
 
  private:
   struct Search {
@@ -73,6 +86,9 @@ class MantaflowSurfaceSearch {
     int refinements = 0;
     float distance = 0.0f;
     glm::vec3 out{0.0f};
+    bool madeFor(const glm::vec3& at, float radius, int steps) const {
+      return maxRadius == radius && refinements == steps && particle == at;
+    }
   };
   MantaflowLevelSet levelSet_;
   std::vector<Search> offsetSearches_, splashSearches_;
