@@ -1,22 +1,12 @@
 #include "passes/RaymarchEntryPass.h"
 
-#include "passes/BilateralFilterPass.h"
-#include "passes/DepthPingPong.h"
-#include "passes/NormalsFromDepthPass.h"
+#include "passes/DepthSmoothingPass.h"
 
 namespace spindrift {
 
-// Like DepthSmoothingPass, a pass made of passes: D_all is smoothed and its normals recomputed by the liquid
-// pipeline's own bilateral filter and normals passes.
-struct RaymarchEntryPass::Smoothing {
-  explicit Smoothing(const ShaderLibrary& shaders) : bilateral(shaders), normals(shaders) {}
-  BilateralFilterPass bilateral;
-  NormalsFromDepthPass normals;
-  DepthPingPong targets;
-};
-
 RaymarchEntryPass::RaymarchEntryPass(const ShaderLibrary& shaders)
-    : program_(shaders.program({"raymarch_entry.comp"})), smoothing_(std::make_unique<Smoothing>(shaders)) {}
+    : program_(shaders.program({"raymarch_entry.comp"})),
+      smoothing_(std::make_unique<DepthSmoothingPass>(shaders)) {}
 
 RaymarchEntryPass::~RaymarchEntryPass() = default;
 
@@ -39,11 +29,12 @@ RaymarchEntryData RaymarchEntryPass::run(const std::optional<SurfaceLayers>& spl
   glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_FRAMEBUFFER_BARRIER_BIT);
   checkGlError("finding where the rays enter (D_all)");
 
-  smoothing_->targets.resize(width, height);
-  const Texture2D& smoothed =
-      smoothing_->bilateral.run(allDepth_, particleRadius, parameters, smoothing_->targets).eyeDepth;
-  const Texture2D& normal = smoothing_->normals.run(smoothed, allNormal_, false, width, height).normal;
-  return {allDepth_, normal};
+  // The liquid pipeline's own smoothing (liquid.smoothing): `bilateral` is the paper's filter; the default
+  // plane fit keeps the normals of large on-screen particles free of the separable filter's streaks
+  // (docs/raymarch.md, "N_screen from the plane fit").
+  const DepthLayer smoothed =
+      smoothing_->run({allDepth_, allNormal_}, particleRadius, false, parameters, width, height);
+  return {allDepth_, smoothed.normal};
 }
 
 }  // namespace spindrift

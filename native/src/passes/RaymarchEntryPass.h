@@ -11,8 +11,10 @@
 
 namespace spindrift {
 
-/// D_all from the splash and aggregate front layers (shaders/raymarch_entry.comp), smoothed by the bilateral
-/// Gaussian filter (liquid.bilateral_* parameters, liquid.smoothing_iterations iterations) for N_screen.
+class DepthSmoothingPass;  // D_all is smoothed as the aggregate layers are (RaymarchEntryPass.cpp)
+
+/// D_all from the splash and aggregate front layers (shaders/raymarch_entry.comp), smoothed by the method
+/// liquid.smoothing names (the paper's bilateral Gaussian filter with `bilateral`) for N_screen.
 class RaymarchEntryPass {
  public:
   explicit RaymarchEntryPass(const ShaderLibrary& shaders);
@@ -23,9 +25,8 @@ class RaymarchEntryPass {
                         float particleRadius, const LiquidParameters& parameters, int width, int height);
 
  private:
-  struct Smoothing;  // the bilateral filter and normals passes it is made of (RaymarchEntryPass.cpp)
   ProgramObject program_;
-  std::unique_ptr<Smoothing> smoothing_;
+  std::unique_ptr<DepthSmoothingPass> smoothing_;
   Texture2D allDepth_;
   Texture2D allNormal_;
 };
