@@ -229,8 +229,8 @@ float exactReach(const ParticleCloud& cloud, const glm::vec3& from, const glm::v
 TEST(MantaflowSurface, ASplashInASheetIsAsThickAsTheSheetNotAsWide) {
   // A sheet one particle thick. Near its edge the neighbours' mean pulls in along the sheet, so the outward
   // direction runs along it, where Mantaflow's surface lies beyond the largest blob: a sphere of that reach
-  // stood out of the mesh on both faces. The inscribed sphere is as thick as the sheet, which the exact sum
-  // puts about r_m either side of it.
+  // stood out of the mesh on both faces. The inscribed sphere's radius is the sheet's half thickness, which
+  // the exact sum puts at about r_m.
   ParticleCloud cloud;
   for (int i = -8; i <= 8; ++i)
     for (int j = -8; j <= 8; ++j)

@@ -121,19 +121,18 @@ float MantaflowLevelSet::surfaceDistance(const glm::vec3& particle, float maxRad
                                          glm::vec3& out) const {
   glm::vec3 towardsMean;
   offsetToMean(particle, towardsMean);
-  // Out of the body, away from where the neighbours pull; a lone particle's blob is round, any way will do.
   const float pull = glm::length(towardsMean);
-  out = pull > 1e-6f * kernelRadius_ ? -towardsMean / pull : glm::vec3(0.0f, 0.0f, 1.0f);
+  out = outwardFrom(towardsMean, pull);
   return reachAlong(particle, pull, out, maxRadius, refinements);
 }
 
 float MantaflowLevelSet::inscribedRadius(const glm::vec3& particle, float maxRadius, int refinements) const {
-  glm::vec3 out;
-  float least = surfaceDistance(particle, maxRadius, refinements, out);
-  if (!(least > 0.0f)) return 0.0f;
   glm::vec3 towardsMean;
   offsetToMean(particle, towardsMean);
   const float pull = glm::length(towardsMean);
+  const glm::vec3 out = outwardFrom(towardsMean, pull);
+  float least = reachAlong(particle, pull, out, maxRadius, refinements);
+  if (!(least > 0.0f)) return 0.0f;
   // A particle in a sheet or a filament has its neighbours' mean almost on itself, so `out` may run along the
   // sheet, where the surface lies far: its blob is as thin as the sheet, which another direction finds.
   const glm::vec3 helper = std::abs(out.x) < 0.7f ? glm::vec3(1.0f, 0.0f, 0.0f) : glm::vec3(0.0f, 1.0f, 0.0f);
@@ -147,6 +146,11 @@ float MantaflowLevelSet::inscribedRadius(const glm::vec3& particle, float maxRad
         least = std::min(least, reachAlong(particle, pull, direction, least, refinements));
       }
   return least;
+}
+
+glm::vec3 MantaflowLevelSet::outwardFrom(const glm::vec3& towardsMean, float pull) const {
+  // Out of the body, away from where the neighbours pull; a lone particle's blob is round, any way will do.
+  return pull > 1e-6f * kernelRadius_ ? -towardsMean / pull : glm::vec3(0.0f, 0.0f, 1.0f);
 }
 
 float MantaflowLevelSet::reachAlong(const glm::vec3& particle, float pull, const glm::vec3& direction,

@@ -40,6 +40,8 @@ class MantaflowLevelSet {
   float inscribedRadius(const glm::vec3& particle, float maxRadius, int refinements) const;
 
  private:
+  /// The unit direction away from x̄ (`towardsMean` = x̄ − particle, `pull` its length).
+  glm::vec3 outwardFrom(const glm::vec3& towardsMean, float pull) const;
   /// How far φ = 0 lies from `particle` along the unit `direction`, at most `maxRadius`, for a particle
   /// whose x̄ lies `pull` from it (less than r_m).
   float reachAlong(const glm::vec3& particle, float pull, const glm::vec3& direction, float maxRadius,
