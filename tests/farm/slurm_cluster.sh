@@ -102,6 +102,20 @@ kill_renderer_after() {
 # it start two seconds later. Not at once: slurmd rejects a launch whose credential was made in the same second
 # as the old run's revocation ("Job credential revoked": the job then ends with exit 1 and is never rerun,
 # seen once in CI when the requeue and the new start fell within one second).
+# Every task's log ends with its renderer's exit status (scripts/farm-task): the proof that the task's work,
+# and its log, are finished. Under load squeue once reported a resubmitted job's tasks finished while their
+# Blender was still starting, and the test read logs without their frames (session 31, CI of f19091c).
+wait_for_task_logs() {
+  local seconds="$1" tasks="$2" deadline task
+  deadline=$((SECONDS + seconds))
+  for task in $(seq 0 $((tasks - 1))); do
+    until grep -q "^farm-task: ${job}_${task} renderer exited with 0" "$work/logs/${job}_${task}.log" 2>/dev/null; do
+      [ $SECONDS -lt $deadline ] || fail "task ${job}_${task}'s log does not say that its renderer finished"
+      sleep 0.3
+    done
+  done
+}
+
 wait_for_job() {
   local seconds="$1" tasks="$2" deadline states
   deadline=$((SECONDS + seconds))

@@ -49,6 +49,7 @@ first_of_chunk=$((first + killed_task * chunk))
 kill_renderer_after "$killed_log" "^frame $first_of_chunk done" 300
 log "killed task $killed_task's Blender (pid $killed_pid) after frame $first_of_chunk"
 wait_for_job 600 $(( (last - first) / chunk + 1 ))
+wait_for_task_logs 60 $(( (last - first) / chunk + 1 ))
 log "job finished at $((SECONDS - start)) s"
 
 # --- every frame exactly once, the truncated one replaced, identical to the local render ------------------
@@ -76,6 +77,7 @@ first_job="$job"
 job="$("$source_dir/scripts/farm-submit" "$work/shot/shot.blend" --frames "$first-$last" --chunk "$chunk" \
         --retries 0 --addon-zip "$addon_zip" -o "$work/farm/frame_####" --logs "$work/logs")" || fail "resubmitting"
 wait_for_job 300 $(( (last - first) / chunk + 1 ))
+wait_for_task_logs 60 $(( (last - first) / chunk + 1 ))
 resubmitted="$(cat "$work"/logs/"${job}"_*.log)"
 for f in $(seq "$first" "$last"); do
   if [ "$f" -eq "$lost_layers_frame" ]; then

@@ -23,6 +23,12 @@ constexpr float kInteriorMaxAnisotropy = 0.25f;
 constexpr float kInteriorMinSpread = 0.5f * kRestCovariance;
 // Below this largest eigenvalue (in R^2) the neighbours all but coincide and have no principal directions.
 constexpr float kDegenerateCovariance = 1e-6f;
+// How far an aggregate may be grown to reach Mantaflow's surface, as a multiple of the flat derivation's
+// offset s. A cap of s itself held the examples' flat water about 0.3 r below Mantaflow's mesh: a FLIP
+// surface particle's flattened ellipsoid often needs more than a lattice's top layer does to reach it
+// (docs/mantaflow-caches.md, "The offset's cap"). The search's bound is what limits it on the examples (none
+// exceeds 1.5 s); this cap is there for the views' culling margins (largestSurfaceOffset).
+constexpr float kMeshOffsetPerFlat = 1.5f;
 
 bool isInterior(const glm::vec3& meanOffset, const float covariance[3][3]) {
   if (glm::dot(meanOffset, meanOffset) > kInteriorMaxOffset * kInteriorMaxOffset) return false;
@@ -155,15 +161,16 @@ ViewlessShape shapeFromNeighbours(const ParticleCloud& cloud, std::uint32_t i, c
 // The offset (in radii) that makes particle i's ellipsoid reach Mantaflow's surface along the particle's
 // outward direction: the support of the grown ellipsoid along that direction, from its centre, is the
 // distance to the surface; solved for the offset s from sum_k (e_k + s)^2 c_k = T^2 with c_k the squared
-// cosines to the axes (sum 1). Clamped to [0, surfaceOffset]: never more than the flat derivation grants.
+// cosines to the axes (sum 1). Clamped to [0, kMeshOffsetPerFlat surfaceOffset].
 float offsetToMantaflowSurface(const NeighbourGrid& grid, std::size_t i, const ParticleShape& shape,
                                const glm::vec3& centre, const AnisotropySettings& settings) {
   const ParticleCloud& cloud = grid.particles();
   const float radius = cloud.radius[i];
   const glm::vec3 particle(cloud.x[i], cloud.y[i], cloud.z[i]);
   glm::vec3 out;
-  // The offset is at most surfaceOffset, so the surface is searched no farther than the ellipsoid grown by it
-  // reaches (plus the smoothing's shift of its centre).
+  // The surface is searched no farther than the ellipsoid's bounding sphere grown by the flat offset reaches
+  // (plus the smoothing's shift of its centre): no aggregate stands out farther along its outward direction
+  // than the uniformly grown one could.
   const float longest = std::max({shape.semiAxes.x, shape.semiAxes.y, shape.semiAxes.z});
   const float farthest = longest + settings.surfaceOffset * radius + glm::length(centre - particle);
   const float reach = settings.meshSurface->surfaceDistance(i, particle, farthest, 0, out);
@@ -179,7 +186,7 @@ float offsetToMantaflowSurface(const NeighbourGrid& grid, std::size_t i, const P
   }
   const float discriminant = e * e - e2 + target * target;
   const float offset = discriminant > 0.0f ? -e + std::sqrt(discriminant) : 0.0f;
-  return std::clamp(offset, 0.0f, settings.surfaceOffset);
+  return std::clamp(offset, 0.0f, kMeshOffsetPerFlat * settings.surfaceOffset);
 }
 
 }  // namespace
@@ -195,7 +202,9 @@ float largestSurfaceOffset(const LiquidParameters& parameters) {
       parameters.reach_radius && !(parameters.mesh_kernel_radius > 0.0f)
           ? 1.0f - parameters.anisotropy_isotropic_scale / std::max(parameters.anisotropy_max_ratio, 1.0f)
           : 0.0f;
-  return std::max(parameters.surface_offset, reach);
+  const float meshOffset =
+      parameters.mesh_kernel_radius > 0.0f ? kMeshOffsetPerFlat * parameters.surface_offset : 0.0f;
+  return std::max({parameters.surface_offset, reach, meshOffset});
 }
 
 AnisotropySettings AnisotropySettings::fromParameters(const LiquidParameters& parameters) {

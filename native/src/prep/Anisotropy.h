@@ -28,8 +28,8 @@ struct AnisotropySettings {
   /// is at least r (by at least surfaceOffset).
   bool reachRadius = true;
   /// Mantaflow's surface over these particles (liquid.mesh_kernel_radius > 0): an anisotropic particle's
-  /// offset is then its own, what makes its ellipsoid reach that surface, at most surfaceOffset. Its searches
-  /// are remembered for the frame's other views.
+  /// offset is then its own, what makes its ellipsoid reach that surface, at most 1.5 surfaceOffset. Its
+  /// searches are remembered for the frame's other views.
   MantaflowSurfaceSearch* meshSurface = nullptr;
   /// The camera's position: particles whose neighbourhood faces away from it shape only the back layers and
   /// keep surfaceOffset (the per-particle search costs two sums over 2 r_m each). Unset: every particle.
@@ -83,8 +83,9 @@ ParticleShape shapeFromMoments(const NeighbourMoments& moments, float radius,
 /// a flat face of the body then stands where the particles' spheres reach.
 float reachRadiusOffset(const ParticleShape& shape, float radius);
 
-/// The most any aggregate is grown by, in radii: liquid.surface_offset, or what liquid.reach_radius can add
-/// (the shortest semi-axis is at least k_n r / k_r). For bounds that must hold every drawn ellipsoid.
+/// The most any aggregate is grown by, in radii: liquid.surface_offset, what liquid.reach_radius can add
+/// (the shortest semi-axis is at least k_n r / k_r), or 1.5 liquid.surface_offset where an aggregate reaches
+/// Mantaflow's surface (liquid.mesh_kernel_radius). For bounds that must hold every drawn ellipsoid.
 float largestSurfaceOffset(const LiquidParameters& parameters);
 
 /// The ellipsoid instance of a shape: the inverse of the axes matrix (rotation times diag(semi-axes)) is
