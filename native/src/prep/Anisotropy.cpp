@@ -23,12 +23,6 @@ constexpr float kInteriorMaxAnisotropy = 0.25f;
 constexpr float kInteriorMinSpread = 0.5f * kRestCovariance;
 // Below this largest eigenvalue (in R^2) the neighbours all but coincide and have no principal directions.
 constexpr float kDegenerateCovariance = 1e-6f;
-// How far an aggregate may be grown to reach Mantaflow's surface, as a multiple of the flat derivation's
-// offset s. A cap of s itself held the examples' flat water about 0.3 r below Mantaflow's mesh: a FLIP
-// surface particle's flattened ellipsoid often needs more than a lattice's top layer does to reach it
-// (docs/mantaflow-caches.md, "The offset's cap"). The search's bound is what limits it on the examples (none
-// exceeds 1.5 s); this cap is there for the views' culling margins (largestSurfaceOffset).
-constexpr float kMeshOffsetPerFlat = 1.5f;
 
 bool isInterior(const glm::vec3& meanOffset, const float covariance[3][3]) {
   if (glm::dot(meanOffset, meanOffset) > kInteriorMaxOffset * kInteriorMaxOffset) return false;

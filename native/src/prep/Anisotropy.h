@@ -83,6 +83,13 @@ ParticleShape shapeFromMoments(const NeighbourMoments& moments, float radius,
 /// a flat face of the body then stands where the particles' spheres reach.
 float reachRadiusOffset(const ParticleShape& shape, float radius);
 
+/// How far an aggregate may be grown to reach Mantaflow's surface, as a multiple of the flat derivation's
+/// offset s (liquid.surface_offset). A cap of s itself held the examples' flat water about 0.3 r below
+/// Mantaflow's mesh: a FLIP surface particle's flattened ellipsoid often needs more than a lattice's top
+/// layer does to reach it (docs/mantaflow-caches.md, "The offset's cap"). The search's bound is what limits
+/// it on the examples (none exceeds 1.5 s); this cap is there for the views' culling margins.
+inline constexpr float kMeshOffsetPerFlat = 1.5f;
+
 /// The most any aggregate is grown by, in radii: liquid.surface_offset, what liquid.reach_radius can add
 /// (the shortest semi-axis is at least k_n r / k_r), or 1.5 liquid.surface_offset where an aggregate reaches
 /// Mantaflow's surface (liquid.mesh_kernel_radius). For bounds that must hold every drawn ellipsoid.

@@ -4,6 +4,7 @@
 #include <array>
 #include <cmath>
 
+#include "prep/Anisotropy.h"
 #include "prep/ViewFrustum.h"
 #include "scene/MantaflowDomain.h"
 
@@ -13,9 +14,10 @@ namespace {
 // Supports tabulated between liquid.raymarch_smoothing_radius r and the largest an aggregate needs; the
 // height is smooth and increasing in the support (about 0.9 per unit), so linear interpolation is ample.
 constexpr int kSupportTableSize = 33;
-// How far the marched kernels follow an aggregate's offset, as a multiple of the flat offset s (the drawn
-// offsets reach up to 1.5 s, prep/Anisotropy.cpp).
+// How far the marched kernels follow an aggregate's offset, as a multiple of the flat offset s; the drawn
+// offsets reach up to kMeshOffsetPerFlat s.
 constexpr float kMarchedOffsetPerFlat = 1.2f;
+static_assert(kMarchedOffsetPerFlat <= kMeshOffsetPerFlat, "the marched kernels follow the drawn offsets");
 
 float kernelProfile(float squaredDistance, float inverseSquaredSupport) {
   const float falloff = 1.0f - squaredDistance * inverseSquaredSupport;
