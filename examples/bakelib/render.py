@@ -96,6 +96,9 @@ def render_with_liquid(scene, domain, domain_settings, cache_directory, render_d
     scene.cycles.max_bounces = layout.liquid_render_bounces
     scene.cycles.transmission_bounces = layout.liquid_render_bounces
     scene.cycles.transparent_max_bounces = layout.liquid_render_bounces
+    # Total internal reflections are glossy bounces in Cycles: at its default of 4 light guided along a sheet
+    # of water comes out black.
+    scene.cycles.glossy_bounces = layout.liquid_render_bounces
     # Caustics through glass are what makes fireflies at few samples; the floor seen through the water and the
     # reflections do not need them.
     scene.cycles.caustics_reflective = False

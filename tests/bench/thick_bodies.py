@@ -171,10 +171,7 @@ def configure(output_directory, width, height):
     scene = bpy.context.scene
     render.configure_background_render(scene, output_directory, width, height, dam_break.LAYOUT.render_samples)
     scene.cycles.use_adaptive_sampling = False
-    scene.cycles.max_bounces = 16
-    scene.cycles.transmission_bounces = 16
-    scene.cycles.transparent_max_bounces = 16
-    scene.cycles.volume_bounces = 0
+    references.set_water_bounces(scene)
     layer = scene.view_layers[0]
     for name in ("use_pass_diffuse_direct", "use_pass_diffuse_indirect", "use_pass_diffuse_color",
                  "use_pass_glossy_direct", "use_pass_glossy_indirect", "use_pass_glossy_color"):
