@@ -33,6 +33,9 @@ uniform vec3 fallbackColor;
 uniform float indexOfRefraction;
 uniform vec3 absorptionPerUnitLength;  // a * c_a of equation 9, per RGB channel
 uniform int maxRefractions;            // 1, 2 or 4
+// Surface meetings a path may spend on total internal reflection besides the four its refractions take: light
+// trapped in a sheet of water by total internal reflection travels on along it, absorbed all the way.
+uniform int maxInternalReflections;
 uniform float reflectionStepPixels;    // screen distance between samples of the marches reflections take
 // The camera is inside the aggregated body (under water): every ray starts in liquid, the body's front is the
 // near plane and the first surface a ray meets is the body's back layer, the liquid's surface seen from below.
@@ -420,7 +423,10 @@ void main() {
     outFrontDepth = firstDepth;
     outFrontNormal = vec4(mat3(frame.worldFromCamera) * normal, 1.0);
   }
-  for (int crossing = 0; crossing < 4; ++crossing) {
+  // Every meeting with a surface is a crossing: up to four refractions (into a body, out, into a second, out)
+  // and the total internal reflections between them. A path whose crossings are spent inside the liquid sees
+  // straight on from the surface it last met.
+  for (int crossing = 0; crossing < 4 + maxInternalReflections; ++crossing) {
     // The normal faces the side the ray comes from.
     vec3 facing = dot(normal, direction) < 0.0 ? normal : -normal;
     float cosine = -dot(facing, direction);

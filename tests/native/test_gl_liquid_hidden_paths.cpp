@@ -70,6 +70,10 @@ TEST(GLLiquidHiddenPaths, APathBehindATanksWallEndsOnTheSubmergedFloorNotOnTheWa
   // it: a path in air that passes behind a solid is not one this test is about (docs/liquid.md, "Particles
   // reach their radius").
   scene.parameters.liquid.reach_radius = false;
+  // Likewise the paths that total internal reflection carries on to those end faces: with 4 reflections
+  // besides the refractions (liquid.internal_reflections' default), 4 paths at the pool's two ends get there
+  // and read the wall; with the 4 crossings in all of before, none did.
+  scene.parameters.liquid.internal_reflections = 0;
   const RenderResult result = renderer().renderParticles(scene, pool(), 1);
   expectAllChannelsFinite(result);
   EXPECT_GT(result.stats.liquid.exitsBehindSolids, 100u)

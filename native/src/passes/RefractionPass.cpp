@@ -95,6 +95,7 @@ LiquidData RefractionPass::run(const std::optional<SurfaceLayers>& splashes,
   glUniform1f(uniformLocation(program, "indexOfRefraction"), parameters.ior);
   glUniform3fv(uniformLocation(program, "absorptionPerUnitLength"), 1, &absorption.x);
   glUniform1i(uniformLocation(program, "maxRefractions"), parameters.max_refractions);
+  glUniform1i(uniformLocation(program, "maxInternalReflections"), parameters.internal_reflections);
   glUniform1i(uniformLocation(program, "cameraInLiquid"), cameraInLiquid ? 1 : 0);
   glUniform1f(uniformLocation(program, "solidContactDistance"), 2.0f * particleRadius);
   glUniform1i(uniformLocation(program, "hasDomain"), domain ? 1 : 0);
