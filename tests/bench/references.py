@@ -231,7 +231,7 @@ def configure_cycles(example, output):
 # sheet of water by total internal reflection came out black. Measured on the dam break's frame 16 (256 spp,
 # 2026-12-04): from glossy 4 to 16 the water's mean colour over the grazing camera's water went from (0.130,
 # 0.169, 0.205) to (0.142, 0.211, 0.267), the reference moving by an MAE of 0.039; from 16 to 64 by 0.005 more.
-# The render took the same time. Compact bodies (tests/bench/thick_bodies.py) moved by 0.0004 at most.
+# The 256-sample render took the same time. Compact bodies (tests/bench/thick_bodies.py) moved by 0.0004 at most.
 WATER_BOUNCES = 64
 
 
