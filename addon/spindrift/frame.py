@@ -11,9 +11,11 @@ from .scene_json import BadInput
 
 # Viewport quality presets: parameter overrides on top of the primary object's own values (FULL adds none).
 QUALITY_OVERRIDES = {
-    "DRAFT": {"liquid": {"max_refractions": 1, "smoothing_iterations": 1, "trace_max_steps": 32},
+    "DRAFT": {"liquid": {"max_refractions": 1, "internal_reflections": 0, "smoothing_iterations": 1,
+                         "trace_max_steps": 32},
               "foam": {"ao_passes": 1, "ao_max_samples": 32, "occlusion_block": 4}},
-    "BALANCED": {"liquid": {"max_refractions": 2, "smoothing_iterations": 2, "trace_max_steps": 64},
+    "BALANCED": {"liquid": {"max_refractions": 2, "internal_reflections": 2, "smoothing_iterations": 2,
+                            "trace_max_steps": 64},
                  "foam": {"ao_passes": 2, "ao_max_samples": 128}},
     "FULL": {"liquid": {}, "foam": {}},
 }
