@@ -30,6 +30,13 @@ screen-space surface. With --full-references, what a user's render shows besides
   GlossInd, GlossCol), which Spindrift's shadow and caustics apply to;
 - scene_sun.json: scene.json with the scene's sun (as the Blender add-on exports it) over that background;
 - for --sweep-camera, cycles_full_spp_NNNN.exr and cycles_full_timings.json, the sweep with the shadow.
+
+With --sun-factor, the sun's light on the floor under the water as Cycles finds it (tests/bench/sun_report.py
+compares it with Spindrift's and with an exact trace), both with the world's light off:
+
+- sun_only_dry.exr: the scene without the water, lit by its lamps alone;
+- sun_only_under_water.exr: the same with the water casting its shadow and caustics but hidden from the
+  camera, so that the camera sees the floor under it directly.
 """
 
 import argparse
@@ -74,6 +81,8 @@ def parse_arguments():
                         help="render the sweep again even where it exists, for this run's times")
     parser.add_argument("--full-references", action="store_true",
                         help="also the references with the water's shadow and what Spindrift needs for them")
+    parser.add_argument("--sun-factor", action="store_true",
+                        help="also the floor lit by the lamps alone, without and under the water")
     parser.add_argument("--absorption-rgb", default="0.9,0.3,0.15",
                         help="a * c_a of Spindrift's equation 9, per world unit")
     return parser.parse_args(argv)
@@ -277,6 +286,8 @@ def render_camera(arguments, example, camera, domain, liquid, definition, exampl
     if definition["name"] == arguments.sweep_camera and arguments.sweep_spp:
         sweep(directory, definition["name"], arguments.sweep_spp, "cycles_spp", "cycles_timings.json",
               arguments.retime_sweep)
+    if arguments.sun_factor:
+        render_sun_factor(directory, liquid, arguments.reference_spp)
     if not arguments.full_references:
         return
     write_sun_scene_file(directory)
@@ -299,6 +310,29 @@ def render_camera(arguments, example, camera, domain, liquid, definition, exampl
         sweep(directory, definition["name"], arguments.sweep_spp, "cycles_full_spp", "cycles_full_timings.json",
               arguments.retime_sweep)
     liquid.visible_shadow = False
+
+
+def render_sun_factor(directory, liquid, samples):
+    """The floor lit by the lamps alone, dry and under the water, which the camera does not see: their ratio
+    is the part of the lamps' light that reaches each point of the floor through the water, as Cycles'
+    path tracing (caustics through the refracting surface included, Cycles' default clamp) finds it."""
+    strength = bpy.context.scene.world.node_tree.nodes["Background"].inputs["Strength"]
+    world_strength = strength.default_value
+    strength.default_value = 0.0
+    try:
+        if not os.path.isfile(os.path.join(directory, "sun_only_dry.exr")):
+            set_visible([liquid], False)
+            render(os.path.join(directory, "sun_only_dry.exr"), samples)
+            set_visible([liquid], True)
+        if not os.path.isfile(os.path.join(directory, "sun_only_under_water.exr")):
+            liquid.visible_shadow = True
+            liquid.visible_camera = False
+            seconds = render(os.path.join(directory, "sun_only_under_water.exr"), samples)
+            liquid.visible_camera = True
+            liquid.visible_shadow = False
+            log(f"{os.path.basename(directory)}: the lamps' light under the water ({samples} spp) in {seconds:.1f} s")
+    finally:
+        strength.default_value = world_strength
 
 
 def sweep(directory, camera_name, sample_counts, prefix, timings_name, retime=False):
