@@ -128,7 +128,8 @@ struct Renderer::Impl {
   bool intermediateLayers = false;
   LayerSelection layers;
   bool firstFrame = true;
-  SetupStats setup;
+  SetupStats setup;           // Written by the pipeline's setup on glThread; read after pipelineReady.
+  std::shared_future<void> pipelineReady;  // Carries the setup's Error, if any, to every frame.
   // In-memory backgrounds change every frame: each gets its own upload generation, apart from the cache's.
   std::uint64_t hostBackgroundGeneration = std::uint64_t(1) << 63;
 
@@ -141,16 +142,23 @@ Renderer::Renderer() : Renderer(findShaderDirectory()) {}
 
 Renderer::Renderer(const std::filesystem::path& shaderDirectory) {
   const Clock::time_point start = Clock::now();
+  requireShaderSources(shaderDirectory);
   impl_ = std::make_unique<Impl>();
-  impl_->glThread.run([&] {
-    impl_->pipeline = std::make_unique<FramePipeline>(shaderDirectory);
-    impl_->glLimits = queryGlLimits();
-    const ProgramCacheCounts& programs = impl_->pipeline->shaders.cacheCounts();
-    impl_->setup.programsCompiled = programs.compiled;
-    impl_->setup.programsFromCache = programs.loaded;
-    impl_->setup.programsRejected = programs.rejected;
-  });
-  impl_->setup.milliseconds = millisecondsSince(start);
+  impl_->glLimits = impl_->glThread.run(queryGlLimits);
+  // The programs are linked or loaded from the cache while the first frame's particles are read and prepared
+  // on this thread (docs/frame-cost.md, "Setup beside the first frame"); the first GL work waits for them,
+  // and an Error in building them comes out of every frame.
+  Impl* impl = impl_.get();  // ~Impl waits for this task (the GL thread runs its work in order)
+  impl->pipelineReady = impl->glThread
+                            .submit([impl, start, shaderDirectory] {
+                              impl->pipeline = std::make_unique<FramePipeline>(shaderDirectory);
+                              const ProgramCacheCounts& programs = impl->pipeline->shaders.cacheCounts();
+                              impl->setup.programsCompiled = programs.compiled;
+                              impl->setup.programsFromCache = programs.loaded;
+                              impl->setup.programsRejected = programs.rejected;
+                              impl->setup.milliseconds = millisecondsSince(start);
+                            })
+                            .share();
 }
 
 Renderer::~Renderer() = default;
@@ -246,8 +254,6 @@ RenderResult Renderer::renderPrepared(const Scene& scene, const Particles& parti
   RenderResult result = emptyResult(frame, width, height, particles);
   result.stats.glRenderer = glRenderer();
   result.stats.glVersion = glVersion();
-  result.stats.firstFrame = std::exchange(impl_->firstFrame, false);
-  if (result.stats.firstFrame) result.stats.setup = impl_->setup;
   FrameStats& stats = result.stats;
 
   const Clock::time_point prepareStart = Clock::now();
@@ -322,6 +328,9 @@ RenderResult Renderer::renderPrepared(const Scene& scene, const Particles& parti
   stats.skipped = plan.skipped;
   stats.light.caustics = plan.runs(Pass::Caustics);
 
+  impl_->pipelineReady.get();
+  stats.firstFrame = std::exchange(impl_->firstFrame, false);
+  if (stats.firstFrame) stats.setup = impl_->setup;
   impl_->glThread.run([&] {
     FramePipeline& pipeline = *impl_->pipeline;
     auto timed = [&](Pass pass, auto&& issuePass) {

@@ -6,7 +6,9 @@
 #include <fstream>
 #include <random>
 
+#include "TempDirectory.h"
 #include "gl/GlObjects.h"
+#include "gl/ShaderLibrary.h"
 #include "spindrift/Error.h"
 #include "spindrift/Renderer.h"
 
@@ -89,4 +91,44 @@ TEST(GLResources, ErrorsInsideAFrameReachTheCallerAndTheRendererGoesOn) {
   EXPECT_THROW(renderer.renderParticles(scene, particles, 1), Error);
   scene.background.image.clear();
   EXPECT_NO_THROW(renderer.renderParticles(scene, particles, 1));
+}
+
+// The programs are built on the GL thread while the caller goes on (the first frame's loading and preparation):
+// a Renderer dropped before they are done waits for them and releases them.
+TEST(GLResources, ARendererDroppedWhileItsProgramsBuildReleasesEverything) {
+  const auto before = liveObjects();
+  for (int i = 0; i < 3; ++i) {
+    Renderer renderer;
+  }
+  EXPECT_EQ(liveObjects(), before);
+}
+
+// A shader directory that the construction's check accepts but whose programs cannot be built: every frame
+// reports the build's Error, and the Renderer's destruction is clean.
+TEST(GLResources, ProgramsThatCannotBeBuiltFailEveryFrameWithTheirError) {
+  TempDirectory directory;
+  std::filesystem::copy_file(findShaderDirectory() / "fullscreen.vert", directory.path() / "fullscreen.vert");
+  Renderer renderer(directory.path());
+  Scene scene;
+  scene.camera = Camera::lookAt(32, 32, 45.0f, {0, -4, 0}, {0, 0, 0}, {0, 0, 1});
+  Particles particles;
+  particles.append({0, 0, 0}, 0.5f, ParticleKind::Liquid, 0.0f, glm::vec3(0));
+  for (int frame = 1; frame <= 2; ++frame) {
+    try {
+      renderer.renderParticles(scene, particles, frame);
+      ADD_FAILURE() << "frame " << frame << " rendered without its programs";
+    } catch (const Error& error) {
+      EXPECT_NE(std::string(error.what()).find("cannot read shader"), std::string::npos) << error.what();
+    }
+  }
+}
+
+TEST(GLResources, ARendererWithoutShadersFailsWhenMade) {
+  TempDirectory empty;
+  try {
+    Renderer renderer(empty.path());
+    ADD_FAILURE() << "a Renderer was made without shaders";
+  } catch (const Error& error) {
+    EXPECT_NE(std::string(error.what()).find("cannot read shader"), std::string::npos) << error.what();
+  }
 }

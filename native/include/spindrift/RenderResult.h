@@ -112,9 +112,10 @@ struct LightFrameStats {
   std::size_t viewParticlesLeftOut = 0;  ///< Of those, hidden from both layers of their view: not drawn.
 };
 
-/// The cost a Renderer pays once, before its first frame: the GL context and the shader programs.
+/// The cost a Renderer pays once: the GL context, made while it is constructed, and the shader programs, built
+/// on its GL thread while the first frame's particles are read and prepared.
 struct SetupStats {
-  double milliseconds = 0.0;  ///< Wall time of the Renderer's construction: GL context and shader programs.
+  double milliseconds = 0.0;  ///< From the Renderer's construction until its programs were built.
   int programsCompiled = 0;   ///< Shader programs compiled from source.
   int programsFromCache = 0;  ///< Loaded from the program binary cache (docs/architecture.md).
   int programsRejected = 0;   ///< Cache files that were corrupt or refused by the driver, then rebuilt.
@@ -136,8 +137,10 @@ struct FrameStats {
   double prepareMilliseconds = 0.0;  ///< CPU preparation: culling and packing.
   double readbackMilliseconds = 0.0;
   double totalMilliseconds = 0.0;  ///< Wall time of the whole frame, loading included.
-  /// The first frame of a Renderer also carries its one-time setup (not part of totalMilliseconds); later
-  /// frames carry zeros, so a sequence's per-frame cost is its frames' totals.
+  /// The first frame of a Renderer also carries its one-time setup; later frames carry zeros, so a sequence's
+  /// per-frame cost is its frames' totals. The setup's programs are built beside the first frame's loading and
+  /// preparation, which they slow a little; a first frame whose preparation is done before them waits, and
+  /// that wait is part of its totalMilliseconds.
   bool firstFrame = true;
   SetupStats setup;
   std::vector<PassTiming> passes;

@@ -22,6 +22,8 @@ class Renderer {
   /// library's directory.
   Renderer();
   /// Shaders from an explicit directory (the Blender add-on keeps them beside its module).
+  /// Both make the GL context (an Error if there is none) and return while the GL thread builds the shader
+  /// programs; an Error in building them comes out of every frame.
   explicit Renderer(const std::filesystem::path& shaderDirectory);
   ~Renderer();
   Renderer(const Renderer&) = delete;

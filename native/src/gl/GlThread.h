@@ -26,14 +26,21 @@ class GlThread {
   GlThread(const GlThread&) = delete;
   GlThread& operator=(const GlThread&) = delete;
 
-  /// Runs `work` on the GL thread and waits for it; its result or exception comes back to the caller.
+  /// Queues `work` on the GL thread and returns at once; the future carries its result or exception. Work
+  /// runs in the order it was queued.
   template <typename Work>
-  auto run(Work&& work) -> decltype(work()) {
+  auto submit(Work&& work) -> std::future<decltype(work())> {
     using Result = decltype(work());
     auto task = std::make_shared<std::packaged_task<Result()>>(std::forward<Work>(work));
     std::future<Result> result = task->get_future();
     post([task] { (*task)(); });
-    return result.get();
+    return result;
+  }
+
+  /// Runs `work` on the GL thread and waits for it; its result or exception comes back to the caller.
+  template <typename Work>
+  auto run(Work&& work) -> decltype(work()) {
+    return submit(std::forward<Work>(work)).get();
   }
 
   const std::string& renderer() const { return renderer_; }

@@ -94,6 +94,10 @@ std::filesystem::path findShaderDirectory() {
   throw Error("cannot locate the Spindrift library to find its shaders (set SPINDRIFT_SHADER_DIR)");
 }
 
+void requireShaderSources(const std::filesystem::path& directory) {
+  readText(directory / "fullscreen.vert");
+}
+
 ShaderLibrary::ShaderLibrary(std::filesystem::path directory, ProgramCache cache)
     : directory_(std::move(directory)), cache_(std::move(cache)) {}
 
