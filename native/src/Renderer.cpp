@@ -128,7 +128,7 @@ struct Renderer::Impl {
   bool intermediateLayers = false;
   LayerSelection layers;
   bool firstFrame = true;
-  SetupStats setup;           // Written by the pipeline's setup on glThread; read after pipelineReady.
+  SetupStats setup;  // Written by the pipeline's setup on glThread; read after pipelineReady.
   std::shared_future<void> pipelineReady;  // Carries the setup's Error, if any, to every frame.
   // In-memory backgrounds change every frame: each gets its own upload generation, apart from the cache's.
   std::uint64_t hostBackgroundGeneration = std::uint64_t(1) << 63;

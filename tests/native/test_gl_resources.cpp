@@ -93,8 +93,8 @@ TEST(GLResources, ErrorsInsideAFrameReachTheCallerAndTheRendererGoesOn) {
   EXPECT_NO_THROW(renderer.renderParticles(scene, particles, 1));
 }
 
-// The programs are built on the GL thread while the caller goes on (the first frame's loading and preparation):
-// a Renderer dropped before they are done waits for them and releases them.
+// The programs are built on the GL thread while the caller goes on (the first frame's loading and
+// preparation): a Renderer dropped before they are done waits for them and releases them.
 TEST(GLResources, ARendererDroppedWhileItsProgramsBuildReleasesEverything) {
   const auto before = liveObjects();
   for (int i = 0; i < 3; ++i) {

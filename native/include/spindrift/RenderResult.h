@@ -112,8 +112,8 @@ struct LightFrameStats {
   std::size_t viewParticlesLeftOut = 0;  ///< Of those, hidden from both layers of their view: not drawn.
 };
 
-/// The cost a Renderer pays once: the GL context, made while it is constructed, and the shader programs, built
-/// on its GL thread while the first frame's particles are read and prepared.
+/// The cost a Renderer pays once: the GL context, made while it is constructed, and the shader programs,
+/// built on its GL thread while the first frame's particles are read and prepared.
 struct SetupStats {
   double milliseconds = 0.0;  ///< From the Renderer's construction until its programs were built.
   int programsCompiled = 0;   ///< Shader programs compiled from source.
@@ -138,9 +138,9 @@ struct FrameStats {
   double readbackMilliseconds = 0.0;
   double totalMilliseconds = 0.0;  ///< Wall time of the whole frame, loading included.
   /// The first frame of a Renderer also carries its one-time setup; later frames carry zeros, so a sequence's
-  /// per-frame cost is its frames' totals. The setup's programs are built beside the first frame's loading and
-  /// preparation, which they slow a little; a first frame whose preparation is done before them waits, and
-  /// that wait is part of its totalMilliseconds.
+  /// per-frame cost is its frames' totals. The setup's programs are built beside the first frame's loading
+  /// and preparation, which they slow a little; a first frame whose preparation is done before them waits,
+  /// and that wait is part of its totalMilliseconds.
   bool firstFrame = true;
   SetupStats setup;
   std::vector<PassTiming> passes;

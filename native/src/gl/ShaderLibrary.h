@@ -14,8 +14,9 @@ namespace spindrift {
 /// working directory. Throws Error listing the places looked at.
 std::filesystem::path findShaderDirectory();
 
-/// Throws the Error a program's build would throw ("cannot read shader ...") when the directory's first shader
-/// cannot be read: a Renderer reports a wrong directory when it is made, though its programs are built later.
+/// Throws the Error a program's build would throw ("cannot read shader ...") when the directory's first
+/// shader cannot be read: a Renderer reports a wrong directory when it is made, though its programs are built
+/// later.
 void requireShaderSources(const std::filesystem::path& directory);
 
 /// Loads GLSL from the shader directory, resolves `#include "lib/name.glsl"` (each file once) with a `#line`
