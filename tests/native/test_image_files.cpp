@@ -398,6 +398,28 @@ TEST_F(ImageFilesTest, RefusesAnExrWhoseHeaderClaimsMoreThanTheFileHolds) {
   expectRefused(directory_ / "long_name.exr", "longer than 31 characters");
 }
 
+// OpenEXR reads a value by its type, not by its size: a channel list to its empty name, a box2i as 16 bytes.
+// A size that says otherwise would make OpenEXR parse the rest of the header from another byte than the check
+// did (fuzz_background_image: a channel list longer than its size hid a 1.6 GB string from the check).
+TEST_F(ImageFilesTest, RefusesAnExrWhoseAttributeSizeDisagreesWithItsType) {
+  const std::filesystem::path good = directory_ / "good.exr";
+  const std::vector<float> pixels(16 * 8 * 4, 0.5f);
+  writeImage(good, 16, 8, {"R", "G", "B", "A"}, pixels, OIIO::TypeDesc::HALF);
+  EXPECT_EQ(readColorImage(good).pixels, pixels);
+  const std::vector<char> bytes = fileBytes(good);
+
+  // Four channels of one-letter names: 4 x (2 + 16) bytes and the empty name, 73.
+  std::vector<char> shortList = bytes;
+  putInt32(&shortList, attributeSizeOffset(shortList, "channels", "chlist"), 73 - 18);
+  writeBytes(directory_ / "short_channel_list.exr", shortList);
+  expectRefused(directory_ / "short_channel_list.exr", "channel list \"channels\" claims 55 bytes");
+
+  std::vector<char> longBox = bytes;
+  putInt32(&longBox, attributeSizeOffset(longBox, "dataWindow", "box2i"), 20);
+  writeBytes(directory_ / "long_box.exr", longBox);
+  expectRefused(directory_ / "long_box.exr", "\"dataWindow\" of type box2i claims 20 bytes");
+}
+
 TEST(ImageFilesResize, NearestRepeatsPixelsAndBilinearBlendsThem) {
   FloatImage image;
   image.width = 2;

@@ -5,6 +5,7 @@
 #include <fstream>
 #include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "io/OiioErrors.h"
@@ -28,6 +29,26 @@ constexpr std::uint32_t kLongNamesFlag = 0x400;
 // the next bytes a 1.8 GB attribute size).
 constexpr std::size_t kMaxShortNameBytes = 32;
 constexpr std::size_t kMaxLongNameBytes = 256;
+// OpenEXR reads an attribute's value by its type, not by the size the header gives it (ImfHeader.cpp: each
+// type's readValueFrom): a box2i is 16 bytes whatever its size says, and a channel list runs to its empty
+// name. Where the two differ OpenEXR goes on parsing from another byte than the size leads to, so the check
+// would see another header than OpenEXR (fuzz_background_image: a channel list longer than its size hid a
+// 1.6 GB string from the check). Such a header is refused.
+std::optional<std::uint32_t> fixedValueBytes(const std::string& type) {
+  static const std::pair<const char*, std::uint32_t> kFixed[] = {
+      {"box2i", 16},      {"box2f", 16},   {"chromaticities", 32},
+      {"compression", 1}, {"double", 8},   {"envmap", 1},
+      {"float", 4},       {"int", 4},      {"keycode", 28},
+      {"lineOrder", 1},   {"m33f", 36},    {"m33d", 72},
+      {"m44f", 64},       {"m44d", 128},   {"rational", 8},
+      {"tiledesc", 9},    {"timecode", 8}, {"v2i", 8},
+      {"v2f", 8},         {"v2d", 16},     {"v3i", 12},
+      {"v3f", 12},        {"v3d", 24},     {"deepImageState", 1}};
+  for (const auto& [name, bytes] : kFixed)
+    if (type == name) return bytes;
+  return std::nullopt;
+}
+
 // Headers are a few kilobytes; a larger one is read only this far, and its claims beyond are not checked.
 constexpr std::size_t kMaxHeaderBytes = std::size_t(16) << 20;
 
@@ -151,6 +172,22 @@ int scanlinesPerChunk(unsigned compression) {
   }
 }
 
+// Where OpenEXR's reading of a channel list that starts at `at` ends: entries of a name of at most 255
+// characters and its terminator, then 16 bytes, until an empty name. Nothing when the file ends first.
+std::optional<std::uint64_t> channelListEnd(HeaderReader& reader, std::uint64_t at) {
+  constexpr std::uint64_t kMaxChannelNameBytes = 256;
+  for (;;) {
+    std::uint64_t end = at;
+    for (;; ++end) {
+      if (!reader.holds(end, 1)) return std::nullopt;
+      if (reader.byteAt(std::size_t(end)) == 0) break;
+      if (end + 1 - at >= kMaxChannelNameBytes) return end + 1;  // OpenEXR stops reading the name here
+    }
+    if (end == at) return end + 1;
+    at = end + 1 + 16;
+  }
+}
+
 // Records what `layout` needs from one attribute whose value starts at `at` and is `size` bytes long.
 void noteAttribute(HeaderReader& reader, const std::string& name, const std::string& type, std::size_t at,
                    std::uint32_t size, PartLayout* layout) {
@@ -215,6 +252,17 @@ void checkExrHeaderClaims(const std::filesystem::path& path) {
                                      std::uint32_t(reader.i32At(reader.position() + 4));
         if (*size < 8 || pixels > (*size - 8) / 4)
           fail(path, "the OpenEXR preview image is larger than its attribute");
+      }
+      if (const std::optional<std::uint32_t> fixed = fixedValueBytes(*type); fixed && *size != *fixed) {
+        fail(path, "the OpenEXR header's attribute \"" + *name + "\" of type " + *type + " claims " +
+                       std::to_string(*size) + " bytes, and OpenEXR reads " + std::to_string(*fixed));
+      }
+      if (*type == "chlist") {
+        const std::optional<std::uint64_t> end = channelListEnd(reader, reader.position());
+        if (end && *end != reader.position() + *size) {
+          fail(path, "the OpenEXR header's channel list \"" + *name + "\" claims " + std::to_string(*size) +
+                         " bytes, and its entries take " + std::to_string(*end - reader.position()));
+        }
       }
       noteAttribute(reader, *name, *type, reader.position(), *size, &layout);
       reader.skip(*size);
