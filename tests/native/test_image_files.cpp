@@ -398,7 +398,8 @@ TEST_F(ImageFilesTest, RefusesAnExrWhoseHeaderClaimsMoreThanTheFileHolds) {
   expectRefused(directory_ / "long_name.exr", "longer than 31 characters");
 }
 
-// OpenEXR reads a value by its type, not by its size: a channel list to its empty name, a box2i as 16 bytes.
+// OpenEXR reads a value by its type, not by its size: a channel list to its empty name, a box2i as 16 bytes,
+// a string list as the lengths inside it claim.
 // A size that says otherwise would make OpenEXR parse the rest of the header from another byte than the check
 // did (fuzz_background_image: a channel list longer than its size hid a 1.6 GB string from the check).
 TEST_F(ImageFilesTest, RefusesAnExrWhoseAttributeSizeDisagreesWithItsType) {
@@ -413,6 +414,17 @@ TEST_F(ImageFilesTest, RefusesAnExrWhoseAttributeSizeDisagreesWithItsType) {
   putInt32(&shortList, attributeSizeOffset(shortList, "channels", "chlist"), 73 - 18);
   writeBytes(directory_ / "short_channel_list.exr", shortList);
   expectRefused(directory_ / "short_channel_list.exr", "channel list \"channels\" claims 55 bytes");
+
+  // A string list whose one string claims 1 GB: OpenEXR allocates it before it reads it.
+  std::vector<char> stringList = bytes;
+  const std::string attribute = std::string("views") + '\0' + "stringvector" + '\0';
+  std::vector<char> inserted(attribute.begin(), attribute.end());
+  for (const std::int32_t value : {8, 1 << 30, 0x41414141})  // size 8: one length and four bytes
+    for (int i = 0; i < 4; ++i)
+      inserted.push_back(char((std::uint32_t(value) >> (8 * i)) & 0xff));
+  stringList.insert(stringList.begin() + 8, inserted.begin(), inserted.end());  // the first attribute
+  writeBytes(directory_ / "string_list.exr", stringList);
+  expectRefused(directory_ / "string_list.exr", "string list \"views\" holds a string of 1073741824 bytes");
 
   std::vector<char> longBox = bytes;
   putInt32(&longBox, attributeSizeOffset(longBox, "dataWindow", "box2i"), 20);

@@ -188,6 +188,24 @@ std::optional<std::uint64_t> channelListEnd(HeaderReader& reader, std::uint64_t 
   }
 }
 
+// OpenEXR reads a string list as (int32 length, bytes) pairs while it has read less than the attribute's
+// size, and allocates each string's claimed length before reading it: every string must lie inside the
+// attribute.
+void requireStringsInside(HeaderReader& reader, const std::filesystem::path& path, const std::string& name,
+                          std::uint64_t at, std::uint32_t size) {
+  const std::uint64_t end = at + size;
+  while (at < end) {
+    if (!reader.holds(at, 4)) return;  // past what is checked, or cut off: OpenEXR reports it
+    const std::int32_t length = reader.i32At(std::size_t(at));
+    if (length < 0 || at + 4 + std::uint64_t(length) > end) {
+      fail(path, "the OpenEXR header's string list \"" + name + "\" holds a string of " +
+                     std::to_string(length) + " bytes, past the end of its " + std::to_string(size) +
+                     "-byte attribute");
+    }
+    at += 4 + std::uint64_t(length);
+  }
+}
+
 // Records what `layout` needs from one attribute whose value starts at `at` and is `size` bytes long.
 void noteAttribute(HeaderReader& reader, const std::string& name, const std::string& type, std::size_t at,
                    std::uint32_t size, PartLayout* layout) {
@@ -257,6 +275,7 @@ void checkExrHeaderClaims(const std::filesystem::path& path) {
         fail(path, "the OpenEXR header's attribute \"" + *name + "\" of type " + *type + " claims " +
                        std::to_string(*size) + " bytes, and OpenEXR reads " + std::to_string(*fixed));
       }
+      if (*type == "stringvector") requireStringsInside(reader, path, *name, reader.position(), *size);
       if (*type == "chlist") {
         const std::optional<std::uint64_t> end = channelListEnd(reader, reader.position());
         if (end && *end != reader.position() + *size) {
