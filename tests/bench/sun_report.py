@@ -18,7 +18,6 @@ first camera: exact, Spindrift, Cycles; the share linear from black 0 to white 1
 
 import argparse
 import json
-import math
 import os
 import subprocess
 import sys
@@ -29,6 +28,7 @@ from scipy import ndimage
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 import metrics  # noqa: E402
 import runs  # noqa: E402
+import thick_report  # noqa: E402
 
 REFERENCES = os.path.join(runs.REPOSITORY, "build", "bench", "references")
 IMAGE = os.path.join(runs.REPOSITORY, "docs", "images", "sun_under_water.png")
@@ -77,17 +77,11 @@ def blurred(image):
 
 def floor_depth(camera):
     """Planar depth of the floor z = 0 through every pixel centre (inf where the ray misses it)."""
-    width, height = camera["width"], camera["height"]
-    world_from_camera = np.array(camera["world_from_camera"]).reshape(4, 4)
-    tan_half_y = math.tan(math.radians(camera["fov_y_deg"]) / 2)
-    rows, columns = np.mgrid[0:height, 0:width]
-    x = ((columns + 0.5) / width * 2 - 1) * tan_half_y * width / height
-    y = (1 - (rows + 0.5) / height * 2) * tan_half_y
-    directions = np.stack([x, y, -np.ones_like(x)], -1) @ world_from_camera[:3, :3].T
-    origin_z = world_from_camera[2, 3]
+    origin, directions = thick_report.camera_rays({"camera": camera})
+    forward = -np.array(camera["world_from_camera"], dtype=np.float64).reshape(4, 4)[:3, 2]
     with np.errstate(divide="ignore", invalid="ignore"):
-        t = -origin_z / directions[..., 2]
-    return np.where(t > 0, t, np.inf)  # planar depth: the camera-space direction has z = -1
+        distance = -origin[2] / directions[..., 2]
+    return np.where(distance > 0, distance * (directions @ forward), np.inf)
 
 
 def compare(example, camera_name, rays):
