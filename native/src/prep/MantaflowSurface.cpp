@@ -4,7 +4,9 @@
 #include <cmath>
 #include <utility>
 
+#include <glm/common.hpp>
 #include <glm/geometric.hpp>
+#include <glm/vector_relational.hpp>
 
 #include "spindrift/Error.h"
 
@@ -14,6 +16,10 @@ namespace {
 // The dense grid's size limit (4 floats a cell: 256 MiB); a wider scene gets coarser cells, which only lumps
 // more particles together.
 constexpr double kMaxCells = double(1 << 24);
+
+// A search for φ = 0 has converged where |φ| is below this many kernel radii (a millionth of a particle
+// radius and less: float's rounding of the sums).
+constexpr float kConverged = 1e-6f;
 
 }  // namespace
 
@@ -58,6 +64,60 @@ MantaflowLevelSet::MantaflowLevelSet(const ParticleCloud& cloud, float kernelRad
     if (count == 0.0f) continue;
     cell /= Float4{count, count, count, 1.0f};
   }
+
+  if (cellSize_ != 0.5f * kernelRadius_) return;
+  nodeSpacing_ = cellSize_;
+  const glm::vec3 support(2.0f * kernelRadius_);
+  nodeLow_ = glm::ivec3(glm::floor((lower - support) / nodeSpacing_));
+  nodeCounts_ = glm::ivec3(glm::floor((upper + support) / nodeSpacing_)) + 2 - nodeLow_;
+  const double nodeCount = double(nodeCounts_.x) * double(nodeCounts_.y) * double(nodeCounts_.z);
+  if (nodeCount > kMaxCells) return;
+  nodes_.reset(new Float4[std::size_t(nodeCount)]);
+  nodeStates_.reset(new std::atomic<std::uint8_t>[std::size_t(nodeCount)]());
+}
+
+MantaflowLevelSet::Float4 MantaflowLevelSet::nodeOffset(const glm::ivec3& node) const {
+  const std::size_t index =
+      (std::size_t(node.x) * std::size_t(nodeCounts_.y) + std::size_t(node.y)) * std::size_t(nodeCounts_.z) +
+      std::size_t(node.z);
+  std::atomic<std::uint8_t>& state = nodeStates_[index];
+  if (state.load(std::memory_order_acquire) == 2) return nodes_[index];
+  glm::vec3 offset;
+  const bool near = offsetToMean(nodeSpacing_ * glm::vec3(nodeLow_ + node), offset);
+  const Float4 value{offset.x, offset.y, offset.z, near ? 1.0f : 0.0f};
+  // Another thread summing the same node gets the same value and keeps it to itself.
+  std::uint8_t unsummed = 0;
+  if (state.compare_exchange_strong(unsummed, 1, std::memory_order_relaxed)) {
+    nodes_[index] = value;
+    state.store(2, std::memory_order_release);
+  }
+  return value;
+}
+
+bool MantaflowLevelSet::sampledOffsetToMean(const glm::vec3& at, glm::vec3& offset) const {
+  if (!nodes_) return offsetToMean(at, offset);
+  offset = glm::vec3(0.0f);
+  const glm::vec3 lattice = at / nodeSpacing_ - glm::vec3(nodeLow_);
+  // Outside the lattice no particle lies within 2 r_m.
+  if (!glm::all(glm::greaterThanEqual(lattice, glm::vec3(0.0f))) ||
+      !glm::all(glm::lessThan(lattice, glm::vec3(nodeCounts_ - 1))))
+    return false;
+  const glm::ivec3 base = glm::min(glm::ivec3(lattice), nodeCounts_ - 2);
+  const glm::vec3 weight = lattice - glm::vec3(base);
+  Float4 sum{0.0f, 0.0f, 0.0f, 0.0f};
+  float near = 0.0f;
+  for (int corner = 0; corner < 8; ++corner) {
+    const glm::ivec3 step(corner >> 2, (corner >> 1) & 1, corner & 1);
+    const glm::vec3 along = glm::mix(glm::vec3(1.0f) - weight, weight, glm::vec3(step));
+    const Float4 value = nodeOffset(base + step);
+    sum += (along.x * along.y * along.z) * value;
+    near += value[3];
+  }
+  if (near == 0.0f) return false;
+  if (near < 8.0f) return offsetToMean(at, offset);
+  // x − x_corner interpolates to 0, so the corners' x̄ − x_corner interpolate to x̄ − x.
+  offset = glm::vec3(sum[0], sum[1], sum[2]);
+  return true;
 }
 
 bool MantaflowLevelSet::offsetToMean(const glm::vec3& at, glm::vec3& offset) const {
@@ -120,7 +180,7 @@ bool MantaflowLevelSet::offsetToMean(const glm::vec3& at, glm::vec3& offset) con
 float MantaflowLevelSet::surfaceDistance(const glm::vec3& particle, float maxRadius, int refinements,
                                          glm::vec3& out) const {
   glm::vec3 towardsMean;
-  offsetToMean(particle, towardsMean);
+  sampledOffsetToMean(particle, towardsMean);
   const float pull = glm::length(towardsMean);
   out = outwardFrom(towardsMean, pull);
   return reachAlong(particle, pull, out, maxRadius, refinements);
@@ -128,7 +188,7 @@ float MantaflowLevelSet::surfaceDistance(const glm::vec3& particle, float maxRad
 
 float MantaflowLevelSet::inscribedRadius(const glm::vec3& particle, float maxRadius, int refinements) const {
   glm::vec3 towardsMean;
-  offsetToMean(particle, towardsMean);
+  sampledOffsetToMean(particle, towardsMean);
   const float pull = glm::length(towardsMean);
   const glm::vec3 out = outwardFrom(towardsMean, pull);
   float least = reachAlong(particle, pull, out, maxRadius, refinements);
@@ -162,8 +222,8 @@ float MantaflowLevelSet::reachAlong(const glm::vec3& particle, float pull, const
   if (-insideValue >= maxRadius) return maxRadius;
   const auto levelSet = [&](float t) {
     glm::vec3 offset;
-    return offsetToMean(particle + t * direction, offset) ? glm::length(offset) - kernelRadius_
-                                                          : kernelRadius_;
+    return sampledOffsetToMean(particle + t * direction, offset) ? glm::length(offset) - kernelRadius_
+                                                                 : kernelRadius_;
   };
   // φ grows by about one per unit along `out` (x̄ moves little): first guess t = −φ(0), then secant steps
   // through the last two points. A lone particle needs none, as φ is then exactly linear.
@@ -171,8 +231,10 @@ float MantaflowLevelSet::reachAlong(const glm::vec3& particle, float pull, const
   for (int step = 0; step <= refinements; ++step) {
     const float value = levelSet(t);
     if (value <= 0.0f && t >= maxRadius) return maxRadius;
-    // Converged: the secant through two equal points would be 0 / 0 and jump to maxRadius.
-    if (value == 0.0f || t == inside) return t;
+    // Converged: the secant through two equal points would be 0 / 0 and jump to maxRadius. So would one
+    // through two points a rounding error apart, where φ's sampled values bend (their slope then carries
+    // only rounding, of either sign).
+    if (std::abs(value) <= kConverged * kernelRadius_ || t == inside) return t;
     const float slope = (value - insideValue) / (t - inside);
     const float next = slope > 1e-3f ? t - value / slope : maxRadius;
     inside = t;
