@@ -7,6 +7,10 @@
 #include "lib/optics.glsl"
 #include "lib/screen_trace.glsl"
 
+// Only the pixels refraction_layers.frag marked (where a path starts) are shaded; the pass clears the rest to
+// what this shader writes for a pixel without liquid. Early: the image stores make the test late otherwise.
+layout(early_fragment_tests) in;
+
 layout(binding = 4) uniform sampler2D splashFrontNormal;
 layout(binding = 5) uniform sampler2D splashBackNormal;
 layout(binding = 6) uniform sampler2D aggregateFrontNormal;

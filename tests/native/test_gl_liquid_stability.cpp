@@ -141,3 +141,30 @@ TEST(GLLiquidStability, EmptyFrame) {
   EXPECT_EQ(coveredPixels(result), 0u);
   EXPECT_FALSE(result.stats.skipped.empty());
 }
+
+TEST(GLLiquidStability, ASmallBodyAfterALargeOneLeavesNothingOutsideItself) {
+  // The refraction and the smoothing shade only the pixels the liquid covers (LayerCoverage) and clear the
+  // rest: a renderer that drew a large body the frame before must give a small one exactly what it gives it
+  // after drawing that small one, in every layer, and leave the pixels outside it empty.
+  const Scene scene = sceneLookingAt({0, -3, 0.5f}, {0, 0, 0});
+  const std::vector<glm::vec3> large = block({-0.6f, -0.4f, -0.4f}, {0.6f, 0.4f, 0.4f}, 0.05f);
+  const std::vector<glm::vec3> small = block({-0.1f, -0.1f, -0.1f}, {0.1f, 0.1f, 0.1f}, 0.05f);
+  renderCase(scene, small, 0.05f);
+  const RenderResult afterSmall = renderCase(scene, small, 0.05f);
+  const RenderResult afterLarge = (renderCase(scene, large, 0.05f), renderCase(scene, small, 0.05f));
+  expectAllChannelsFinite(afterLarge);
+  ASSERT_EQ(afterLarge.layers.size(), afterSmall.layers.size());
+  for (std::size_t i = 0; i < afterSmall.layers.size(); ++i) {
+    SCOPED_TRACE(afterSmall.layers[i].name);
+    EXPECT_EQ(afterLarge.layers[i].pixels, afterSmall.layers[i].pixels);
+  }
+  const ImageLayer& depth = *afterLarge.layer("depth");
+  std::size_t covered = 0, outside = 0;
+  for (float value : depth.pixels) {
+    covered += value < 1e9f;
+    outside += value == 1e10f;
+  }
+  EXPECT_GT(covered, 20u);
+  EXPECT_GT(outside, depth.pixels.size() / 2);
+  EXPECT_EQ(covered + outside, depth.pixels.size()) << "a pixel without liquid has Blender's empty depth";
+}

@@ -3,6 +3,7 @@
 #include "framedata/SmoothedDepth.h"
 #include "gl/GlObjects.h"
 #include "gl/ShaderLibrary.h"
+#include "passes/LayerCoverage.h"
 
 namespace spindrift {
 
@@ -12,9 +13,9 @@ class NormalsFromDepthPass {
  public:
   explicit NormalsFromDepthPass(const ShaderLibrary& shaders);
   /// `originalNormal` serves pixels whose depth has no neighbour along an axis. `backLayer` turns the normals
-  /// away from the camera.
+  /// away from the camera. Only `coverage`'s pixels are shaded (the rest get no normal).
   RecomputedNormals run(const Texture2D& smoothedEyeDepth, const Texture2D& originalNormal, bool backLayer,
-                        int width, int height);
+                        const LayerCoverage& coverage, int width, int height);
 
  private:
   ProgramObject program_;

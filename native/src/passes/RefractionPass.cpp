@@ -3,6 +3,7 @@
 #include <glm/matrix.hpp>
 
 #include "passes/FrameUniforms.h"
+#include "passes/LayerCoverage.h"
 
 namespace spindrift {
 namespace {
@@ -45,17 +46,27 @@ LiquidData RefractionPass::run(const std::optional<SurfaceLayers>& splashes,
     const DepthLayer& layer = back ? layers->back : layers->front;
     return normal ? layer.normal.id() : layer.eyeDepth.id();
   };
-  // The marches' four depth reads per sample become one: the layers packed into one texel per pixel.
+  // The marches' four depth reads per sample become one: the layers packed into one texel per pixel. The
+  // same pass marks the pixels where a path starts (depth 0; 1 elsewhere), for the refraction's early test.
   ensureTexture(layerDepths_, GL_RGBA32F, width, height);
+  ensureTexture(pathStarts_, GL_DEPTH_COMPONENT32F, width, height);
   bindColorTargets(packFramebuffer_.id(), {&layerDepths_});
-  glDisable(GL_DEPTH_TEST);
+  glNamedFramebufferTexture(packFramebuffer_.id(), GL_DEPTH_ATTACHMENT, pathStarts_.id(), 0);
+  glEnable(GL_DEPTH_TEST);
+  glDepthFunc(GL_ALWAYS);
+  glDepthMask(GL_TRUE);
   glDisable(GL_BLEND);
-  glUseProgram(packProgram_.id());
+  const GLuint packProgram = packProgram_.id();
+  glUseProgram(packProgram);
+  glUniform1i(uniformLocation(packProgram, "hasSplash"), splashes ? 1 : 0);
+  glUniform1i(uniformLocation(packProgram, "hasAggregate"), aggregates ? 1 : 0);
+  glUniform1i(uniformLocation(packProgram, "underLiquid"), cameraInLiquid && aggregates ? 1 : 0);
   glBindTextureUnit(0, layerTexture(splashes, false, false));
   glBindTextureUnit(1, layerTexture(splashes, true, false));
   glBindTextureUnit(2, layerTexture(aggregates, false, false));
   glBindTextureUnit(3, layerTexture(aggregates, true, false));
   drawFullscreenTriangle(emptyVertexArray_.id());
+  clearCoverageLimit(packFramebuffer_.id());
   checkGlError("packing the depth layers for the refraction");
 
   const GLuint framebuffer = framebuffer_.id();
@@ -67,6 +78,12 @@ LiquidData RefractionPass::run(const std::optional<SurfaceLayers>& splashes,
     glNamedFramebufferTexture(framebuffer, attachments[i], outputs[i]->id(), 0);
   }
   glNamedFramebufferDrawBuffers(framebuffer, 6, attachments);
+  // What refraction.frag writes where no path starts, for the pixels its early test passes over.
+  const float nothing[4] = {0.0f, 0.0f, 0.0f, 0.0f}, noSurface[4] = {1e10f, 0.0f, 0.0f, 0.0f};
+  for (int i = 0; i < 6; ++i)
+    glClearNamedFramebufferfv(framebuffer, GL_COLOR, i, outputs[i] == &frontDepth_ ? noSurface : nothing);
+  for (const Texture2D* image : {&refractionUv_, &transmittance_, &reflection_})
+    glClearTexImage(image->id(), 0, GL_RGBA, GL_FLOAT, nothing);
 
   const std::uint32_t zeros[kRayCounters] = {};
   glNamedBufferSubData(counters_.id(), 0, sizeof zeros, zeros);
@@ -74,7 +91,7 @@ LiquidData RefractionPass::run(const std::optional<SurfaceLayers>& splashes,
 
   glBindFramebuffer(GL_FRAMEBUFFER, framebuffer);
   glViewport(0, 0, width, height);
-  glDisable(GL_DEPTH_TEST);
+  limitToCoverage(framebuffer, {&pathStarts_, 1.0f});
   glDisable(GL_BLEND);
   const GLuint program = program_.id();
   glUseProgram(program);
@@ -109,6 +126,7 @@ LiquidData RefractionPass::run(const std::optional<SurfaceLayers>& splashes,
   glUniform1f(uniformLocation(program, "reflectionStepPixels"), parameters.reflection_step_pixels);
   glUniform1i(uniformLocation(program, "maxSteps"), parameters.trace_max_steps);
   drawFullscreenTriangle(emptyVertexArray_.id());
+  clearCoverageLimit(framebuffer);
   // The image stores must land before the split layers are sampled or read back.
   glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_TEXTURE_UPDATE_BARRIER_BIT |
                   GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
