@@ -1,6 +1,7 @@
 #include "passes/FoamIntensityPass.h"
 
 #include "passes/FrameUniforms.h"
+#include "passes/LayerCoverage.h"
 
 namespace spindrift {
 
@@ -12,8 +13,12 @@ FoamIntensityPass::FoamIntensityPass(const ShaderLibrary& shaders)
 FoamIntensityData FoamIntensityPass::run(const FoamThicknessData& thickness, const FoamParameters& parameters,
                                          int width, int height) {
   ensureTexture(intensity_, GL_R32F, width, height);
+  ensureTexture(foamPixels_, GL_DEPTH_COMPONENT32F, width, height);
   bindColorTargets(framebuffer_.id(), {&intensity_});
-  glDisable(GL_DEPTH_TEST);
+  glNamedFramebufferTexture(framebuffer_.id(), GL_DEPTH_ATTACHMENT, foamPixels_.id(), 0);
+  glEnable(GL_DEPTH_TEST);
+  glDepthFunc(GL_ALWAYS);
+  glDepthMask(GL_TRUE);
   glDisable(GL_BLEND);
   const GLuint program = program_.id();
   glUseProgram(program);
@@ -21,8 +26,9 @@ FoamIntensityData FoamIntensityPass::run(const FoamThicknessData& thickness, con
   glUniform1f(uniformLocation(program, "intensityExp"), parameters.intensity_exp);
   glBindTextureUnit(0, thickness.thickness.id());
   drawFullscreenTriangle(emptyVertexArray_.id());
+  clearCoverageLimit(framebuffer_.id());
   checkGlError("converting foam thickness to intensity");
-  return {intensity_};
+  return {intensity_, {&foamPixels_, 1.0f}};
 }
 
 }  // namespace spindrift
