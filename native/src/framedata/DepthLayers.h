@@ -1,7 +1,7 @@
 #pragma once
 
 #include "gl/GlObjects.h"
-#include "passes/LayerCoverage.h"
+#include "gl/LayerCoverage.h"
 
 namespace spindrift {
 

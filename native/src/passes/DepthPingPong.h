@@ -3,7 +3,7 @@
 #include <array>
 
 #include "gl/GlObjects.h"
-#include "passes/LayerCoverage.h"
+#include "gl/LayerCoverage.h"
 
 namespace spindrift {
 

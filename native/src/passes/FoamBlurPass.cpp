@@ -1,7 +1,7 @@
 #include "passes/FoamBlurPass.h"
 
+#include "gl/LayerCoverage.h"
 #include "passes/FrameUniforms.h"
-#include "passes/LayerCoverage.h"
 
 namespace spindrift {
 

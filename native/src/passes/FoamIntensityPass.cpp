@@ -1,7 +1,7 @@
 #include "passes/FoamIntensityPass.h"
 
+#include "gl/LayerCoverage.h"
 #include "passes/FrameUniforms.h"
-#include "passes/LayerCoverage.h"
 
 namespace spindrift {
 
@@ -15,10 +15,7 @@ FoamIntensityData FoamIntensityPass::run(const FoamThicknessData& thickness, con
   ensureTexture(intensity_, GL_R32F, width, height);
   ensureTexture(foamPixels_, GL_DEPTH_COMPONENT32F, width, height);
   bindColorTargets(framebuffer_.id(), {&intensity_});
-  glNamedFramebufferTexture(framebuffer_.id(), GL_DEPTH_ATTACHMENT, foamPixels_.id(), 0);
-  glEnable(GL_DEPTH_TEST);
-  glDepthFunc(GL_ALWAYS);
-  glDepthMask(GL_TRUE);
+  writeCoverage(framebuffer_.id(), foamPixels_);
   glDisable(GL_BLEND);
   const GLuint program = program_.id();
   glUseProgram(program);

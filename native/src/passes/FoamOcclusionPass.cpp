@@ -2,8 +2,8 @@
 
 #include <algorithm>
 
+#include "gl/LayerCoverage.h"
 #include "passes/FrameUniforms.h"
-#include "passes/LayerCoverage.h"
 
 namespace spindrift {
 namespace {

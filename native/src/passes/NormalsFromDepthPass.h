@@ -2,8 +2,8 @@
 
 #include "framedata/SmoothedDepth.h"
 #include "gl/GlObjects.h"
+#include "gl/LayerCoverage.h"
 #include "gl/ShaderLibrary.h"
-#include "passes/LayerCoverage.h"
 
 namespace spindrift {
 

@@ -2,8 +2,8 @@
 
 #include <glm/matrix.hpp>
 
+#include "gl/LayerCoverage.h"
 #include "passes/FrameUniforms.h"
-#include "passes/LayerCoverage.h"
 
 namespace spindrift {
 namespace {
@@ -51,10 +51,7 @@ LiquidData RefractionPass::run(const std::optional<SurfaceLayers>& splashes,
   ensureTexture(layerDepths_, GL_RGBA32F, width, height);
   ensureTexture(pathStarts_, GL_DEPTH_COMPONENT32F, width, height);
   bindColorTargets(packFramebuffer_.id(), {&layerDepths_});
-  glNamedFramebufferTexture(packFramebuffer_.id(), GL_DEPTH_ATTACHMENT, pathStarts_.id(), 0);
-  glEnable(GL_DEPTH_TEST);
-  glDepthFunc(GL_ALWAYS);
-  glDepthMask(GL_TRUE);
+  writeCoverage(packFramebuffer_.id(), pathStarts_);
   glDisable(GL_BLEND);
   const GLuint packProgram = packProgram_.id();
   glUseProgram(packProgram);

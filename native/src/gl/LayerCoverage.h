@@ -24,4 +24,9 @@ void limitToCoverage(GLuint framebuffer, const LayerCoverage& coverage);
 /// Detaches the depth buffer and restores the depth state the other passes expect.
 void clearCoverageLimit(GLuint framebuffer);
 
+/// Attaches `depthBuffer` to `framebuffer` and sets the depth state so that the next full-screen draw writes
+/// its shader's gl_FragDepth into every pixel: a pass that already reads every pixel marks the ones a later
+/// pass has work in (0) and the others (1), a LayerCoverage with emptyDepth 1. clearCoverageLimit after it.
+void writeCoverage(GLuint framebuffer, const Texture2D& depthBuffer);
+
 }  // namespace spindrift

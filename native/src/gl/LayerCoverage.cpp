@@ -1,4 +1,4 @@
-#include "passes/LayerCoverage.h"
+#include "gl/LayerCoverage.h"
 
 namespace spindrift {
 
@@ -12,6 +12,14 @@ void limitToCoverage(GLuint framebuffer, const LayerCoverage& coverage) {
   glDepthFunc(GL_NOTEQUAL);
   glDepthMask(GL_FALSE);
   glDepthRangef(coverage.emptyDepth, coverage.emptyDepth);
+}
+
+void writeCoverage(GLuint framebuffer, const Texture2D& depthBuffer) {
+  glNamedFramebufferTexture(framebuffer, GL_DEPTH_ATTACHMENT, depthBuffer.id(), 0);
+  glEnable(GL_DEPTH_TEST);
+  glDepthFunc(GL_ALWAYS);
+  glDepthMask(GL_TRUE);
+  glDepthRangef(0.0f, 1.0f);
 }
 
 void clearCoverageLimit(GLuint framebuffer) {
