@@ -10,9 +10,12 @@ const ImageLayer* RenderResult::layer(const std::string& name) const {
 
 nlohmann::json FrameStats::toJson() const {
   nlohmann::json passesJson = nlohmann::json::array();
-  for (const PassTiming& pass : passes)
-    passesJson.push_back(
-        {{"name", pass.name}, {"gpu_ms", pass.gpuMilliseconds}, {"cpu_ms", pass.cpuMilliseconds}});
+  for (const PassTiming& pass : passes) {
+    passesJson.push_back({{"name", pass.name},
+                          {"gpu_ms", pass.gpuMilliseconds},
+                          {"cpu_ms", pass.cpuMilliseconds},
+                          {"samples_passed", pass.samplesPassed}});
+  }
   nlohmann::json skippedJson = nlohmann::json::array();
   nlohmann::json raymarchJson = nullptr;  // null unless liquid.surface = raymarch
   if (raymarch.enabled)

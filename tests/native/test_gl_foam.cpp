@@ -293,6 +293,9 @@ TEST(GLFoam, LessFoamAfterMoreLeavesNothingOutsideIt) {
   }
   EXPECT_GT(foamPixels, 50u);
   EXPECT_GT(clear, foam.pixels.size() / 8) << "most of the frame has no foam";
+  // The stats show the skip: the blur's two runs shade the foam's pixels alone.
+  for (const PassTiming& pass : afterBowl.stats.passes)
+    if (pass.name == "foam_blur") EXPECT_EQ(pass.samplesPassed, 2 * afterBowl.stats.foam.foamPixels);
 }
 
 // foam.occlusion_block estimates the shadow and irradiance once per block, at its nearest foam pixel, and

@@ -167,4 +167,13 @@ TEST(GLLiquidStability, ASmallBodyAfterALargeOneLeavesNothingOutsideItself) {
   EXPECT_GT(covered, 20u);
   EXPECT_GT(outside, depth.pixels.size() / 2);
   EXPECT_EQ(covered + outside, depth.pixels.size()) << "a pixel without liquid has Blender's empty depth";
+  // The stats show the skip: the refraction's packing writes every pixel, the refraction only the liquid's.
+  const auto pass = [&](const char* name) {
+    for (const PassTiming& timing : afterLarge.stats.passes)
+      if (timing.name == name) return timing;
+    ADD_FAILURE() << "no pass " << name;
+    return PassTiming{};
+  };
+  EXPECT_EQ(afterLarge.stats.liquid.liquidPixels, covered);
+  EXPECT_EQ(pass("refraction").samplesPassed, depth.pixels.size() + covered);
 }

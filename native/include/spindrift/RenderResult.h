@@ -1,6 +1,7 @@
 #pragma once
 
 #include <cstddef>
+#include <cstdint>
 #include <string>
 #include <vector>
 
@@ -24,6 +25,10 @@ struct PassTiming {
   std::string name;
   double gpuMilliseconds = 0.0;  ///< From a GL_TIME_ELAPSED query around the pass.
   double cpuMilliseconds = 0.0;  ///< Wall time of the calls that issued the pass.
+  /// Samples the pass's draws wrote (GL_SAMPLES_PASSED: fragments that passed the depth test and were not
+  /// discarded), all its draws together. A full-screen pass limited to the liquid's or the foam's pixels
+  /// (gl/LayerCoverage.h) shades only those and writes each once a draw; an unlimited one, every pixel.
+  std::uint64_t samplesPassed = 0;
 };
 
 struct SkippedPass {

@@ -98,8 +98,12 @@ VertexArrayObject createVertexArray() {
 }
 
 QueryObject createTimestampQuery() {
+  return createQuery(GL_TIMESTAMP);
+}
+
+QueryObject createQuery(GLenum target) {
   GLuint id = 0;
-  glCreateQueries(GL_TIMESTAMP, 1, &id);
+  glCreateQueries(target, 1, &id);
   return QueryObject(id);
 }
 

@@ -85,6 +85,7 @@ BufferObject createBuffer();
 FramebufferObject createFramebuffer();
 VertexArrayObject createVertexArray();
 QueryObject createTimestampQuery();
+QueryObject createQuery(GLenum target);
 
 /// Throws Error naming `what` when the GL error flag is set.
 void checkGlError(const char* what);

@@ -27,11 +27,15 @@ void PassTimer::begin(const std::string& passName) {
   if (finishPasses()) glFinish();
   frame_.push_back({passName, 0.0, 0.0});
   glQueryCounter(queries_[2 * (frame_.size() - 1)].id(), GL_TIMESTAMP);
+  while (sampleQueries_.size() < frame_.size())
+    sampleQueries_.push_back(createQuery(GL_SAMPLES_PASSED));
+  glBeginQuery(GL_SAMPLES_PASSED, sampleQueries_[frame_.size() - 1].id());
   started_ = std::chrono::steady_clock::now();
 }
 
 void PassTimer::end() {
   if (finishPasses()) glFinish();
+  glEndQuery(GL_SAMPLES_PASSED);
   glQueryCounter(queries_[2 * (frame_.size() - 1) + 1].id(), GL_TIMESTAMP);
   frame_.back().cpuMilliseconds =
       std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - started_).count();
@@ -44,6 +48,9 @@ std::vector<PassTiming> PassTimer::collect() {
     glGetQueryObjectui64v(queries_[2 * i + 1].id(), GL_QUERY_RESULT, &endNanoseconds);
     frame_[i].gpuMilliseconds =
         endNanoseconds > startNanoseconds ? double(endNanoseconds - startNanoseconds) * 1e-6 : 0.0;
+    GLuint64 samples = 0;
+    glGetQueryObjectui64v(sampleQueries_[i].id(), GL_QUERY_RESULT, &samples);
+    frame_[i].samplesPassed = samples;
   }
   std::vector<PassTiming> timings;
   timings.swap(frame_);

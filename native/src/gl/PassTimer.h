@@ -10,7 +10,8 @@
 namespace spindrift {
 
 /// Times each pass of a frame with GL timestamp queries (GPU time) and a steady clock (the CPU time spent
-/// issuing it). Queries are pooled and reused, so timing allocates no GL objects after the first frames.
+/// issuing it), and counts the samples its draws wrote (GL_SAMPLES_PASSED).
+/// Queries are pooled and reused, so timing allocates no GL objects after the first frames.
 class PassTimer {
  public:
   /// Starts timing a pass; the matching `end` must follow before the next `begin` (passes do not nest).
@@ -21,6 +22,7 @@ class PassTimer {
 
  private:
   std::vector<QueryObject> queries_;
+  std::vector<QueryObject> sampleQueries_;  // one per pass
   std::vector<PassTiming> frame_;
   std::chrono::steady_clock::time_point started_;
 };
