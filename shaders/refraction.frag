@@ -7,10 +7,6 @@
 #include "lib/optics.glsl"
 #include "lib/screen_trace.glsl"
 
-// Only the pixels refraction_layers.frag marked (where a path starts) are shaded; the pass clears the rest to
-// what this shader writes for a pixel without liquid. Early: the image stores make the test late otherwise.
-layout(early_fragment_tests) in;
-
 layout(binding = 4) uniform sampler2D splashFrontNormal;
 layout(binding = 5) uniform sampler2D splashBackNormal;
 layout(binding = 6) uniform sampler2D aggregateFrontNormal;
@@ -126,6 +122,9 @@ bool bodyPresent(int body) { return body == kSplash ? hasSplash : hasAggregate; 
 float insideDistance(int body, vec2 fragCoord, float z, bool interpolated, out bool back) {
   ivec2 pixel = ivec2(fragCoord);
   float front = interpolated ? layerDepth(body, false, fragCoord) : frontDepth(body, pixel);
+  // Set on every path: an out parameter left unwritten is undefined (a crossing refined onto a pixel without
+  // the layer would take its normal from either side).
+  back = false;
   if (front >= kNoSurfaceDepth * 0.5) return -1e30;
   float rear = min(interpolated ? layerDepth(body, true, fragCoord) : backDepth(body, pixel),
                    texelFetch(backgroundEyeDepth, pixel, 0).r);

@@ -3,7 +3,6 @@
 // compared with the analytic plane the spheres sample.
 #include <gtest/gtest.h>
 
-#include <functional>
 #include <iostream>
 #include <memory>
 #include <numeric>
@@ -43,35 +42,18 @@ class SmoothingHarness {
   }
 
   // Uploads `input`, smooths it and reads the result back; `gpuMilliseconds` receives the GPU time of the
-  // DepthSmoothingPass run (smoothing and normals). With `covered`, the layer comes with a coverage depth
-  // buffer, as the impostor pass gives it (LayerCoverage), that marks the pixels `covered` says.
+  // DepthSmoothingPass run (smoothing and normals).
   CpuDepthLayer smooth(const CpuDepthLayer& input, const Camera& camera, double radius, bool backLayer,
-                       const LiquidParameters& parameters, double* gpuMilliseconds = nullptr,
-                       const std::function<bool(int column, int row)>& covered = nullptr) {
+                       const LiquidParameters& parameters, double* gpuMilliseconds = nullptr) {
     CpuDepthLayer output(input.width, input.height);
     glThread_.run([&] {
       Pipeline& pipeline = *pipeline_;
       pipeline.frameUniforms.update(camera);
       uploadTexture(pipeline.depth, GL_R32F, input.width, input.height, 1, input.eyeDepth.data(), false);
       uploadTexture(pipeline.normal, GL_RGBA16F, input.width, input.height, 4, input.normal.data(), false);
-      LayerCoverage coverage;
-      if (covered) {
-        // Bottom row first, as GL's textures are; any depth but the empty one marks a pixel.
-        const float empty = backLayer ? 0.0f : 1.0f;
-        std::vector<float> depths(std::size_t(input.width) * input.height, empty);
-        for (int row = 0; row < input.height; ++row)
-          for (int column = 0; column < input.width; ++column)
-            if (covered(column, row))
-              depths[std::size_t(input.height - 1 - row) * input.width + column] = 0.5f;
-        ensureTexture(pipeline.coverage, GL_DEPTH_COMPONENT32F, input.width, input.height);
-        glTextureSubImage2D(pipeline.coverage.id(), 0, 0, 0, input.width, input.height, GL_DEPTH_COMPONENT,
-                            GL_FLOAT, depths.data());
-        coverage = {&pipeline.coverage, empty};
-      }
       pipeline.timer.begin("depth_smoothing");
-      const DepthLayer smoothed =
-          pipeline.smoothing.run({pipeline.depth, pipeline.normal, coverage}, float(radius), backLayer,
-                                 parameters, input.width, input.height);
+      const DepthLayer smoothed = pipeline.smoothing.run({pipeline.depth, pipeline.normal}, float(radius),
+                                                         backLayer, parameters, input.width, input.height);
       pipeline.timer.end();
       const std::vector<PassTiming> timings = pipeline.timer.collect();
       if (gpuMilliseconds) *gpuMilliseconds = timings.front().gpuMilliseconds;
@@ -89,7 +71,6 @@ class SmoothingHarness {
     DepthSmoothingPass smoothing{shaders};
     Texture2D depth;
     Texture2D normal;
-    Texture2D coverage;
   };
 
   SmoothingHarness() {
@@ -368,42 +349,6 @@ TEST(GLDepthSmoothing, EveryMethodKeepsEmptyPixelsEmptyAndStaysFinite) {
                                                                          backLayer, withMethod(method));
         expectSameCoverageAndFinite(output, test.layer);
       }
-}
-
-TEST(GLDepthSmoothing, EveryMethodLimitedToTheLayersPixelsGivesTheSameBitsAndShadesNoOthers) {
-  // The impostor pass hands each layer over with its depth buffer, and the smoothing shades only the pixels
-  // it marks (on llvmpipe an early return saves nothing; a failed early depth test does). Marking exactly the
-  // layer's pixels changes no bit of the result; marking the left half only leaves the right half empty, so
-  // the limit does take effect.
-  const SheetScene scene = sheetScene(128, 96);
-  const CpuDepthLayer layer = renderSheet(scene.sheet, scene.camera, false);
-  const auto onLayer = [&](int column, int row) { return layer.covered(column, row); };
-  const auto leftHalf = [&](int column, int row) { return column < 64 && layer.covered(column, row); };
-  int rightCovered = 0;
-  for (int row = 0; row < 96; ++row)
-    for (int column = 64; column < 128; ++column)
-      rightCovered += layer.covered(column, row);
-  ASSERT_GT(rightCovered, 500);
-  for (const std::string& method : kMethods)
-    for (bool backLayer : {false, true}) {
-      SCOPED_TRACE(method + (backLayer ? ", back layer" : ", front layer"));
-      SmoothingHarness& harness = SmoothingHarness::instance();
-      const LiquidParameters parameters = withMethod(method);
-      const double radius = scene.sheet.radius;
-      const CpuDepthLayer everywhere = harness.smooth(layer, scene.camera, radius, backLayer, parameters);
-      const CpuDepthLayer limited =
-          harness.smooth(layer, scene.camera, radius, backLayer, parameters, nullptr, onLayer);
-      EXPECT_EQ(limited.eyeDepth, everywhere.eyeDepth);
-      EXPECT_EQ(limited.normal, everywhere.normal);
-      const CpuDepthLayer half =
-          harness.smooth(layer, scene.camera, radius, backLayer, parameters, nullptr, leftHalf);
-      int rightShaded = 0;
-      for (int row = 0; row < 96; ++row)
-        for (int column = 64; column < 128; ++column)
-          rightShaded += half.covered(column, row) || half.normal[4 * half.index(column, row) + 3] != 0.0f;
-      // "none" copies the layer whole: it shades nothing.
-      EXPECT_EQ(rightShaded, method == "none" ? rightCovered : 0);
-    }
 }
 
 TEST(GLDepthSmoothing, FrontNormalsFaceTheCameraAndBackNormalsFaceAway) {

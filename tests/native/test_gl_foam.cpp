@@ -265,39 +265,6 @@ TEST(GLFoam, ConcaveBowlIsDarkerThanRim) {
   EXPECT_LT(bowlColour, rimColour);
 }
 
-TEST(GLFoam, LessFoamAfterMoreLeavesNothingOutsideIt) {
-  // The foam's passes after its intensity shade only the foam's pixels (LayerCoverage) and clear the rest:
-  // a renderer that drew the whole bowl the frame before gives a small patch exactly what it gives it after
-  // drawing that patch, in every layer.
-  Scene scene = sceneLookingDown(96, 3.0f);
-  scene.background.color = glm::vec3(1.0f);
-  const Particles bowl = bowlOfFoam();
-  Particles patch;
-  for (const glm::vec3& point : liquid_test::block({-0.1f, -0.1f, 0.0f}, {0.1f, 0.1f, 0.0f}, 0.015f))
-    patch.append(point, 0.03f, ParticleKind::Foam, 0.0f, glm::vec3(0.0f));
-  renderer().renderParticles(scene, patch, 1);
-  const RenderResult afterPatch = renderer().renderParticles(scene, patch, 1);
-  renderer().renderParticles(scene, bowl, 1);
-  const RenderResult afterBowl = renderer().renderParticles(scene, patch, 1);
-  expectFiniteFoam(afterBowl);
-  ASSERT_EQ(afterBowl.layers.size(), afterPatch.layers.size());
-  for (std::size_t i = 0; i < afterPatch.layers.size(); ++i) {
-    SCOPED_TRACE(afterPatch.layers[i].name);
-    EXPECT_EQ(afterBowl.layers[i].pixels, afterPatch.layers[i].pixels);
-  }
-  std::size_t foamPixels = 0, clear = 0;
-  const ImageLayer& foam = *afterBowl.layer("foam");
-  for (std::size_t pixel = 0; pixel < foam.pixels.size() / 4; ++pixel) {
-    foamPixels += foam.pixels[4 * pixel + 3] > 0.0f;
-    clear += foam.pixels[4 * pixel + 3] == 0.0f;
-  }
-  EXPECT_GT(foamPixels, 50u);
-  EXPECT_GT(clear, foam.pixels.size() / 8) << "most of the frame has no foam";
-  // The stats show the skip: the blur's two runs shade the foam's pixels alone.
-  for (const PassTiming& pass : afterBowl.stats.passes)
-    if (pass.name == "foam_blur") EXPECT_EQ(pass.samplesPassed, 2 * afterBowl.stats.foam.foamPixels);
-}
-
 // foam.occlusion_block estimates the shadow and irradiance once per block, at its nearest foam pixel, and
 // spreads them by depth: the bowl with a sheet of spray 1.5 above it (its edges cross the bowl's foam, at a
 // very different depth), on a 161-pixel frame that blocks of 2 and 4 do not divide, against every pixel's

@@ -143,9 +143,9 @@ TEST(GLLiquidStability, EmptyFrame) {
 }
 
 TEST(GLLiquidStability, ASmallBodyAfterALargeOneLeavesNothingOutsideItself) {
-  // The refraction and the smoothing shade only the pixels the liquid covers (LayerCoverage) and clear the
-  // rest: a renderer that drew a large body the frame before must give a small one exactly what it gives it
-  // after drawing that small one, in every layer, and leave the pixels outside it empty.
+  // A renderer keeps its targets from frame to frame: one that drew a large body the frame before must give a
+  // small one exactly what it gives it after drawing that small one, in every layer, and leave the pixels
+  // outside it empty.
   const Scene scene = sceneLookingAt({0, -3, 0.5f}, {0, 0, 0});
   const std::vector<glm::vec3> large = block({-0.6f, -0.4f, -0.4f}, {0.6f, 0.4f, 0.4f}, 0.05f);
   const std::vector<glm::vec3> small = block({-0.1f, -0.1f, -0.1f}, {0.1f, 0.1f, 0.1f}, 0.05f);
@@ -167,13 +167,7 @@ TEST(GLLiquidStability, ASmallBodyAfterALargeOneLeavesNothingOutsideItself) {
   EXPECT_GT(covered, 20u);
   EXPECT_GT(outside, depth.pixels.size() / 2);
   EXPECT_EQ(covered + outside, depth.pixels.size()) << "a pixel without liquid has Blender's empty depth";
-  // The stats show the skip: the refraction's packing writes every pixel, the refraction only the liquid's.
-  const auto pass = [&](const char* name) {
-    for (const PassTiming& timing : afterLarge.stats.passes)
-      if (timing.name == name) return timing;
-    ADD_FAILURE() << "no pass " << name;
-    return PassTiming{};
-  };
-  EXPECT_EQ(afterLarge.stats.liquid.liquidPixels, covered);
-  EXPECT_EQ(pass("refraction").samplesPassed, depth.pixels.size() + covered);
+  // The stats count what each pass wrote: the refraction writes every pixel twice (its packing and itself).
+  for (const PassTiming& pass : afterLarge.stats.passes)
+    if (pass.name == "refraction") EXPECT_EQ(pass.samplesPassed, 2 * depth.pixels.size());
 }

@@ -26,8 +26,8 @@ struct PassTiming {
   double gpuMilliseconds = 0.0;  ///< From a GL_TIME_ELAPSED query around the pass.
   double cpuMilliseconds = 0.0;  ///< Wall time of the calls that issued the pass.
   /// Samples the pass's draws wrote (GL_SAMPLES_PASSED: fragments that passed the depth test and were not
-  /// discarded), all its draws together. A full-screen pass limited to the liquid's or the foam's pixels
-  /// (gl/LayerCoverage.h) shades only those and writes each once a draw; an unlimited one, every pixel.
+  /// discarded), all its draws together: a full-screen draw writes every pixel once, the impostors' the
+  /// fragments that won their depth test when drawn.
   std::uint64_t samplesPassed = 0;
 };
 

@@ -1,7 +1,6 @@
 #pragma once
 
 #include "gl/GlObjects.h"
-#include "gl/LayerCoverage.h"
 
 namespace spindrift {
 
@@ -9,9 +8,6 @@ namespace spindrift {
 struct DepthLayer {
   const Texture2D& eyeDepth;  ///< R32F planar eye depth; 1e10 (kNoSurfaceDepth) where the layer is empty.
   const Texture2D& normal;    ///< RGBA16F: world-space outward normal in xyz, coverage (1 or 0) in w.
-  /// The pixels the layer may have a surface in (the impostor pass's depth buffer), for the full-screen
-  /// passes over it; none where the layer was drawn otherwise (every pixel is then shaded).
-  LayerCoverage coverage{};
 };
 
 /// The front and back surfaces of one group of liquid particles (the splashes, or the aggregated body): what

@@ -11,14 +11,6 @@ void DepthPingPong::resize(int width, int height) {
     ensureTexture(target, GL_R32F, width, height);
 }
 
-void DepthPingPong::limitTo(const LayerCoverage& coverage) {
-  coverage_ = coverage;
-  if (!coverage.depthBuffer) return;
-  const float noSurface = 1e10f;
-  for (Texture2D& target : targets_)
-    glClearTexImage(target.id(), 0, GL_RED, GL_FLOAT, &noSurface);
-}
-
 Texture2D& DepthPingPong::targetOtherThan(const Texture2D& source) {
   return source.id() == targets_[0].id() ? targets_[1] : targets_[0];
 }
@@ -29,11 +21,10 @@ const Texture2D& DepthPingPong::draw(const Texture2D& source) {
   glNamedFramebufferTexture(framebuffer_.id(), GL_COLOR_ATTACHMENT0, target.id(), 0);
   glBindFramebuffer(GL_FRAMEBUFFER, framebuffer_.id());
   glViewport(0, 0, target.width, target.height);
-  limitToCoverage(framebuffer_.id(), coverage_);
+  glDisable(GL_DEPTH_TEST);
   glDisable(GL_BLEND);
   glBindTextureUnit(0, source.id());
   drawFullscreenTriangle(emptyVertexArray_.id());
-  clearCoverageLimit(framebuffer_.id());
   checkGlError("filtering a depth layer");
   return target;
 }

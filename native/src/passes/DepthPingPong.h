@@ -3,7 +3,6 @@
 #include <array>
 
 #include "gl/GlObjects.h"
-#include "gl/LayerCoverage.h"
 
 namespace spindrift {
 
@@ -16,9 +15,6 @@ class DepthPingPong {
 
   /// Makes both targets width × height (reallocated only when the size changes).
   void resize(int width, int height);
-  /// Limits the draws that follow to the pixels of `coverage` (none: every pixel), after filling both targets
-  /// with "no surface": a filter never creates a surface, so it has nothing to write elsewhere.
-  void limitTo(const LayerCoverage& coverage);
   /// Draws the current program's fullscreen triangle (shaders/fullscreen.vert) with `source` at texture
   /// unit 0 into the target that is not `source`, and returns that target.
   const Texture2D& draw(const Texture2D& source);
@@ -32,7 +28,6 @@ class DepthPingPong {
   Texture2D& targetOtherThan(const Texture2D& source);
 
   std::array<Texture2D, 2> targets_;
-  LayerCoverage coverage_;
   FramebufferObject framebuffer_;
   VertexArrayObject emptyVertexArray_;
 };

@@ -39,7 +39,6 @@ DepthLayer DepthSmoothingPass::run(const DepthLayer& layer, float particleRadius
   Methods& methods = *methods_;
   DepthPingPong& targets = methods.depthTargets;
   targets.resize(width, height);
-  targets.limitTo(layer.coverage);
   const std::string& method = parameters.smoothing;
   if (method == "none") {
     Texture2D& normal = methods.passedThroughNormal;
@@ -47,7 +46,7 @@ DepthLayer DepthSmoothingPass::run(const DepthLayer& layer, float particleRadius
     glCopyImageSubData(layer.normal.id(), GL_TEXTURE_2D, 0, 0, 0, 0, normal.id(), GL_TEXTURE_2D, 0, 0, 0, 0,
                        width, height, 1);
     checkGlError("copying a depth layer's normals");
-    return {targets.copy(layer.eyeDepth), normal, layer.coverage};
+    return {targets.copy(layer.eyeDepth), normal};
   }
 
   const Texture2D* smoothed = nullptr;
@@ -64,9 +63,7 @@ DepthLayer DepthSmoothingPass::run(const DepthLayer& layer, float particleRadius
     throw Error("liquid.smoothing: unknown method \"" + method + "\"");
   // Zero iterations leave the input's own texture; the result must live in this pass's textures.
   if (smoothed->id() == layer.eyeDepth.id()) smoothed = &targets.copy(layer.eyeDepth);
-  return {*smoothed,
-          methods.normals.run(*smoothed, layer.normal, backLayer, layer.coverage, width, height).normal,
-          layer.coverage};
+  return {*smoothed, methods.normals.run(*smoothed, layer.normal, backLayer, width, height).normal};
 }
 
 }  // namespace spindrift

@@ -6,12 +6,6 @@
 #include "passes/FrameUniforms.h"
 
 namespace spindrift {
-namespace {
-// What each layer's depth buffer holds where the layer has no surface: the front layer keeps the nearest
-// surface, the back layer the farthest, so their tests and clears are opposite.
-constexpr float kFrontEmptyDepth = 1.0f;
-constexpr float kBackEmptyDepth = 0.0f;
-}  // namespace
 
 EllipsoidImpostorPass::EllipsoidImpostorPass(const ShaderLibrary& shaders)
     : program_(shaders.program({"ellipsoid_impostor.vert", "ellipsoid_impostor.frag"})),
@@ -44,8 +38,7 @@ SurfaceLayers EllipsoidImpostorPass::run(const std::vector<EllipsoidInstance>& i
   upload(*list);
   drawLayer(front_, false, draws.front, background, view, domain);
   drawLayer(back_, true, draws.back, background, view, domain);
-  return {{front_.eyeDepth, front_.normal, {&front_.depthBuffer, kFrontEmptyDepth}},
-          {back_.eyeDepth, back_.normal, {&back_.depthBuffer, kBackEmptyDepth}}};
+  return {{front_.eyeDepth, front_.normal}, {back_.eyeDepth, back_.normal}};
 }
 
 void EllipsoidImpostorPass::upload(const std::vector<EllipsoidInstance>& ellipsoids) {
@@ -154,14 +147,16 @@ void EllipsoidImpostorPass::drawLayer(Target& target, bool backFaces, const std:
 
   const float noSurface[4] = {1e10f, 0.0f, 0.0f, 0.0f};
   const GLuint noWinner[4] = {0, 0, 0, 0};
-  const float clearDepth = backFaces ? kBackEmptyDepth : kFrontEmptyDepth;
+  // The front layer keeps the nearest surface, the back layer the farthest: opposite tests, opposite clears.
+  const float clearDepth = backFaces ? 0.0f : 1.0f;
   glClearNamedFramebufferfv(framebuffer, GL_COLOR, 0, noSurface);
   glClearNamedFramebufferuiv(framebuffer, GL_COLOR, 1, noWinner);
   glClearNamedFramebufferfv(framebuffer, GL_DEPTH, 0, &clearDepth);
   const float noNormal[4] = {0.0f, 0.0f, 0.0f, 0.0f};
-  // The normals are resolved where the layer has a surface only (LayerCoverage): zero elsewhere.
-  glClearTexImage(target.normal.id(), 0, GL_RGBA, GL_FLOAT, noNormal);
-  if (draws.empty()) return;
+  if (draws.empty()) {
+    glClearTexImage(target.normal.id(), 0, GL_RGBA, GL_FLOAT, noNormal);
+    return;
+  }
 
   glBindFramebuffer(GL_FRAMEBUFFER, framebuffer);
   glViewport(0, 0, width, height);
@@ -192,10 +187,8 @@ void EllipsoidImpostorPass::drawLayer(Target& target, bool backFaces, const std:
   glUseProgram(normalsProgram);
   setRayUniforms(normalsProgram, backFaces, view, domain);
   bindColorTargets(resolveFramebuffer_.id(), {&target.normal});
-  limitToCoverage(resolveFramebuffer_.id(), {&target.depthBuffer, clearDepth});
   glBindTextureUnit(0, target.winner.id());
   drawFullscreenTriangle(emptyVertexArray_.id());
-  clearCoverageLimit(resolveFramebuffer_.id());
   checkGlError("resolving the liquid particles' normals");
 }
 

@@ -1,6 +1,5 @@
 #include "passes/FoamBlurPass.h"
 
-#include "gl/LayerCoverage.h"
 #include "passes/FrameUniforms.h"
 
 namespace spindrift {
@@ -20,13 +19,7 @@ FoamLayerData FoamBlurPass::run(const FoamSurfaceData& surface, const FoamThickn
   ensureTexture(shadow_, GL_RGBA16F, width, height);
   ensureTexture(irradiance_, GL_RGBA16F, width, height);
 
-  // Foam pixels only: everywhere else foam_blur.frag writes no foam, no shadow and no irradiance.
-  const float nothing[4] = {0.0f, 0.0f, 0.0f, 0.0f}, opaqueBlack[4] = {0.0f, 0.0f, 0.0f, 1.0f};
-  glClearTexImage(horizontalShadow_.id(), 0, GL_RGBA, GL_FLOAT, nothing);
-  for (Texture2D* layer : {&horizontalIrradiance_, &shadow_, &irradiance_})
-    glClearTexImage(layer->id(), 0, GL_RGBA, GL_FLOAT, opaqueBlack);
-  for (Texture2D* layer : {&foam_, &spray_, &surface_, &bubble_})
-    glClearTexImage(layer->id(), 0, GL_RGBA, GL_FLOAT, nothing);
+  glDisable(GL_DEPTH_TEST);
   glDisable(GL_BLEND);
   const GLuint program = program_.id();
   glUseProgram(program);
@@ -40,7 +33,6 @@ FoamLayerData FoamBlurPass::run(const FoamSurfaceData& surface, const FoamThickn
 
   // Horizontal, into the intermediate textures.
   bindColorTargets(framebuffer_.id(), {&horizontalShadow_, &horizontalIrradiance_});
-  limitToCoverage(framebuffer_.id(), intensity.foamPixels);
   glUniform2i(uniformLocation(program, "direction"), 1, 0);
   glUniform1i(uniformLocation(program, "finalRun"), 0);
   glBindTextureUnit(0, occlusion.shadow.id());
@@ -55,7 +47,6 @@ FoamLayerData FoamBlurPass::run(const FoamSurfaceData& surface, const FoamThickn
   glBindTextureUnit(0, horizontalShadow_.id());
   glBindTextureUnit(1, horizontalIrradiance_.id());
   drawFullscreenTriangle(emptyVertexArray_.id());
-  clearCoverageLimit(framebuffer_.id());
   checkGlError("blurring and compositing the foam");
   return {foam_, spray_, surface_, bubble_, shadow_, irradiance_, thickness.thickness};
 }

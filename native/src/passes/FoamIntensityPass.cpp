@@ -1,6 +1,5 @@
 #include "passes/FoamIntensityPass.h"
 
-#include "gl/LayerCoverage.h"
 #include "passes/FrameUniforms.h"
 
 namespace spindrift {
@@ -13,9 +12,8 @@ FoamIntensityPass::FoamIntensityPass(const ShaderLibrary& shaders)
 FoamIntensityData FoamIntensityPass::run(const FoamThicknessData& thickness, const FoamParameters& parameters,
                                          int width, int height) {
   ensureTexture(intensity_, GL_R32F, width, height);
-  ensureTexture(foamPixels_, GL_DEPTH_COMPONENT32F, width, height);
   bindColorTargets(framebuffer_.id(), {&intensity_});
-  writeCoverage(framebuffer_.id(), foamPixels_);
+  glDisable(GL_DEPTH_TEST);
   glDisable(GL_BLEND);
   const GLuint program = program_.id();
   glUseProgram(program);
@@ -23,9 +21,8 @@ FoamIntensityData FoamIntensityPass::run(const FoamThicknessData& thickness, con
   glUniform1f(uniformLocation(program, "intensityExp"), parameters.intensity_exp);
   glBindTextureUnit(0, thickness.thickness.id());
   drawFullscreenTriangle(emptyVertexArray_.id());
-  clearCoverageLimit(framebuffer_.id());
   checkGlError("converting foam thickness to intensity");
-  return {intensity_, {&foamPixels_, 1.0f}};
+  return {intensity_};
 }
 
 }  // namespace spindrift

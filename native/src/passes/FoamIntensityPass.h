@@ -20,7 +20,6 @@ class FoamIntensityPass {
   VertexArrayObject emptyVertexArray_;
   FramebufferObject framebuffer_;
   Texture2D intensity_;
-  Texture2D foamPixels_;  ///< depth 0 where iota > 0, 1 elsewhere (LayerCoverage)
 };
 
 }  // namespace spindrift

@@ -2,7 +2,6 @@
 
 #include <algorithm>
 
-#include "gl/LayerCoverage.h"
 #include "passes/FrameUniforms.h"
 
 namespace spindrift {
@@ -111,12 +110,7 @@ FoamOcclusionData FoamOcclusionPass::run(const FoamSurfaceData& surface, const F
   drawFullscreenTriangle(emptyVertexArray_.id());
   checkGlError("estimating the foam's shadow and irradiance");
   if (block > 1) {
-    // Foam pixels only (foam_occlusion_upsample.frag writes the clear values everywhere else).
-    const float noShadow[4] = {0.0f, 1e10f, 0.0f, 0.0f}, noIrradiance[4] = {0.0f, 0.0f, 0.0f, 0.0f};
-    glClearTexImage(shadow_.id(), 0, GL_RGBA, GL_FLOAT, noShadow);
-    glClearTexImage(irradiance_.id(), 0, GL_RGBA, GL_FLOAT, noIrradiance);
     bindColorTargets(framebuffer_.id(), {&shadow_, &irradiance_});
-    limitToCoverage(framebuffer_.id(), intensity.foamPixels);
     glUseProgram(upsampleProgram_.id());
     glUniform1i(uniformLocation(upsampleProgram_.id(), "blockSize"), block);
     glBindTextureUnit(0, blockShadow_.id());
@@ -124,7 +118,6 @@ FoamOcclusionData FoamOcclusionPass::run(const FoamSurfaceData& surface, const F
     glBindTextureUnit(2, surface.depthAndSearchRadius.id());
     glBindTextureUnit(3, intensity.intensity.id());
     drawFullscreenTriangle(emptyVertexArray_.id());
-    clearCoverageLimit(framebuffer_.id());
     checkGlError("upsampling the foam's shadow and irradiance");
   }
   return {shadow_, irradiance_};

@@ -10,17 +10,13 @@ NormalsFromDepthPass::NormalsFromDepthPass(const ShaderLibrary& shaders)
       framebuffer_(createFramebuffer()) {}
 
 RecomputedNormals NormalsFromDepthPass::run(const Texture2D& smoothedEyeDepth,
-                                            const Texture2D& originalNormal, bool backLayer,
-                                            const LayerCoverage& coverage, int width, int height) {
+                                            const Texture2D& originalNormal, bool backLayer, int width,
+                                            int height) {
   ensureTexture(normal_, GL_RGBA16F, width, height);
-  if (coverage.depthBuffer) {
-    const float noNormal[4] = {0.0f, 0.0f, 0.0f, 0.0f};
-    glClearTexImage(normal_.id(), 0, GL_RGBA, GL_FLOAT, noNormal);
-  }
   glNamedFramebufferTexture(framebuffer_.id(), GL_COLOR_ATTACHMENT0, normal_.id(), 0);
   glBindFramebuffer(GL_FRAMEBUFFER, framebuffer_.id());
   glViewport(0, 0, width, height);
-  limitToCoverage(framebuffer_.id(), coverage);
+  glDisable(GL_DEPTH_TEST);
   glDisable(GL_BLEND);
   const GLuint program = program_.id();
   glUseProgram(program);
@@ -28,7 +24,6 @@ RecomputedNormals NormalsFromDepthPass::run(const Texture2D& smoothedEyeDepth,
   glBindTextureUnit(0, smoothedEyeDepth.id());
   glBindTextureUnit(1, originalNormal.id());
   drawFullscreenTriangle(emptyVertexArray_.id());
-  clearCoverageLimit(framebuffer_.id());
   checkGlError("recomputing normals from depth");
   return {normal_};
 }

@@ -2,7 +2,6 @@
 
 #include "framedata/SmoothedDepth.h"
 #include "gl/GlObjects.h"
-#include "gl/LayerCoverage.h"
 #include "gl/ShaderLibrary.h"
 
 namespace spindrift {
@@ -13,9 +12,9 @@ class NormalsFromDepthPass {
  public:
   explicit NormalsFromDepthPass(const ShaderLibrary& shaders);
   /// `originalNormal` serves pixels whose depth has no neighbour along an axis. `backLayer` turns the normals
-  /// away from the camera. Only `coverage`'s pixels are shaded (the rest get no normal).
+  /// away from the camera.
   RecomputedNormals run(const Texture2D& smoothedEyeDepth, const Texture2D& originalNormal, bool backLayer,
-                        const LayerCoverage& coverage, int width, int height);
+                        int width, int height);
 
  private:
   ProgramObject program_;

@@ -2,7 +2,6 @@
 
 #include <glm/matrix.hpp>
 
-#include "gl/LayerCoverage.h"
 #include "passes/FrameUniforms.h"
 
 namespace spindrift {
@@ -46,24 +45,17 @@ LiquidData RefractionPass::run(const std::optional<SurfaceLayers>& splashes,
     const DepthLayer& layer = back ? layers->back : layers->front;
     return normal ? layer.normal.id() : layer.eyeDepth.id();
   };
-  // The marches' four depth reads per sample become one: the layers packed into one texel per pixel. The
-  // same pass marks the pixels where a path starts (depth 0; 1 elsewhere), for the refraction's early test.
+  // The marches' four depth reads per sample become one: the layers packed into one texel per pixel.
   ensureTexture(layerDepths_, GL_RGBA32F, width, height);
-  ensureTexture(pathStarts_, GL_DEPTH_COMPONENT32F, width, height);
   bindColorTargets(packFramebuffer_.id(), {&layerDepths_});
-  writeCoverage(packFramebuffer_.id(), pathStarts_);
+  glDisable(GL_DEPTH_TEST);
   glDisable(GL_BLEND);
-  const GLuint packProgram = packProgram_.id();
-  glUseProgram(packProgram);
-  glUniform1i(uniformLocation(packProgram, "hasSplash"), splashes ? 1 : 0);
-  glUniform1i(uniformLocation(packProgram, "hasAggregate"), aggregates ? 1 : 0);
-  glUniform1i(uniformLocation(packProgram, "underLiquid"), cameraInLiquid && aggregates ? 1 : 0);
+  glUseProgram(packProgram_.id());
   glBindTextureUnit(0, layerTexture(splashes, false, false));
   glBindTextureUnit(1, layerTexture(splashes, true, false));
   glBindTextureUnit(2, layerTexture(aggregates, false, false));
   glBindTextureUnit(3, layerTexture(aggregates, true, false));
   drawFullscreenTriangle(emptyVertexArray_.id());
-  clearCoverageLimit(packFramebuffer_.id());
   checkGlError("packing the depth layers for the refraction");
 
   const GLuint framebuffer = framebuffer_.id();
@@ -75,12 +67,6 @@ LiquidData RefractionPass::run(const std::optional<SurfaceLayers>& splashes,
     glNamedFramebufferTexture(framebuffer, attachments[i], outputs[i]->id(), 0);
   }
   glNamedFramebufferDrawBuffers(framebuffer, 6, attachments);
-  // What refraction.frag writes where no path starts, for the pixels its early test passes over.
-  const float nothing[4] = {0.0f, 0.0f, 0.0f, 0.0f}, noSurface[4] = {1e10f, 0.0f, 0.0f, 0.0f};
-  for (int i = 0; i < 6; ++i)
-    glClearNamedFramebufferfv(framebuffer, GL_COLOR, i, outputs[i] == &frontDepth_ ? noSurface : nothing);
-  for (const Texture2D* image : {&refractionUv_, &transmittance_, &reflection_})
-    glClearTexImage(image->id(), 0, GL_RGBA, GL_FLOAT, nothing);
 
   const std::uint32_t zeros[kRayCounters] = {};
   glNamedBufferSubData(counters_.id(), 0, sizeof zeros, zeros);
@@ -88,7 +74,7 @@ LiquidData RefractionPass::run(const std::optional<SurfaceLayers>& splashes,
 
   glBindFramebuffer(GL_FRAMEBUFFER, framebuffer);
   glViewport(0, 0, width, height);
-  limitToCoverage(framebuffer, {&pathStarts_, 1.0f});
+  glDisable(GL_DEPTH_TEST);
   glDisable(GL_BLEND);
   const GLuint program = program_.id();
   glUseProgram(program);
@@ -123,7 +109,6 @@ LiquidData RefractionPass::run(const std::optional<SurfaceLayers>& splashes,
   glUniform1f(uniformLocation(program, "reflectionStepPixels"), parameters.reflection_step_pixels);
   glUniform1i(uniformLocation(program, "maxSteps"), parameters.trace_max_steps);
   drawFullscreenTriangle(emptyVertexArray_.id());
-  clearCoverageLimit(framebuffer);
   // The image stores must land before the split layers are sampled or read back.
   glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_TEXTURE_UPDATE_BARRIER_BIT |
                   GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);

@@ -34,7 +34,6 @@ class RefractionPass {
   ProgramObject packProgram_;  ///< refraction_layers.frag
   FramebufferObject packFramebuffer_;
   Texture2D layerDepths_;  ///< the four depth layers in one RGBA32F texture
-  Texture2D pathStarts_;   ///< depth 0 where a path starts, 1 elsewhere: the refraction's early depth test
   VertexArrayObject emptyVertexArray_;
   FramebufferObject framebuffer_;
   BufferObject counters_;
