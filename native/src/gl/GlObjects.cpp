@@ -97,10 +97,6 @@ VertexArrayObject createVertexArray() {
   return VertexArrayObject(id);
 }
 
-QueryObject createTimestampQuery() {
-  return createQuery(GL_TIMESTAMP);
-}
-
 QueryObject createQuery(GLenum target) {
   GLuint id = 0;
   glCreateQueries(target, 1, &id);

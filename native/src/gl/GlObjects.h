@@ -84,7 +84,6 @@ void uploadTexture(Texture2D& texture, GLenum internalFormat, int width, int hei
 BufferObject createBuffer();
 FramebufferObject createFramebuffer();
 VertexArrayObject createVertexArray();
-QueryObject createTimestampQuery();
 QueryObject createQuery(GLenum target);
 
 /// Throws Error naming `what` when the GL error flag is set.

@@ -23,7 +23,7 @@ bool finishPasses() {
 // reports a nonsensical elapsed time for the first query of a context, while its timestamps are sound.
 void PassTimer::begin(const std::string& passName) {
   while (queries_.size() < 2 * (frame_.size() + 1))
-    queries_.push_back(createTimestampQuery());
+    queries_.push_back(createQuery(GL_TIMESTAMP));
   if (finishPasses()) glFinish();
   frame_.push_back({passName, 0.0, 0.0});
   glQueryCounter(queries_[2 * (frame_.size() - 1)].id(), GL_TIMESTAMP);
