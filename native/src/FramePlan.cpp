@@ -26,6 +26,8 @@ const char* passName(Pass pass) {
       return "splash_depth_layers";
     case Pass::AggregateDepthLayers:
       return "aggregate_depth_layers";
+    case Pass::LiquidTiles:
+      return "liquid_tiles";
     case Pass::Smoothing:
       return "smoothing";
     case Pass::RaymarchSurface:
@@ -99,6 +101,10 @@ FramePlan planFrame(const FrameContents& contents) {
   decide(Pass::AggregateDepthLayers, !aggregates    ? "no aggregate particles in view"
                                      : !layersShown ? noLiquidOutput
                                                     : nullptr);
+  decide(Pass::LiquidTiles, !(splashes || aggregates)  ? "no liquid particles in view"
+                            : !layersShown             ? noLiquidOutput
+                            : !contents.skipEmptyTiles ? "liquid.skip_empty_tiles is off"
+                                                       : nullptr);
   decide(Pass::Smoothing, !aggregates                    ? "no aggregate particles in view"
                           : contents.smoothing == "none" ? "liquid.smoothing is none"
                           : !layersShown                 ? noLiquidOutput

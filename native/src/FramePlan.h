@@ -20,6 +20,7 @@ enum class Pass {
   LitBackground,
   SplashDepthLayers,
   AggregateDepthLayers,
+  LiquidTiles,  ///< the pixel tiles that smoothing and refraction shade (liquid.skip_empty_tiles)
   Smoothing,
   RaymarchSurface,  ///< liquid.surface = raymarch: six passes, timed by RaymarchSurface itself
   Refraction,
@@ -59,6 +60,7 @@ struct FrameContents {
   int skyOcclusionDirections = 16;     ///< light.sky_occlusion_directions.
   bool lightLayersWanted = true;       ///< Any of liquid_shadow, caustics, liquid_sky (`--layers`).
   bool foamCulling = true;             ///< foam.cull_hidden.
+  bool skipEmptyTiles = true;          ///< liquid.skip_empty_tiles.
 };
 
 /// Which passes a frame runs and, for each it does not, why. The wiring of the frame in one plain function,

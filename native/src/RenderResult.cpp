@@ -65,6 +65,8 @@ nlohmann::json FrameStats::toJson() const {
         {"occluded_dropped", liquid.occludedDropped},
         {"occlusion_ms", liquid.occlusionMilliseconds},
         {"liquid_pixels", liquid.liquidPixels},
+        {"tiles_shaded", liquid.tilesShaded},
+        {"tiles", liquid.tiles},
         {"rays_with_second_body", liquid.raysWithSecondBody},
         {"total_internal_reflections", liquid.totalInternalReflections},
         {"exits_off_screen", liquid.exitsOffScreen},

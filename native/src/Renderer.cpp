@@ -29,6 +29,7 @@
 #include "passes/FoamVisibilityPass.h"
 #include "passes/FrameUniforms.h"
 #include "passes/OccluderDepthPass.h"
+#include "passes/PixelTilePass.h"
 #include "passes/RefractionPass.h"
 #include "prep/BackgroundCache.h"
 #include "prep/FoamPreparation.h"
@@ -64,6 +65,7 @@ struct FramePipeline {
   OccluderDepthPass liquidMeshDepth{shaders};
   EllipsoidImpostorPass splashImpostors{shaders};
   EllipsoidImpostorPass aggregateImpostors{shaders};
+  PixelTilePass liquidTiles{shaders};
   DepthSmoothingPass frontSmoothing{shaders};
   DepthSmoothingPass backSmoothing{shaders};
   RaymarchSurface raymarch{shaders};
@@ -86,6 +88,18 @@ float typicalLiquidRadius(const Particles& particles) {
   if (radii.empty()) return 1.0f;
   std::nth_element(radii.begin(), radii.begin() + radii.size() / 2, radii.end());
   return radii[radii.size() / 2];
+}
+
+// The eye depths of the layers drawn, for the tiles that hold liquid.
+std::vector<const Texture2D*> eyeDepthsOf(const std::optional<SurfaceLayers>& splashes,
+                                          const std::optional<SurfaceLayers>& aggregates) {
+  std::vector<const Texture2D*> eyeDepths;
+  for (const std::optional<SurfaceLayers>* layers : {&splashes, &aggregates})
+    if (*layers) {
+      eyeDepths.push_back(&(*layers)->front.eyeDepth);
+      eyeDepths.push_back(&(*layers)->back.eyeDepth);
+    }
+  return eyeDepths;
 }
 
 // A result with the frame's size and what the stats know before any work.
@@ -319,6 +333,7 @@ RenderResult Renderer::renderPrepared(const Scene& scene, const Particles& parti
                          impl_->intermediateLayers,  liquidParameters.surface};
   contents.lights = scene.lights.size();
   contents.foamCulling = foamParameters.cull_hidden;
+  contents.skipEmptyTiles = liquidParameters.skip_empty_tiles;
   contents.lightsSeeingLiquid = lighting.lights.size();
   contents.causticLights = causticLights(lighting);
   contents.caustics = scene.parameters.light.caustics;
@@ -376,14 +391,22 @@ RenderResult Renderer::renderPrepared(const Scene& scene, const Particles& parti
       }));
       intermediate.keep(*aggregates, "aggregate");
     }
+    // The pixel tiles that hold a pixel of any layer: smoothing and refraction shade only these.
+    std::optional<PixelTiles> liquidTiles;
+    if (plan.runs(Pass::LiquidTiles))
+      liquidTiles.emplace(timed(Pass::LiquidTiles, [&] {
+        return pipeline.liquidTiles.run(eyeDepthsOf(splashes, aggregates), width, height);
+      }));
+    const PixelTiles* tiles = liquidTiles ? &*liquidTiles : nullptr;
     if (plan.runs(Pass::Smoothing)) {
       aggregates.emplace(timed(Pass::Smoothing, [&] {
         return SurfaceLayers{
             // A ray-marched surface replaces the front layer: only the back layer is smoothed then.
             raymarch ? aggregates->front
-                     : pipeline.frontSmoothing.run(aggregates->front, radius, false, liquidParameters, width,
-                                                   height),
-            pipeline.backSmoothing.run(aggregates->back, radius, true, liquidParameters, width, height)};
+                     : pipeline.frontSmoothing.run(aggregates->front, radius, false, liquidParameters, tiles,
+                                                   width, height),
+            pipeline.backSmoothing.run(aggregates->back, radius, true, liquidParameters, tiles, width,
+                                       height)};
       }));
       intermediate.keep(*aggregates, "aggregate_smoothed");
     }
@@ -396,10 +419,12 @@ RenderResult Renderer::renderPrepared(const Scene& scene, const Particles& parti
       stats.raymarch = surface.statistics();
     }
     std::optional<LiquidData> liquidLayer;
+    // Under water every pixel is liquid; a ray-marched front may reach pixels no particle layer covers.
+    const PixelTiles* refractionTiles = cameraInLiquid || raymarch ? nullptr : tiles;
     if (plan.runs(Pass::Refraction))
       liquidLayer.emplace(timed(Pass::Refraction, [&] {
         return pipeline.refraction.run(splashes, aggregates, background, liquidParameters, cameraInLiquid,
-                                       radius, domainBox, width, height);
+                                       radius, domainBox, refractionTiles, width, height);
       }));
 
     // Foam (foam paper, figure 2): the solids' and the liquid's depth, the foam's nearest depth, its
@@ -448,6 +473,10 @@ RenderResult Renderer::renderPrepared(const Scene& scene, const Particles& parti
 
     const Clock::time_point readbackStart = Clock::now();
     if (liquidLayer) recordRefraction(pipeline.refraction.statistics(), stats.liquid);
+    if (liquidTiles) {
+      stats.liquid.tilesShaded = pipeline.liquidTiles.markedTiles();
+      stats.liquid.tiles = std::size_t(pixelTilesAcross(width)) * std::size_t(pixelTilesDown(height));
+    }
     if (foamLayer) recordFoamOcclusion(pipeline.foamOcclusion.statistics(), stats.foam);
     readFrameLayers(composite ? &*composite : nullptr, liquidLayer ? &*liquidLayer : nullptr,
                     foamLayer ? &*foamLayer : nullptr, width, height, layers, result.layers);

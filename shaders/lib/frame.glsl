@@ -8,6 +8,7 @@ layout(std140, binding = 0) uniform FrameBlock {
   vec4 viewportSize;  // width, height, 1/width, 1/height
   vec4 clipPlanes;    // near, far, 1 / far, unused
   vec4 tanHalfFov;    // tan(fov_x / 2), tan(fov_y / 2), unused, unused
+  vec4 pixelTiles;    // the side of a pixel tile (framedata/PixelTiles.h), unused, unused, unused
 } frame;
 
 // What depth and normal outputs hold where there is no surface: Blender's "nothing here" depth.

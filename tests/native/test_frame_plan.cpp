@@ -40,16 +40,12 @@ TEST(FramePlan, FullFrameRunsEveryPassInRecipeOrder) {
   contents.causticLights = 1;
   contents.caustics = true;
   const FramePlan plan = planFrame(contents);
-  const std::vector<std::string> expected = {"background",          "occluder_depth",
-                                             "liquid_mesh_depth",   "light_depth_layers",
-                                             "liquid_shadow",       "caustics",
-                                             "sky_occlusion",       "lit_background",
-                                             "splash_depth_layers", "aggregate_depth_layers",
-                                             "smoothing",           "refraction",
-                                             "foam_scene_depth",    "foam_visibility",
-                                             "foam_depth",          "foam_thickness",
-                                             "foam_intensity",      "foam_occlusion",
-                                             "foam_blur",           "composite"};
+  const std::vector<std::string> expected = {
+      "background",   "occluder_depth", "liquid_mesh_depth", "light_depth_layers",  "liquid_shadow",
+      "caustics",     "sky_occlusion",  "lit_background",    "splash_depth_layers", "aggregate_depth_layers",
+      "liquid_tiles", "smoothing",      "refraction",        "foam_scene_depth",    "foam_visibility",
+      "foam_depth",   "foam_thickness", "foam_intensity",    "foam_occlusion",      "foam_blur",
+      "composite"};
   EXPECT_EQ(names(plan.passes), expected);
   EXPECT_TRUE(plan.skipped.empty());
 }
@@ -57,7 +53,7 @@ TEST(FramePlan, FullFrameRunsEveryPassInRecipeOrder) {
 TEST(FramePlan, EmptyFrameRunsBackgroundAndCompositeOnly) {
   const FramePlan plan = planFrame({0, 0, 0, "plane_fit"});
   EXPECT_EQ(names(plan.passes), (std::vector<std::string>{"background", "composite"}));
-  ASSERT_EQ(plan.skipped.size(), 18u);
+  ASSERT_EQ(plan.skipped.size(), 19u);
   EXPECT_EQ(plan.skipped.front().name, "occluder_depth");
   EXPECT_EQ(reasonFor(plan, "occluder_depth"), "no occluders");
   EXPECT_EQ(reasonFor(plan, "liquid_mesh_depth"), "no liquid mesh");
@@ -65,6 +61,7 @@ TEST(FramePlan, EmptyFrameRunsBackgroundAndCompositeOnly) {
     EXPECT_EQ(reasonFor(plan, pass), "no lights in the scene");
   EXPECT_EQ(reasonFor(plan, "refraction"), "no liquid particles in view");
   EXPECT_EQ(reasonFor(plan, "smoothing"), "no aggregate particles in view");
+  EXPECT_EQ(reasonFor(plan, "liquid_tiles"), "no liquid particles in view");
   for (const std::string& pass : kFoamPasses)
     EXPECT_EQ(reasonFor(plan, pass), "no foam particles in view");
 }
@@ -177,8 +174,10 @@ TEST(FramePlan, EveryPassIsEitherRunOrSkippedExactlyOnce) {
             }
             std::sort(all.begin(), all.end());
             EXPECT_EQ(std::adjacent_find(all.begin(), all.end()), all.end());
-            EXPECT_EQ(all.size(), 20u);
+            EXPECT_EQ(all.size(), 21u);
             // A pass runs only when what it reads runs.
+            if (plan.runs(Pass::LiquidTiles))
+              EXPECT_TRUE(plan.runs(Pass::SplashDepthLayers) || plan.runs(Pass::AggregateDepthLayers));
             if (plan.runs(Pass::SkyOcclusion)) EXPECT_TRUE(plan.runs(Pass::LitBackground));
             if (plan.runs(Pass::Smoothing)) EXPECT_TRUE(plan.runs(Pass::AggregateDepthLayers));
             if (plan.runs(Pass::FoamSceneDepth) && (splash || aggregate))
@@ -195,6 +194,17 @@ TEST(FramePlan, FoamDrawnWithoutCullingSkipsItsVisibility) {
   EXPECT_FALSE(plan.runs(Pass::FoamVisibility));
   EXPECT_TRUE(plan.runs(Pass::FoamDepth));
   EXPECT_EQ(reasonFor(plan, "foam_visibility"), "foam.cull_hidden is off");
+}
+
+TEST(FramePlan, EmptyTilesShadedWhenAskedSkipsTheTilePass) {
+  FrameContents contents{100, 1000, 50, "plane_fit"};
+  contents.skipEmptyTiles = false;
+  const FramePlan plan = planFrame(contents);
+  EXPECT_FALSE(plan.runs(Pass::LiquidTiles));
+  EXPECT_TRUE(plan.runs(Pass::Smoothing));
+  EXPECT_TRUE(plan.runs(Pass::Refraction));
+  EXPECT_EQ(reasonFor(plan, "liquid_tiles"), "liquid.skip_empty_tiles is off");
+  EXPECT_TRUE(planFrame({10, 0, 0, "none"}).runs(Pass::LiquidTiles)) << "splashes alone are refracted";
 }
 
 FrameContents withLayers(bool composite, bool liquid, bool foam) {

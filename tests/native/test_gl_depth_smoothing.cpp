@@ -52,8 +52,9 @@ class SmoothingHarness {
       uploadTexture(pipeline.depth, GL_R32F, input.width, input.height, 1, input.eyeDepth.data(), false);
       uploadTexture(pipeline.normal, GL_RGBA16F, input.width, input.height, 4, input.normal.data(), false);
       pipeline.timer.begin("depth_smoothing");
-      const DepthLayer smoothed = pipeline.smoothing.run({pipeline.depth, pipeline.normal}, float(radius),
-                                                         backLayer, parameters, input.width, input.height);
+      const DepthLayer smoothed =
+          pipeline.smoothing.run({pipeline.depth, pipeline.normal}, float(radius), backLayer, parameters,
+                                 nullptr, input.width, input.height);
       pipeline.timer.end();
       const std::vector<PassTiming> timings = pipeline.timer.collect();
       if (gpuMilliseconds) *gpuMilliseconds = timings.front().gpuMilliseconds;

@@ -58,6 +58,10 @@ struct LiquidFrameStats {
   std::size_t occludedDropped = 0;    ///< Hidden by the view from both layers: not drawn.
   double occlusionMilliseconds = 0.0;
   std::size_t liquidPixels = 0;
+  /// The 16 × 16 pixel tiles that smoothing, its normals and the refraction shaded, of `tiles` in the frame
+  /// (liquid.skip_empty_tiles; both 0 when it is off).
+  std::size_t tilesShaded = 0;
+  std::size_t tiles = 0;
   std::size_t raysWithSecondBody =
       0;  ///< Rays that went on into a second body (third and fourth refraction).
   std::size_t totalInternalReflections = 0;

@@ -6,9 +6,14 @@ namespace spindrift {
 
 DepthPingPong::DepthPingPong() : framebuffer_(createFramebuffer()), emptyVertexArray_(createVertexArray()) {}
 
-void DepthPingPong::resize(int width, int height) {
+void DepthPingPong::prepare(int width, int height, const PixelTiles* tiles) {
+  tiles_ = tiles;
   for (Texture2D& target : targets_)
     ensureTexture(target, GL_R32F, width, height);
+  const float noSurface[4] = {1e10f, 0.0f, 0.0f, 0.0f};  // kNoSurfaceDepth
+  if (tiles)  // one at a time: draw() attaches its target as the only one
+    for (const Texture2D& target : targets_)
+      clearColorTargets(framebuffer_.id(), {&target}, noSurface);
 }
 
 Texture2D& DepthPingPong::targetOtherThan(const Texture2D& source) {
@@ -24,7 +29,7 @@ const Texture2D& DepthPingPong::draw(const Texture2D& source) {
   glDisable(GL_DEPTH_TEST);
   glDisable(GL_BLEND);
   glBindTextureUnit(0, source.id());
-  drawFullscreenTriangle(emptyVertexArray_.id());
+  drawFullscreen(emptyVertexArray_.id(), tiles_);
   checkGlError("filtering a depth layer");
   return target;
 }

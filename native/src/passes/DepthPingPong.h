@@ -2,6 +2,7 @@
 
 #include <array>
 
+#include "framedata/PixelTiles.h"
 #include "gl/GlObjects.h"
 
 namespace spindrift {
@@ -13,10 +14,12 @@ class DepthPingPong {
  public:
   DepthPingPong();
 
-  /// Makes both targets width × height (reallocated only when the size changes).
-  void resize(int width, int height);
-  /// Draws the current program's fullscreen triangle (shaders/fullscreen.vert) with `source` at texture
-  /// unit 0 into the target that is not `source`, and returns that target.
+  /// Makes both targets width × height (reallocated only when the size changes). With `tiles`, later draws
+  /// shade only the marked tiles and both targets are cleared to kNoSurfaceDepth, which every filter writes
+  /// where the layer is empty ("smoothing never creates a surface").
+  void prepare(int width, int height, const PixelTiles* tiles);
+  /// Draws the current program's fullscreen triangle (shaders/fullscreen.vert), or the marked tiles, with
+  /// `source` at texture unit 0 into the target that is not `source`, and returns that target.
   const Texture2D& draw(const Texture2D& source);
   /// Draws `count` times, each reading the previous result, starting from `source`; returns the last result
   /// (`source` itself when `count` is 0).
@@ -28,6 +31,7 @@ class DepthPingPong {
   Texture2D& targetOtherThan(const Texture2D& source);
 
   std::array<Texture2D, 2> targets_;
+  const PixelTiles* tiles_ = nullptr;
   FramebufferObject framebuffer_;
   VertexArrayObject emptyVertexArray_;
 };

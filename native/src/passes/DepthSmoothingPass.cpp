@@ -35,10 +35,11 @@ DepthSmoothingPass::DepthSmoothingPass(const ShaderLibrary& shaders)
 DepthSmoothingPass::~DepthSmoothingPass() = default;
 
 DepthLayer DepthSmoothingPass::run(const DepthLayer& layer, float particleRadius, bool backLayer,
-                                   const LiquidParameters& parameters, int width, int height) {
+                                   const LiquidParameters& parameters, const PixelTiles* tiles, int width,
+                                   int height) {
   Methods& methods = *methods_;
   DepthPingPong& targets = methods.depthTargets;
-  targets.resize(width, height);
+  targets.prepare(width, height, tiles);
   const std::string& method = parameters.smoothing;
   if (method == "none") {
     Texture2D& normal = methods.passedThroughNormal;
@@ -63,7 +64,7 @@ DepthLayer DepthSmoothingPass::run(const DepthLayer& layer, float particleRadius
     throw Error("liquid.smoothing: unknown method \"" + method + "\"");
   // Zero iterations leave the input's own texture; the result must live in this pass's textures.
   if (smoothed->id() == layer.eyeDepth.id()) smoothed = &targets.copy(layer.eyeDepth);
-  return {*smoothed, methods.normals.run(*smoothed, layer.normal, backLayer, width, height).normal};
+  return {*smoothed, methods.normals.run(*smoothed, layer.normal, backLayer, tiles, width, height).normal};
 }
 
 }  // namespace spindrift

@@ -3,6 +3,7 @@
 #include <memory>
 
 #include "framedata/DepthLayers.h"
+#include "framedata/PixelTiles.h"
 #include "gl/GlObjects.h"
 #include "gl/ShaderLibrary.h"
 #include "spindrift/Parameters.h"
@@ -19,9 +20,10 @@ class DepthSmoothingPass {
   ~DepthSmoothingPass();
 
   /// `particleRadius` is the liquid's world radius r, which the methods' parameters are scaled by.
-  /// `backLayer` says the layer's outward normals face away from the camera.
+  /// `backLayer` says the layer's outward normals face away from the camera. With `tiles` (which must mark
+  /// every tile where the layer has a surface) only those tiles are shaded; the rest hold the empty values.
   DepthLayer run(const DepthLayer& layer, float particleRadius, bool backLayer,
-                 const LiquidParameters& parameters, int width, int height);
+                 const LiquidParameters& parameters, const PixelTiles* tiles, int width, int height);
 
  private:
   struct Methods;

@@ -16,6 +16,7 @@ FrameUniforms FrameUniforms::fromCamera(const Camera& camera) {
   uniforms.clipPlanes = {camera.nearClip, camera.farClip, 1.0f / camera.farClip, 0.0f};
   const float tanHalfY = std::tan(glm::radians(camera.fovYDegrees) * 0.5f);
   uniforms.tanHalfFov = {tanHalfY * camera.aspect(), tanHalfY, 0.0f, 0.0f};
+  uniforms.pixelTiles = {float(kPixelTileSize), 0.0f, 0.0f, 0.0f};
   return uniforms;
 }
 
@@ -32,6 +33,18 @@ void FrameUniformBuffer::update(const Camera& camera, GLuint binding) {
 void drawFullscreenTriangle(GLuint emptyVertexArray) {
   glBindVertexArray(emptyVertexArray);
   glDrawArrays(GL_TRIANGLES, 0, 3);
+}
+
+void drawFullscreen(GLuint emptyVertexArray, const PixelTiles* tiles) {
+  if (!tiles) {
+    drawFullscreenTriangle(emptyVertexArray);
+    return;
+  }
+  // Vertices 3 to 8 of instance i are the two triangles of tile i (fullscreen.vert).
+  const Texture2D& marked = tiles->marked;
+  glBindTextureUnit(kPixelTilesTextureUnit, marked.id());
+  glBindVertexArray(emptyVertexArray);
+  glDrawArraysInstanced(GL_TRIANGLES, 3, 6, marked.width * marked.height);
 }
 
 void bindColorTargets(GLuint framebuffer, std::initializer_list<const Texture2D*> targets) {
@@ -54,6 +67,13 @@ void bindColorTargets(GLuint framebuffer, std::initializer_list<const Texture2D*
   glNamedFramebufferDrawBuffers(framebuffer, count, drawBuffers);
   glBindFramebuffer(GL_FRAMEBUFFER, framebuffer);
   glViewport(0, 0, width, height);
+}
+
+void clearColorTargets(GLuint framebuffer, std::initializer_list<const Texture2D*> targets,
+                       const float value[4]) {
+  bindColorTargets(framebuffer, targets);
+  for (GLint drawBuffer = 0; drawBuffer < GLint(targets.size()); ++drawBuffer)
+    glClearNamedFramebufferfv(framebuffer, GL_COLOR, drawBuffer, value);
 }
 
 }  // namespace spindrift

@@ -10,9 +10,11 @@ NormalsFromDepthPass::NormalsFromDepthPass(const ShaderLibrary& shaders)
       framebuffer_(createFramebuffer()) {}
 
 RecomputedNormals NormalsFromDepthPass::run(const Texture2D& smoothedEyeDepth,
-                                            const Texture2D& originalNormal, bool backLayer, int width,
-                                            int height) {
+                                            const Texture2D& originalNormal, bool backLayer,
+                                            const PixelTiles* tiles, int width, int height) {
   ensureTexture(normal_, GL_RGBA16F, width, height);
+  const float noNormal[4] = {0.0f, 0.0f, 0.0f, 0.0f};  // what depth_normals.frag writes off the surface
+  if (tiles) clearColorTargets(framebuffer_.id(), {&normal_}, noNormal);
   glNamedFramebufferTexture(framebuffer_.id(), GL_COLOR_ATTACHMENT0, normal_.id(), 0);
   glBindFramebuffer(GL_FRAMEBUFFER, framebuffer_.id());
   glViewport(0, 0, width, height);
@@ -23,7 +25,7 @@ RecomputedNormals NormalsFromDepthPass::run(const Texture2D& smoothedEyeDepth,
   glUniform1i(uniformLocation(program, "backLayer"), backLayer ? 1 : 0);
   glBindTextureUnit(0, smoothedEyeDepth.id());
   glBindTextureUnit(1, originalNormal.id());
-  drawFullscreenTriangle(emptyVertexArray_.id());
+  drawFullscreen(emptyVertexArray_.id(), tiles);
   checkGlError("recomputing normals from depth");
   return {normal_};
 }

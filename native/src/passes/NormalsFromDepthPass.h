@@ -1,5 +1,6 @@
 #pragma once
 
+#include "framedata/PixelTiles.h"
 #include "framedata/SmoothedDepth.h"
 #include "gl/GlObjects.h"
 #include "gl/ShaderLibrary.h"
@@ -12,9 +13,9 @@ class NormalsFromDepthPass {
  public:
   explicit NormalsFromDepthPass(const ShaderLibrary& shaders);
   /// `originalNormal` serves pixels whose depth has no neighbour along an axis. `backLayer` turns the normals
-  /// away from the camera.
+  /// away from the camera. With `tiles`, only the marked tiles are shaded and the rest cleared to no normal.
   RecomputedNormals run(const Texture2D& smoothedEyeDepth, const Texture2D& originalNormal, bool backLayer,
-                        int width, int height);
+                        const PixelTiles* tiles, int width, int height);
 
  private:
   ProgramObject program_;

@@ -33,7 +33,7 @@ RaymarchEntryData RaymarchEntryPass::run(const std::optional<SurfaceLayers>& spl
   // plane fit keeps the normals of large on-screen particles free of the separable filter's streaks
   // (docs/raymarch.md, "N_screen from the plane fit").
   const DepthLayer smoothed =
-      smoothing_->run({allDepth_, allNormal_}, particleRadius, false, parameters, width, height);
+      smoothing_->run({allDepth_, allNormal_}, particleRadius, false, parameters, nullptr, width, height);
   return {allDepth_, smoothed.normal};
 }
 

@@ -26,8 +26,8 @@ RefractionPass::RefractionPass(const ShaderLibrary& shaders)
 LiquidData RefractionPass::run(const std::optional<SurfaceLayers>& splashes,
                                const std::optional<SurfaceLayers>& aggregates,
                                const BackgroundData& background, const LiquidParameters& parameters,
-                               bool cameraInLiquid, float particleRadius, const DomainBox* domain, int width,
-                               int height) {
+                               bool cameraInLiquid, float particleRadius, const DomainBox* domain,
+                               const PixelTiles* tiles, int width, int height) {
   ensureTexture(color_, GL_RGBA32F, width, height);
   ensureTexture(splashColor_, GL_RGBA32F, width, height);
   ensureTexture(surfaceClass_, GL_R32F, width, height);
@@ -47,6 +47,7 @@ LiquidData RefractionPass::run(const std::optional<SurfaceLayers>& splashes,
   };
   // The marches' four depth reads per sample become one: the layers packed into one texel per pixel.
   ensureTexture(layerDepths_, GL_RGBA32F, width, height);
+  if (tiles) clearToNoLiquid();  // the tiles not drawn keep these values
   bindColorTargets(packFramebuffer_.id(), {&layerDepths_});
   glDisable(GL_DEPTH_TEST);
   glDisable(GL_BLEND);
@@ -55,7 +56,7 @@ LiquidData RefractionPass::run(const std::optional<SurfaceLayers>& splashes,
   glBindTextureUnit(1, layerTexture(splashes, true, false));
   glBindTextureUnit(2, layerTexture(aggregates, false, false));
   glBindTextureUnit(3, layerTexture(aggregates, true, false));
-  drawFullscreenTriangle(emptyVertexArray_.id());
+  drawFullscreen(emptyVertexArray_.id(), tiles);
   checkGlError("packing the depth layers for the refraction");
 
   const GLuint framebuffer = framebuffer_.id();
@@ -108,13 +109,24 @@ LiquidData RefractionPass::run(const std::optional<SurfaceLayers>& splashes,
   glUniform1f(uniformLocation(program, "stepPixels"), parameters.trace_step_pixels);
   glUniform1f(uniformLocation(program, "reflectionStepPixels"), parameters.reflection_step_pixels);
   glUniform1i(uniformLocation(program, "maxSteps"), parameters.trace_max_steps);
-  drawFullscreenTriangle(emptyVertexArray_.id());
+  drawFullscreen(emptyVertexArray_.id(), tiles);
   // The image stores must land before the split layers are sampled or read back.
   glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_TEXTURE_UPDATE_BARRIER_BIT |
                   GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
   checkGlError("refracting through the liquid");
   return {color_,       splashColor_,  surfaceClass_,  thickness_, frontDepth_,
           frontNormal_, refractionUv_, transmittance_, reflection_};
+}
+
+void RefractionPass::clearToNoLiquid() {
+  // What refraction.frag and refraction_layers.frag write where no layer has a surface.
+  const float zeros[4] = {0.0f, 0.0f, 0.0f, 0.0f};
+  const float noSurface[4] = {1e10f, 1e10f, 1e10f, 1e10f};  // kNoSurfaceDepth
+  clearColorTargets(packFramebuffer_.id(),
+                    {&color_, &splashColor_, &surfaceClass_, &thickness_, &frontNormal_, &refractionUv_,
+                     &transmittance_, &reflection_},
+                    zeros);
+  clearColorTargets(packFramebuffer_.id(), {&frontDepth_, &layerDepths_}, noSurface);
 }
 
 RefractionStatistics RefractionPass::statistics() const {

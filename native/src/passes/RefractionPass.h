@@ -6,6 +6,7 @@
 #include "framedata/BackgroundData.h"
 #include "framedata/DepthLayers.h"
 #include "framedata/LiquidData.h"
+#include "framedata/PixelTiles.h"
 #include "gl/GlObjects.h"
 #include "gl/ShaderLibrary.h"
 #include "spindrift/Parameters.h"
@@ -22,14 +23,18 @@ class RefractionPass {
   /// starts inside the aggregated body and first meets its back layer, the surface seen from below. A path
   /// ends on a solid within two `particleRadius` of the body's drawn back (the liquid rests on it), unless
   /// the solid lies outside a Mantaflow `domain`'s box (air separates Mantaflow's mesh from the domain's
-  /// walls).
+  /// walls). With `tiles` (marking every tile where a layer has a surface; never with the camera in the
+  /// liquid, where every pixel is liquid) only those tiles are shaded and the rest hold the no-liquid values.
   LiquidData run(const std::optional<SurfaceLayers>& splashes, const std::optional<SurfaceLayers>& aggregates,
                  const BackgroundData& background, const LiquidParameters& parameters, bool cameraInLiquid,
-                 float particleRadius, const DomainBox* domain, int width, int height);
+                 float particleRadius, const DomainBox* domain, const PixelTiles* tiles, int width,
+                 int height);
   /// The counters of the last run (waits for the GPU).
   RefractionStatistics statistics() const;
 
  private:
+  void clearToNoLiquid();
+
   ProgramObject program_;
   ProgramObject packProgram_;  ///< refraction_layers.frag
   FramebufferObject packFramebuffer_;

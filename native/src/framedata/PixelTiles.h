@@ -1,0 +1,22 @@
+#pragma once
+
+#include "gl/GlObjects.h"
+
+namespace spindrift {
+
+/// The side of a pixel tile, in pixels: a quarter of llvmpipe's 64-pixel bin, so a tile's quad covers whole
+/// 16 × 16 rasterizer blocks and the tile list follows a silhouette within 16 pixels.
+constexpr int kPixelTileSize = 16;
+
+/// The texture unit of fullscreen.vert's drawnTiles, which no fragment shader uses.
+constexpr unsigned kPixelTilesTextureUnit = 15;
+
+/// The screen's 16 × 16 pixel tiles that hold any pixel of the liquid's depth layers (PixelTilePass's
+/// output): R8UI, one texel per tile, 1 where a pass that only changes liquid pixels must run, 0 where it
+/// would write only its "no liquid" values. drawFullscreen (FrameUniforms.h) draws a quad for each marked
+/// tile.
+struct PixelTiles {
+  const Texture2D& marked;
+};
+
+}  // namespace spindrift

@@ -1,0 +1,89 @@
+// Shading only the pixel tiles that hold liquid (liquid.skip_empty_tiles, framedata/PixelTiles.h) changes no
+// value of any layer: every case is rendered both ways, the depth layers before and after smoothing
+// included, and compared bit for bit. GL tests on llvmpipe.
+#include <gtest/gtest.h>
+
+#include <cstring>
+
+#include "LiquidTestScenes.h"
+#include "passes/PixelTilePass.h"
+
+using namespace spindrift;
+using namespace liquid_test;
+
+namespace {
+
+Scene sceneOfSize(int width, int height, const glm::vec3& position, const glm::vec3& target) {
+  Scene scene;
+  scene.camera = Camera::lookAt(width, height, 40.0f, position, target, {0, 0, 1});
+  scene.background.color = {0.4f, 0.5f, 0.6f};
+  return scene;
+}
+
+// Both ways, on their own renderers (with intermediate layers), the tiled one last so its stats come back.
+RenderResult expectSameBothWays(Scene scene, const Particles& particles) {
+  static Renderer full, tiled;
+  full.setIntermediateLayers(true);
+  tiled.setIntermediateLayers(true);
+  scene.parameters.liquid.skip_empty_tiles = false;
+  const RenderResult everyPixel = full.renderParticles(scene, particles, 1);
+  scene.parameters.liquid.skip_empty_tiles = true;
+  const RenderResult liquidTiles = tiled.renderParticles(scene, particles, 1);
+  expectAllChannelsFinite(liquidTiles);
+  EXPECT_EQ(everyPixel.stats.liquid.tiles, 0u) << "off: no tiles";
+  EXPECT_EQ(liquidTiles.stats.liquid.tiles, std::size_t(pixelTilesAcross(scene.camera.width)) *
+                                                std::size_t(pixelTilesDown(scene.camera.height)));
+  EXPECT_LE(liquidTiles.stats.liquid.tilesShaded, liquidTiles.stats.liquid.tiles);
+  EXPECT_GE(liquidTiles.layers.size(), 10u);
+  EXPECT_EQ(liquidTiles.layers.size(), everyPixel.layers.size());
+  for (const ImageLayer& layer : everyPixel.layers) {
+    SCOPED_TRACE(layer.name);
+    const ImageLayer* other = liquidTiles.layer(layer.name);
+    EXPECT_TRUE(other && other->pixels.size() == layer.pixels.size());
+    if (other && other->pixels.size() == layer.pixels.size())
+      EXPECT_EQ(std::memcmp(other->pixels.data(), layer.pixels.data(), layer.pixels.size() * sizeof(float)),
+                0);
+  }
+  return liquidTiles;
+}
+
+std::size_t passSamples(const RenderResult& result, const char* name) {
+  for (const PassTiming& pass : result.stats.passes)
+    if (pass.name == name) return std::size_t(pass.samplesPassed);
+  return 0;
+}
+
+}  // namespace
+
+TEST(GLPixelTiles, ASmallBodyInACornerOfAnOddSizedFrame) {
+  // 150 × 101 pixels: the last column and row of tiles are cut by the frame's edge; the body reaches it.
+  const Scene scene = sceneOfSize(150, 101, {0, -3, 0.5f}, {0.55f, 0, 0.45f});
+  const RenderResult result =
+      expectSameBothWays(scene, particlesOf(block({0.6f, -0.1f, 0.3f}, {1.0f, 0.1f, 0.6f}, 0.05f), 0.05f));
+  const std::size_t shaded = result.stats.liquid.tilesShaded;
+  EXPECT_GT(shaded, 0u);
+  EXPECT_LT(shaded, result.stats.liquid.tiles / 2) << "the body covers a corner, not the frame";
+  // The refraction shades the marked tiles twice (its packing and itself), less what the frame's edge cuts.
+  EXPECT_LE(passSamples(result, "refraction"), 2 * shaded * kPixelTileSize * kPixelTileSize);
+  EXPECT_LT(passSamples(result, "refraction"), 150u * 101u);
+}
+
+TEST(GLPixelTiles, SplashesAndASheet) {
+  Particles particles = wavySheet(3, 5);
+  for (int i = 0; i < 12; ++i)  // lone drops above the sheet: splashes
+    particles.append({0.1f * i - 0.5f, 0.0f, 0.3f + 0.02f * i}, 0.02f, ParticleKind::Liquid, 0.0f,
+                     glm::vec3(0.0f));
+  const RenderResult result =
+      expectSameBothWays(sceneOfSize(128, 96, {0, -1.6f, 0.9f}, {0, 0, 0.1f}), particles);
+  EXPECT_GT(result.stats.liquid.splashParticles, 0u);
+  EXPECT_GT(result.stats.liquid.tilesShaded, 0u);
+}
+
+TEST(GLPixelTiles, TheCameraUnderWaterShadesEveryPixel) {
+  // From inside the body every pixel is liquid: the refraction shades the whole frame, as without tiles.
+  const Scene scene = sceneOfSize(96, 72, {0, 0, 0}, {0, 1, 0});
+  const RenderResult result =
+      expectSameBothWays(scene, particlesOf(block({-1, -1, -1}, {1, 1, 0.5f}, 0.05f), 0.05f));
+  EXPECT_TRUE(result.stats.liquid.cameraInLiquid);
+  EXPECT_EQ(passSamples(result, "refraction"), 2u * 96u * 72u);
+}
