@@ -1,12 +1,13 @@
 #version 450 core
-// Marks the 16 × 16 pixel tiles (framedata/PixelTiles.h) that hold a surface in any of the given depth
-// layers: one work group per tile, one invocation per pixel. The passes after it that change only liquid
-// pixels (smoothing, normals, refraction) draw only the marked tiles.
+// Marks the 16 × 16 pixel tiles (framedata/PixelTiles.h) that hold a pixel of any of the given layers: a
+// surface's eye depth (0 < z < kNoSurfaceDepth / 2), or a positive foam intensity, which passes the same test.
+// One work group per tile, one invocation per pixel. The passes after it that change only those pixels
+// (smoothing, normals, refraction; the foam's shadow, irradiance and blur) draw only the marked tiles.
 layout(local_size_x = 16, local_size_y = 16) in;
 #include "lib/frame.glsl"
 #include "lib/depth_layer.glsl"
 
-layout(binding = 0) uniform sampler2D layerEyeDepths[4];
+layout(binding = 0) uniform sampler2D layerEyeDepths[4];  // or the foam's intensity
 layout(binding = 0, r8ui) uniform writeonly uimage2D markedTiles;
 layout(std430, binding = 1) buffer TileCounter { uint markedTileCount; };
 

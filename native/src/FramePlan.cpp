@@ -44,6 +44,8 @@ const char* passName(Pass pass) {
       return "foam_thickness";
     case Pass::FoamIntensity:
       return "foam_intensity";
+    case Pass::FoamTiles:
+      return "foam_tiles";
     case Pass::FoamOcclusion:
       return "foam_occlusion";
     case Pass::FoamBlur:
@@ -125,8 +127,12 @@ FramePlan planFrame(const FrameContents& contents) {
   decide(Pass::FoamVisibility, foamReason             ? foamReason
                                : contents.foamCulling ? nullptr
                                                       : "foam.cull_hidden is off");
-  for (Pass pass :
-       {Pass::FoamDepth, Pass::FoamThickness, Pass::FoamIntensity, Pass::FoamOcclusion, Pass::FoamBlur})
+  for (Pass pass : {Pass::FoamDepth, Pass::FoamThickness, Pass::FoamIntensity})
+    decide(pass, foamReason);
+  decide(Pass::FoamTiles, foamReason                     ? foamReason
+                          : !contents.skipEmptyFoamTiles ? "foam.skip_empty_tiles is off"
+                                                         : nullptr);
+  for (Pass pass : {Pass::FoamOcclusion, Pass::FoamBlur})
     decide(pass, foamReason);
   decide(Pass::Composite, contents.compositeWanted ? nullptr : "composite not asked for (--layers)");
   return plan;

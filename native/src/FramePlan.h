@@ -29,6 +29,7 @@ enum class Pass {
   FoamDepth,
   FoamThickness,
   FoamIntensity,
+  FoamTiles,  ///< the pixel tiles that the foam's shadow, irradiance and blur shade (foam.skip_empty_tiles)
   FoamOcclusion,
   FoamBlur,
   Composite,
@@ -61,6 +62,7 @@ struct FrameContents {
   bool lightLayersWanted = true;       ///< Any of liquid_shadow, caustics, liquid_sky (`--layers`).
   bool foamCulling = true;             ///< foam.cull_hidden.
   bool skipEmptyTiles = true;          ///< liquid.skip_empty_tiles.
+  bool skipEmptyFoamTiles = true;      ///< foam.skip_empty_tiles.
 };
 
 /// Which passes a frame runs and, for each it does not, why. The wiring of the frame in one plain function,

@@ -2,12 +2,11 @@
 
 #include <algorithm>
 #include <cmath>
-#include <optional>
 
 namespace spindrift {
 
 LightDepthLayers::LightDepthLayers(const ShaderLibrary& shaders)
-    : impostors_(shaders), tiles_(shaders), frontSmoothing_(shaders), backSmoothing_(shaders) {}
+    : impostors_(shaders), frontSmoothing_(shaders), backSmoothing_(shaders) {}
 
 SurfaceLayers LightDepthLayers::draw(const LightPreparation& light) {
   // The impostor and smoothing shaders read the view from binding 0: give them the light's for a while.
@@ -47,14 +46,12 @@ SurfaceLayers LightDepthLayers::run(const LightPreparation& light, const Camera&
     const int halfWindow = int(std::lround(0.5f * particleRadius / light.view.texelSize));
     smoothing.plane_fit_window = std::clamp(2 * halfWindow + 1, 3, parameters.plane_fit_window);
   }
-  // As in the camera's view, smoothing shades only the tiles that hold the liquid (liquid.skip_empty_tiles).
-  std::optional<PixelTiles> tiles;
-  if (parameters.skip_empty_tiles)
-    tiles.emplace(tiles_.run({&drawn.front.eyeDepth, &drawn.back.eyeDepth}, size, size));
-  const PixelTiles* shaded = tiles ? &*tiles : nullptr;
+  // Every pixel is shaded (no PixelTiles): the light's view is fitted to the liquid, so nearly every tile
+  // holds some, and marking them saved nothing measurable on the dam break under a sun.
   const DepthLayer front =
-      frontSmoothing_.run(drawn.front, particleRadius, false, smoothing, shaded, size, size);
-  const DepthLayer back = backSmoothing_.run(drawn.back, particleRadius, true, smoothing, shaded, size, size);
+      frontSmoothing_.run(drawn.front, particleRadius, false, smoothing, nullptr, size, size);
+  const DepthLayer back =
+      backSmoothing_.run(drawn.back, particleRadius, true, smoothing, nullptr, size, size);
   restoreViews(light, camera);
   return {front, back};
 }

@@ -66,6 +66,7 @@ struct FramePipeline {
   EllipsoidImpostorPass splashImpostors{shaders};
   EllipsoidImpostorPass aggregateImpostors{shaders};
   PixelTilePass liquidTiles{shaders};
+  PixelTilePass foamTiles{shaders};
   DepthSmoothingPass frontSmoothing{shaders};
   DepthSmoothingPass backSmoothing{shaders};
   RaymarchSurface raymarch{shaders};
@@ -334,6 +335,7 @@ RenderResult Renderer::renderPrepared(const Scene& scene, const Particles& parti
   contents.lights = scene.lights.size();
   contents.foamCulling = foamParameters.cull_hidden;
   contents.skipEmptyTiles = liquidParameters.skip_empty_tiles;
+  contents.skipEmptyFoamTiles = foamParameters.skip_empty_tiles;
   contents.lightsSeeingLiquid = lighting.lights.size();
   contents.causticLights = causticLights(lighting);
   contents.caustics = scene.parameters.light.caustics;
@@ -454,13 +456,20 @@ RenderResult Renderer::renderPrepared(const Scene& scene, const Particles& parti
       const FoamIntensityData foamIntensity = timed(Pass::FoamIntensity, [&] {
         return pipeline.foamIntensity.run(foamThickness, foamParameters, width, height);
       });
+      // The tiles with a foam pixel (ι > 0): the shadow, irradiance and blur shade only these.
+      std::optional<PixelTiles> foamTiles;
+      if (plan.runs(Pass::FoamTiles))
+        foamTiles.emplace(timed(Pass::FoamTiles, [&] {
+          return pipeline.foamTiles.run({&foamIntensity.intensity}, width, height);
+        }));
+      const PixelTiles* tiles = foamTiles ? &*foamTiles : nullptr;
       const FoamOcclusionData foamOcclusion = timed(Pass::FoamOcclusion, [&] {
         return pipeline.foamOcclusion.run(foamSurface, foamIntensity, sceneDepth, background, foamParameters,
-                                          width, height);
+                                          tiles, width, height);
       });
       foamLayer.emplace(timed(Pass::FoamBlur, [&] {
         return pipeline.foamBlur.run(foamSurface, foamThickness, foamIntensity, foamOcclusion, foamParameters,
-                                     width, height);
+                                     tiles, width, height);
       }));
     }
     std::optional<CompositeData> composite;
@@ -478,6 +487,10 @@ RenderResult Renderer::renderPrepared(const Scene& scene, const Particles& parti
       stats.liquid.tiles = std::size_t(pixelTilesAcross(width)) * std::size_t(pixelTilesDown(height));
     }
     if (foamLayer) recordFoamOcclusion(pipeline.foamOcclusion.statistics(), stats.foam);
+    if (plan.runs(Pass::FoamTiles)) {
+      stats.foam.tilesShaded = pipeline.foamTiles.markedTiles();
+      stats.foam.tiles = std::size_t(pixelTilesAcross(width)) * std::size_t(pixelTilesDown(height));
+    }
     readFrameLayers(composite ? &*composite : nullptr, liquidLayer ? &*liquidLayer : nullptr,
                     foamLayer ? &*foamLayer : nullptr, width, height, layers, result.layers);
     readLightLayers(lit ? &*lit : nullptr, !scene.lights.empty(), width, height, layers, result.layers);

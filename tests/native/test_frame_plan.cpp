@@ -25,8 +25,8 @@ std::string reasonFor(const FramePlan& plan, const std::string& pass) {
 }
 
 const std::vector<std::string> kFoamPasses = {"foam_scene_depth", "foam_visibility", "foam_depth",
-                                              "foam_thickness",   "foam_intensity",  "foam_occlusion",
-                                              "foam_blur"};
+                                              "foam_thickness",   "foam_intensity",  "foam_tiles",
+                                              "foam_occlusion",   "foam_blur"};
 
 const std::vector<std::string> kLightPasses = {"light_depth_layers", "liquid_shadow", "caustics",
                                                "sky_occlusion", "lit_background"};
@@ -44,8 +44,8 @@ TEST(FramePlan, FullFrameRunsEveryPassInRecipeOrder) {
       "background",   "occluder_depth", "liquid_mesh_depth", "light_depth_layers",  "liquid_shadow",
       "caustics",     "sky_occlusion",  "lit_background",    "splash_depth_layers", "aggregate_depth_layers",
       "liquid_tiles", "smoothing",      "refraction",        "foam_scene_depth",    "foam_visibility",
-      "foam_depth",   "foam_thickness", "foam_intensity",    "foam_occlusion",      "foam_blur",
-      "composite"};
+      "foam_depth",   "foam_thickness", "foam_intensity",    "foam_tiles",          "foam_occlusion",
+      "foam_blur",    "composite"};
   EXPECT_EQ(names(plan.passes), expected);
   EXPECT_TRUE(plan.skipped.empty());
 }
@@ -53,7 +53,7 @@ TEST(FramePlan, FullFrameRunsEveryPassInRecipeOrder) {
 TEST(FramePlan, EmptyFrameRunsBackgroundAndCompositeOnly) {
   const FramePlan plan = planFrame({0, 0, 0, "plane_fit"});
   EXPECT_EQ(names(plan.passes), (std::vector<std::string>{"background", "composite"}));
-  ASSERT_EQ(plan.skipped.size(), 19u);
+  ASSERT_EQ(plan.skipped.size(), 20u);
   EXPECT_EQ(plan.skipped.front().name, "occluder_depth");
   EXPECT_EQ(reasonFor(plan, "occluder_depth"), "no occluders");
   EXPECT_EQ(reasonFor(plan, "liquid_mesh_depth"), "no liquid mesh");
@@ -174,7 +174,7 @@ TEST(FramePlan, EveryPassIsEitherRunOrSkippedExactlyOnce) {
             }
             std::sort(all.begin(), all.end());
             EXPECT_EQ(std::adjacent_find(all.begin(), all.end()), all.end());
-            EXPECT_EQ(all.size(), 21u);
+            EXPECT_EQ(all.size(), 22u);
             // A pass runs only when what it reads runs.
             if (plan.runs(Pass::LiquidTiles))
               EXPECT_TRUE(plan.runs(Pass::SplashDepthLayers) || plan.runs(Pass::AggregateDepthLayers));
@@ -205,6 +205,9 @@ TEST(FramePlan, EmptyTilesShadedWhenAskedSkipsTheTilePass) {
   EXPECT_TRUE(plan.runs(Pass::Refraction));
   EXPECT_EQ(reasonFor(plan, "liquid_tiles"), "liquid.skip_empty_tiles is off");
   EXPECT_TRUE(planFrame({10, 0, 0, "none"}).runs(Pass::LiquidTiles)) << "splashes alone are refracted";
+  EXPECT_TRUE(plan.runs(Pass::FoamTiles)) << "the foam's own parameter";
+  contents.skipEmptyFoamTiles = false;
+  EXPECT_EQ(reasonFor(planFrame(contents), "foam_tiles"), "foam.skip_empty_tiles is off");
 }
 
 FrameContents withLayers(bool composite, bool liquid, bool foam) {

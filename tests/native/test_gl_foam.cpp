@@ -369,7 +369,7 @@ TEST(GLFoam, NoFoamInViewSkipsFoamPasses) {
   int skippedFoamPasses = 0;
   for (const SkippedPass& pass : result.stats.skipped)
     skippedFoamPasses += pass.name.rfind("foam_", 0) == 0 && pass.reason == "no foam particles in view";
-  EXPECT_EQ(skippedFoamPasses, 7);
+  EXPECT_EQ(skippedFoamPasses, 8);
   for (const PassTiming& pass : result.stats.passes)
     EXPECT_NE(pass.name.rfind("foam_", 0), 0u) << pass.name;
   EXPECT_EQ(result.stats.foam.culled, 1u);

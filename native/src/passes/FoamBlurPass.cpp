@@ -11,7 +11,8 @@ FoamBlurPass::FoamBlurPass(const ShaderLibrary& shaders)
 
 FoamLayerData FoamBlurPass::run(const FoamSurfaceData& surface, const FoamThicknessData& thickness,
                                 const FoamIntensityData& intensity, const FoamOcclusionData& occlusion,
-                                const FoamParameters& parameters, int width, int height) {
+                                const FoamParameters& parameters, const PixelTiles* tiles, int width,
+                                int height) {
   ensureTexture(horizontalShadow_, GL_R32F, width, height);
   ensureTexture(horizontalIrradiance_, GL_RGBA16F, width, height);
   for (Texture2D* layer : {&foam_, &spray_, &surface_, &bubble_})
@@ -19,6 +20,11 @@ FoamLayerData FoamBlurPass::run(const FoamSurfaceData& surface, const FoamThickn
   ensureTexture(shadow_, GL_RGBA16F, width, height);
   ensureTexture(irradiance_, GL_RGBA16F, width, height);
 
+  if (tiles) {  // what foam_blur.frag writes where there is no foam
+    const float zeros[4] = {0.0f, 0.0f, 0.0f, 0.0f}, opaqueBlack[4] = {0.0f, 0.0f, 0.0f, 1.0f};
+    clearColorTargets(framebuffer_.id(), {&horizontalShadow_, &foam_, &spray_, &surface_, &bubble_}, zeros);
+    clearColorTargets(framebuffer_.id(), {&horizontalIrradiance_, &shadow_, &irradiance_}, opaqueBlack);
+  }
   glDisable(GL_DEPTH_TEST);
   glDisable(GL_BLEND);
   const GLuint program = program_.id();
@@ -37,7 +43,7 @@ FoamLayerData FoamBlurPass::run(const FoamSurfaceData& surface, const FoamThickn
   glUniform1i(uniformLocation(program, "finalRun"), 0);
   glBindTextureUnit(0, occlusion.shadow.id());
   glBindTextureUnit(1, occlusion.irradiance.id());
-  drawFullscreenTriangle(emptyVertexArray_.id());
+  drawFullscreen(emptyVertexArray_.id(), tiles);
 
   // Vertical, into the foam layers.
   bindColorTargets(framebuffer_.id(),
@@ -46,7 +52,7 @@ FoamLayerData FoamBlurPass::run(const FoamSurfaceData& surface, const FoamThickn
   glUniform1i(uniformLocation(program, "finalRun"), 1);
   glBindTextureUnit(0, horizontalShadow_.id());
   glBindTextureUnit(1, horizontalIrradiance_.id());
-  drawFullscreenTriangle(emptyVertexArray_.id());
+  drawFullscreen(emptyVertexArray_.id(), tiles);
   checkGlError("blurring and compositing the foam");
   return {foam_, spray_, surface_, bubble_, shadow_, irradiance_, thickness.thickness};
 }

@@ -5,6 +5,7 @@
 #include "framedata/FoamOcclusionData.h"
 #include "framedata/FoamSurfaceData.h"
 #include "framedata/FoamThicknessData.h"
+#include "framedata/PixelTiles.h"
 #include "gl/GlObjects.h"
 #include "gl/ShaderLibrary.h"
 #include "spindrift/Parameters.h"
@@ -16,9 +17,11 @@ namespace spindrift {
 class FoamBlurPass {
  public:
   explicit FoamBlurPass(const ShaderLibrary& shaders);
+  /// With `tiles` (marking every tile with a foam pixel: the blur averages foam pixels only, so nothing
+  /// spreads beyond them) only those tiles are shaded, the rest cleared to the no-foam values.
   FoamLayerData run(const FoamSurfaceData& surface, const FoamThicknessData& thickness,
                     const FoamIntensityData& intensity, const FoamOcclusionData& occlusion,
-                    const FoamParameters& parameters, int width, int height);
+                    const FoamParameters& parameters, const PixelTiles* tiles, int width, int height);
 
  private:
   ProgramObject program_;

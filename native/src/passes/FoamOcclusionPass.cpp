@@ -42,7 +42,8 @@ void FoamOcclusionPass::bindEnvironment(GLuint program, const BackgroundData& ba
 
 FoamOcclusionData FoamOcclusionPass::run(const FoamSurfaceData& surface, const FoamIntensityData& intensity,
                                          const FoamSceneDepth& scene, const BackgroundData& background,
-                                         const FoamParameters& parameters, int width, int height) {
+                                         const FoamParameters& parameters, const PixelTiles* tiles, int width,
+                                         int height) {
   const bool useIrradianceMap = parameters.irradiance == "irradiance_map";
   if (useIrradianceMap) {
     ensureTexture(irradianceMap_, GL_RGBA16F, kIrradianceMapWidth, kIrradianceMapHeight);
@@ -78,6 +79,11 @@ FoamOcclusionData FoamOcclusionPass::run(const FoamSurfaceData& surface, const F
     ensureTexture(blockShadow_, GL_RG32F, (width + block - 1) / block, (height + block - 1) / block);
     ensureTexture(blockIrradiance_, GL_RGBA16F, (width + block - 1) / block, (height + block - 1) / block);
   }
+  if (tiles) {  // what foam_occlusion.frag and foam_occlusion_upsample.frag write where there is no foam
+    const float noShadow[4] = {0.0f, 1e10f, 0.0f, 0.0f}, noIrradiance[4] = {0.0f, 0.0f, 0.0f, 0.0f};
+    clearColorTargets(framebuffer_.id(), {&shadow_}, noShadow);
+    clearColorTargets(framebuffer_.id(), {&irradiance_}, noIrradiance);
+  }
   Texture2D& estimatedShadow = block > 1 ? blockShadow_ : shadow_;
   Texture2D& estimatedIrradiance = block > 1 ? blockIrradiance_ : irradiance_;
   bindColorTargets(framebuffer_.id(), {&estimatedShadow, &estimatedIrradiance});
@@ -107,7 +113,8 @@ FoamOcclusionData FoamOcclusionPass::run(const FoamSurfaceData& surface, const F
   glBindTextureUnit(7, occluders_.id());
   glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, haltonSamples_.id());
   glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, counters_.id());
-  drawFullscreenTriangle(emptyVertexArray_.id());
+  // Blocks of pixels are estimated over the whole (smaller) target; single pixels in the foam's tiles only.
+  drawFullscreen(emptyVertexArray_.id(), block > 1 ? nullptr : tiles);
   checkGlError("estimating the foam's shadow and irradiance");
   if (block > 1) {
     bindColorTargets(framebuffer_.id(), {&shadow_, &irradiance_});
@@ -117,7 +124,7 @@ FoamOcclusionData FoamOcclusionPass::run(const FoamSurfaceData& surface, const F
     glBindTextureUnit(1, blockIrradiance_.id());
     glBindTextureUnit(2, surface.depthAndSearchRadius.id());
     glBindTextureUnit(3, intensity.intensity.id());
-    drawFullscreenTriangle(emptyVertexArray_.id());
+    drawFullscreen(emptyVertexArray_.id(), tiles);
     checkGlError("upsampling the foam's shadow and irradiance");
   }
   return {shadow_, irradiance_};

@@ -7,6 +7,7 @@
 #include "framedata/FoamOcclusionData.h"
 #include "framedata/FoamSceneDepth.h"
 #include "framedata/FoamSurfaceData.h"
+#include "framedata/PixelTiles.h"
 #include "gl/GlObjects.h"
 #include "gl/ShaderLibrary.h"
 #include "spindrift/Parameters.h"
@@ -22,9 +23,11 @@ class FoamOcclusionPass {
   static constexpr int kMaximumSamples = 4096;
 
   explicit FoamOcclusionPass(const ShaderLibrary& shaders);
+  /// With `tiles` (marking every tile with a foam pixel) the full-resolution shadow and irradiance are
+  /// shaded in those tiles only, the rest cleared to their no-foam values.
   FoamOcclusionData run(const FoamSurfaceData& surface, const FoamIntensityData& intensity,
                         const FoamSceneDepth& scene, const BackgroundData& background,
-                        const FoamParameters& parameters, int width, int height);
+                        const FoamParameters& parameters, const PixelTiles* tiles, int width, int height);
   /// The counters of the last run (waits for the GPU).
   FoamOcclusionStatistics statistics() const;
 

@@ -14,7 +14,7 @@ namespace spindrift {
 class PixelTilePass {
  public:
   explicit PixelTilePass(const ShaderLibrary& shaders);
-  /// `eyeDepths`: one to four R32F layers, kNoSurfaceDepth where empty.
+  /// `eyeDepths`: one to four R32F layers, kNoSurfaceDepth where empty (or the foam intensity, 0 there).
   PixelTiles run(const std::vector<const Texture2D*>& eyeDepths, int width, int height);
   /// How many tiles the last run marked (waits for the GPU).
   std::uint32_t markedTiles() const;
