@@ -179,3 +179,24 @@ TEST_F(GLProgramCache, DefinesMakeVariantsOfTheirOwnAndKeepTheFilesLineNumbers) 
   });
   EXPECT_NE(message.find("broken.comp:3"), std::string::npos) << message;
 }
+
+TEST_F(GLProgramCache, OneLibraryGivesTheSameSourcesOneProgram) {
+  // Passes that ask for the same program share it (each sets its uniforms before drawing): it is loaded or
+  // compiled once, and kept while any pass holds it.
+  thread_.run([&] {
+    const ShaderLibrary library(shaders_.path(), ProgramCache(cacheDirectory(), kDriver));
+    const long before = liveGlObjectCount(GlObjectType::Program);
+    ProgramObject first = library.program({"writer.comp"});
+    const ProgramObject second = library.program({"writer.comp"});
+    const ProgramObject doubled = library.program({"writer.comp"}, {"DOUBLED"});
+    EXPECT_EQ(first.id(), second.id());
+    EXPECT_NE(first.id(), doubled.id());
+    EXPECT_EQ(library.cacheCounts().compiled + library.cacheCounts().loaded, 2);
+    EXPECT_EQ(liveGlObjectCount(GlObjectType::Program), before + 2);
+    first.reset();
+    EXPECT_NE(second.id(), 0u);
+    GLint linked = 0;
+    glGetProgramiv(second.id(), GL_LINK_STATUS, &linked);
+    EXPECT_EQ(linked, GL_TRUE) << "the library and the other pass still hold it";
+  });
+}

@@ -4,6 +4,7 @@
 
 #include <array>
 #include <atomic>
+#include <memory>
 #include <utility>
 
 namespace spindrift {
@@ -56,7 +57,23 @@ using TextureObject = GlObject<GlObjectType::Texture>;
 using BufferObject = GlObject<GlObjectType::Buffer>;
 using FramebufferObject = GlObject<GlObjectType::Framebuffer>;
 using VertexArrayObject = GlObject<GlObjectType::VertexArray>;
-using ProgramObject = GlObject<GlObjectType::Program>;
+
+/// A linked program, shared: ShaderLibrary gives every pass that asks for the same sources the same program,
+/// so a process loads and llvmpipe compiles each once. A program's uniforms are its state, so every pass sets
+/// its own before it draws. The GL object is deleted with the last copy.
+class ProgramObject {
+ public:
+  ProgramObject() = default;
+  explicit ProgramObject(GLuint id)
+      : owner_(id ? std::make_shared<GlObject<GlObjectType::Program>>(id) : nullptr) {}
+
+  GLuint id() const { return owner_ ? owner_->id() : 0; }
+  explicit operator bool() const { return id() != 0; }
+  void reset() { owner_.reset(); }
+
+ private:
+  std::shared_ptr<GlObject<GlObjectType::Program>> owner_;
+};
 using QueryObject = GlObject<GlObjectType::Query>;
 
 /// A 2D texture with immutable storage, nearest filtering and clamped edges unless told otherwise.

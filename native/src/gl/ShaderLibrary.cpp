@@ -123,11 +123,16 @@ ProgramObject ShaderLibrary::program(const std::vector<std::string>& stageFiles,
     // The file name is part of the key: the same text as another stage type is another program.
     sources.push_back(stageFiles[stage] + "\n" + source);
   }
-  if (ProgramObject cached = cache_.load(sources)) return cached;
-  ProgramObject program = compile(stageFiles, sources, sourceFiles);
+  std::string key;
+  for (const std::string& source : sources)
+    key += source + '\0';
+  ProgramObject& made = programs_[key];
+  if (made) return made;
+  if ((made = cache_.load(sources))) return made;
+  made = compile(stageFiles, sources, sourceFiles);
   ++cache_.counts.compiled;
-  cache_.store(sources, program.id());
-  return program;
+  cache_.store(sources, made.id());
+  return made;
 }
 
 ProgramObject ShaderLibrary::compile(const std::vector<std::string>& stageFiles,

@@ -1,6 +1,7 @@
 #pragma once
 
 #include <filesystem>
+#include <map>
 #include <string>
 #include <vector>
 
@@ -27,7 +28,8 @@ class ShaderLibrary {
  public:
   explicit ShaderLibrary(std::filesystem::path directory, ProgramCache cache = ProgramCache({}, ""));
 
-  /// Compiles and links one program from stage files named by extension: .vert, .geom, .frag, .comp.
+  /// Compiles and links one program from stage files named by extension: .vert, .geom, .frag, .comp. Asked
+  /// again for the same sources, the library gives the program it made the first time.
   /// `defines` are #defined in every stage, after #version: a shader compiled in several variants (llvmpipe
   /// runs both sides of a branch on a uniform, so a mode switched by a uniform costs every mode the others'
   /// work too; liquid_shadow.frag).
@@ -47,6 +49,7 @@ class ShaderLibrary {
 
   std::filesystem::path directory_;
   mutable ProgramCache cache_;  // Loading a program does not change what the library gives.
+  mutable std::map<std::string, ProgramObject> programs_;  // by their stages' sources
 };
 
 /// The location of a uniform; throws Error when the program has no active uniform of that name.
