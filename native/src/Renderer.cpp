@@ -399,15 +399,15 @@ RenderResult Renderer::renderPrepared(const Scene& scene, const Particles& parti
       liquidTiles.emplace(timed(Pass::LiquidTiles, [&] {
         return pipeline.liquidTiles.run(eyeDepthsOf(splashes, aggregates), width, height);
       }));
-    const PixelTiles* tiles = liquidTiles ? &*liquidTiles : nullptr;
+    const PixelTiles* withLiquid = liquidTiles ? &*liquidTiles : nullptr;
     if (plan.runs(Pass::Smoothing)) {
       aggregates.emplace(timed(Pass::Smoothing, [&] {
         return SurfaceLayers{
             // A ray-marched surface replaces the front layer: only the back layer is smoothed then.
             raymarch ? aggregates->front
-                     : pipeline.frontSmoothing.run(aggregates->front, radius, false, liquidParameters, tiles,
-                                                   width, height),
-            pipeline.backSmoothing.run(aggregates->back, radius, true, liquidParameters, tiles, width,
+                     : pipeline.frontSmoothing.run(aggregates->front, radius, false, liquidParameters,
+                                                   withLiquid, width, height),
+            pipeline.backSmoothing.run(aggregates->back, radius, true, liquidParameters, withLiquid, width,
                                        height)};
       }));
       intermediate.keep(*aggregates, "aggregate_smoothed");
@@ -422,7 +422,7 @@ RenderResult Renderer::renderPrepared(const Scene& scene, const Particles& parti
     }
     std::optional<LiquidData> liquidLayer;
     // Under water every pixel is liquid; a ray-marched front may reach pixels no particle layer covers.
-    const PixelTiles* refractionTiles = cameraInLiquid || raymarch ? nullptr : tiles;
+    const PixelTiles* refractionTiles = cameraInLiquid || raymarch ? nullptr : withLiquid;
     if (plan.runs(Pass::Refraction))
       liquidLayer.emplace(timed(Pass::Refraction, [&] {
         return pipeline.refraction.run(splashes, aggregates, background, liquidParameters, cameraInLiquid,
@@ -462,14 +462,14 @@ RenderResult Renderer::renderPrepared(const Scene& scene, const Particles& parti
         foamTiles.emplace(timed(Pass::FoamTiles, [&] {
           return pipeline.foamTiles.run({&foamIntensity.intensity}, width, height);
         }));
-      const PixelTiles* tiles = foamTiles ? &*foamTiles : nullptr;
+      const PixelTiles* withFoam = foamTiles ? &*foamTiles : nullptr;
       const FoamOcclusionData foamOcclusion = timed(Pass::FoamOcclusion, [&] {
         return pipeline.foamOcclusion.run(foamSurface, foamIntensity, sceneDepth, background, foamParameters,
-                                          tiles, width, height);
+                                          withFoam, width, height);
       });
       foamLayer.emplace(timed(Pass::FoamBlur, [&] {
         return pipeline.foamBlur.run(foamSurface, foamThickness, foamIntensity, foamOcclusion, foamParameters,
-                                     tiles, width, height);
+                                     withFoam, width, height);
       }));
     }
     std::optional<CompositeData> composite;

@@ -31,7 +31,7 @@ PixelTiles PixelTilePass::run(const std::vector<const Texture2D*>& eyeDepths, in
     glBindTextureUnit(unit++, eyeDepth->id());
   glBindImageTexture(0, marked_.id(), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_R8UI);
   glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, counter_.id());
-  glDispatchCompute(GLuint(tilesX), GLuint(tilesY), 1);
+  glDispatchCompute(GLuint((tilesX + 7) / 8), GLuint((tilesY + 7) / 8), 1);  // 8 × 8 tiles a work group
   glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_STORAGE_BARRIER_BIT);
   checkGlError("marking the pixel tiles that hold liquid");
   return {marked_};
