@@ -10,8 +10,11 @@
 #include <memory>
 #include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
+#include <OpenImageIO/imagebuf.h>
+#include <OpenImageIO/imagebufalgo.h>
 #include <OpenImageIO/imageio.h>
 #include <gtest/gtest.h>
 #include <unistd.h>
@@ -430,6 +433,72 @@ TEST_F(ImageFilesTest, RefusesAnExrWhoseAttributeSizeDisagreesWithItsType) {
   putInt32(&longBox, attributeSizeOffset(longBox, "dataWindow", "box2i"), 20);
   writeBytes(directory_ / "long_box.exr", longBox);
   expectRefused(directory_ / "long_box.exr", "\"dataWindow\" of type box2i claims 20 bytes");
+}
+
+// OpenEXR's parts: depth in the first, colour in the second, which is tiled and stored as half (as a
+// compositor writing several views or passes would); each is found in its own part.
+TEST_F(ImageFilesTest, ReadsColourAndDepthFromDifferentPartsOfATiledHalfExr) {
+  const int width = 37, height = 21;  // not a multiple of the tiles
+  std::vector<OIIO::ImageSpec> specs(2);
+  specs[0] = OIIO::ImageSpec(width, height, 1, OIIO::TypeFloat);
+  specs[0].channelnames = {"depth.Z"};
+  specs[1] = OIIO::ImageSpec(width, height, 4, OIIO::TypeHalf);
+  specs[1].channelnames = {"R", "G", "B", "A"};
+  // Both tiled: OpenImageIO 2.4 cannot append a tiled part to a scanline one.
+  for (OIIO::ImageSpec& spec : specs)
+    spec.tile_width = spec.tile_height = 16;
+  std::vector<float> depth(std::size_t(width) * height), color(std::size_t(width) * height * 4);
+  for (int y = 0; y < height; ++y) {
+    for (int x = 0; x < width; ++x) {
+      depth[std::size_t(y) * width + x] = 1.0f + 0.25f * float(x + y);
+      for (int c = 0; c < 4; ++c)
+        color[(std::size_t(y) * width + x) * 4 + c] = float(c * 64 + (x + y) % 50);  // exact in half
+    }
+  }
+  const std::filesystem::path path = directory_ / "parts.exr";
+  std::unique_ptr<OIIO::ImageOutput> output = OIIO::ImageOutput::create(path.string());
+  ASSERT_TRUE(output && output->supports("multiimage"));
+  ASSERT_TRUE(output->open(path.string(), 2, specs.data())) << output->geterror();
+  ASSERT_TRUE(output->write_image(OIIO::TypeFloat, depth.data()));
+  ASSERT_TRUE(output->open(path.string(), specs[1], OIIO::ImageOutput::AppendSubimage)) << output->geterror();
+  ASSERT_TRUE(output->write_image(OIIO::TypeFloat, color.data()));
+  ASSERT_TRUE(output->close());
+
+  const FloatImage image = readColorImage(path);
+  ASSERT_EQ(image.width, width);
+  ASSERT_EQ(image.height, height);
+  ASSERT_EQ(image.channels, 4);
+  EXPECT_EQ(image.pixels, color);
+  const std::optional<FloatImage> readDepth = readDepthImage(path);
+  ASSERT_TRUE(readDepth);
+  EXPECT_EQ(readDepth->pixels, depth);
+}
+
+// OpenImageIO's resample() (which resizeImage once called) is the reference: one sample per destination
+// pixel centre, bilinear with edges repeated, or the pixel the centre falls in.
+TEST(ImageFilesResize, SamplesAsOpenImageIOsResampleDoes) {
+  FloatImage image;
+  image.width = 7;
+  image.height = 5;
+  image.channels = 3;
+  for (int i = 0; i < image.width * image.height * image.channels; ++i)
+    image.pixels.push_back(std::sin(float(i) * 1.7f) * 10.0f);
+  OIIO::ImageBuf source(OIIO::ImageSpec(image.width, image.height, image.channels, OIIO::TypeFloat));
+  source.set_pixels(OIIO::ROI::All(), OIIO::TypeFloat, image.pixels.data());
+  for (const auto& [width, height] :
+       std::vector<std::pair<int, int>>{{13, 9}, {3, 2}, {7, 11}, {1, 1}, {16, 5}}) {
+    for (const bool nearest : {false, true}) {
+      OIIO::ImageBuf reference(OIIO::ImageSpec(width, height, image.channels, OIIO::TypeFloat));
+      ASSERT_TRUE(OIIO::ImageBufAlgo::resample(reference, source, /*interpolate=*/!nearest));
+      std::vector<float> expected(std::size_t(width) * height * image.channels);
+      reference.get_pixels(OIIO::ROI::All(), OIIO::TypeFloat, expected.data());
+      const FloatImage resized = resizeImage(image, width, height, nearest);
+      ASSERT_EQ(resized.pixels.size(), expected.size());
+      for (std::size_t i = 0; i < expected.size(); ++i)
+        ASSERT_NEAR(resized.pixels[i], expected[i], 1e-5f)
+            << width << "x" << height << " nearest " << nearest << " at " << i;
+    }
+  }
 }
 
 TEST(ImageFilesResize, NearestRepeatsPixelsAndBilinearBlendsThem) {

@@ -255,3 +255,23 @@ def test_two_threads_sharing_a_renderer_get_their_own_frames(renderer):
     for name in ("small", "large"):
         for frame in results[name]:
             np.testing.assert_array_equal(frame, alone[name])
+
+
+def test_a_png_background_is_read_as_the_same_linear_colour_as_an_exr(renderer, tmp_path):
+    # The module links OpenImageIO's reader in (the command line opens it as a plugin): a PNG background
+    # holding the sRGB encoding of an EXR background's linear values composites as the EXR does, to within
+    # 8-bit quantisation.
+    random = np.random.default_rng(3)
+    linear = random.uniform(0.0, 1.0, (HEIGHT, WIDTH, 3)).astype(np.float32)
+    encoded = np.where(linear <= 0.0031308, 12.92 * linear, 1.055 * linear ** (1 / 2.4) - 0.055)
+    for name, pixels, pixel_type in (("b.exr", linear, oiio.FLOAT), ("b.png", encoded, oiio.UINT8)):
+        output = oiio.ImageOutput.create(str(tmp_path / name))
+        output.open(str(tmp_path / name), oiio.ImageSpec(WIDTH, HEIGHT, 3, pixel_type))
+        output.write_image(pixels.astype(np.float32))
+        output.close()
+    composites = [layer(renderer.render(scene_json(background={"image": name}), 1, base_dir=str(tmp_path),
+                                        layers=["composite"]), "composite")
+                  for name in ("b.exr", "b.png")]
+    np.testing.assert_allclose(composites[0][..., :3], linear, rtol=0, atol=1e-6)
+    # Half a step of 8-bit sRGB is at most 0.0045 in linear (at 1).
+    np.testing.assert_allclose(composites[1], composites[0], rtol=0, atol=0.0045)

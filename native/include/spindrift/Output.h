@@ -14,7 +14,7 @@ struct ExrOptions {
   /// Colour layers as 16-bit half float. Layers whose values are positions stay 32-bit float (see
   /// exrLayerNeedsFloat): a half's 11-bit mantissa would move a refraction UV by up to ~1 px at 1920 px.
   bool halfColor = false;
-  /// An OpenEXR compression as OpenImageIO names it: "none", "zip", "zips", "piz", "rle", "dwaa", ...; ZIP
+  /// An OpenEXR compression: "none", "zip", "zips", "piz", "rle", "dwaa", ... (OpenImageIO's names); ZIP
   /// may name zlib's level ("zip:1"). Level 1 writes the examples' frames 4-5 % larger than OpenEXR's
   /// default (4) in half the time (docs/farm.md); reading is as fast.
   std::string compression = "zip:1";
@@ -22,7 +22,7 @@ struct ExrOptions {
   std::vector<std::string> layers;
 };
 
-/// True for one of OpenEXR's compressions as OpenImageIO's writer names them ("none", "rle", "zip", "zips",
+/// True for one of OpenEXR's compressions as OpenImageIO names them ("none", "rle", "zip", "zips",
 /// "piz", "pxr24", "b44", "b44a", "dwaa", "dwab"), or "zip:N" / "zips:N" with zlib's level N from 1 (fastest)
 /// to 9.
 bool exrCompressionIsValid(const std::string& compression);

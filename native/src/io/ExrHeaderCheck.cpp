@@ -8,13 +8,13 @@
 #include <utility>
 #include <vector>
 
-#include "io/OiioErrors.h"
+#include "io/ImageFileErrors.h"
 #include "spindrift/Limits.h"
 
 namespace spindrift {
 namespace {
 
-using oiio_errors::fail;
+using image_file_errors::fail;
 
 // OpenEXR's layout (openexr.com, "OpenEXR File Layout"): magic, version and flags, then one header (several,
 // ended by an empty one, in a multi-part file) of attributes `name\0 type\0 int32 size, value`, each header

@@ -7,14 +7,10 @@
 #include <string>
 #include <vector>
 
-#include <OpenImageIO/imagebuf.h>
-#include <OpenImageIO/imagebufalgo.h>
-#include <OpenImageIO/imageio.h>
-#include <OpenImageIO/strutil.h>
-
 #include "io/ExrHeaderCheck.h"
+#include "io/ImageFileErrors.h"
+#include "io/ImageReader.h"
 #include "io/JpegMarkerCheck.h"
-#include "io/OiioErrors.h"
 #include "io/PngChunkCheck.h"
 #include "spindrift/Error.h"
 #include "spindrift/Limits.h"
@@ -22,25 +18,19 @@
 namespace spindrift {
 namespace {
 
-// Larger images are certainly a corrupt header, and refusing them keeps a bad file from becoming an
-// allocation failure instead of an Error.
+// A larger size is certainly a mistake, and refusing it keeps it from becoming an allocation failure instead
+// of an Error.
 constexpr long long kMaxPixels = 1LL << 30;
 
-using oiio_errors::fail;
-using oiio_errors::oneLine;
+using image_file_errors::fail;
 
-std::unique_ptr<OIIO::ImageInput> openImage(const std::filesystem::path& path) {
+std::unique_ptr<ImageReader> openImage(const std::filesystem::path& path) {
   if (!std::filesystem::exists(path)) fail(path, "no such image file");
   checkExrHeaderClaims(path);
+  if (isExrFile(path)) return openExrImage(path);
   checkPngChunkClaims(path);
   checkJpegMarkerClaims(path);
-  // Keep unassociated alpha (PNG, TIFF) as stored: OIIO would otherwise premultiply the sRGB-encoded
-  // values, and premultiplying is only right after decoding to linear.
-  OIIO::ImageSpec config;
-  config.attribute("oiio:UnassociatedAlpha", 1);
-  std::unique_ptr<OIIO::ImageInput> input = OIIO::ImageInput::open(path.string(), &config);
-  if (!input) fail(path, "cannot read image: " + oneLine(OIIO::geterror()));
-  return input;
+  return openOtherImage(path);
 }
 
 // "ViewLayer.Combined.R" is layer "ViewLayer.Combined", channel "R"; "R" is layer "", channel "R".
@@ -54,13 +44,15 @@ std::string channelOf(const std::string& channelName) {
   return dot == std::string::npos ? channelName : channelName.substr(dot + 1);
 }
 
-int channelIndex(const OIIO::ImageSpec& spec, const std::string& name) {
-  const auto found = std::find(spec.channelnames.begin(), spec.channelnames.end(), name);
-  return found == spec.channelnames.end() ? -1 : int(found - spec.channelnames.begin());
+using ChannelNames = std::vector<std::string>;
+
+int channelIndex(const ChannelNames& names, const std::string& name) {
+  const auto found = std::find(names.begin(), names.end(), name);
+  return found == names.end() ? -1 : int(found - names.begin());
 }
 
 // Channel indices of R, G, B, A within one layer (`prefix` is "" or "Layer."); A may be -1.
-bool findRgba(const OIIO::ImageSpec& spec, const std::string& prefix, std::array<int, 4>* rgba) {
+bool findRgba(const ChannelNames& spec, const std::string& prefix, std::array<int, 4>* rgba) {
   *rgba = {channelIndex(spec, prefix + "R"), channelIndex(spec, prefix + "G"),
            channelIndex(spec, prefix + "B"), channelIndex(spec, prefix + "A")};
   return (*rgba)[0] >= 0 && (*rgba)[1] >= 0 && (*rgba)[2] >= 0;
@@ -75,77 +67,17 @@ bool isDepthChannel(const std::string& channelName) {
 
 // The colour channels of one subimage as R, G, B, A indices (alpha -1 when absent), or false when it has
 // none. Blender's Combined layer comes first, then plain RGB, then grey.
-bool findColorChannels(const OIIO::ImageSpec& spec, std::array<int, 4>* rgba) {
-  for (const std::string& name : spec.channelnames) {
+bool findColorChannels(const ChannelNames& spec, std::array<int, 4>* rgba) {
+  for (const std::string& name : spec) {
     const std::string layer = layerOf(name);
     if (layer.find("Combined") != std::string::npos && findRgba(spec, layer + ".", rgba)) return true;
   }
   if (findRgba(spec, "", rgba)) return true;
   int grey = channelIndex(spec, "Y");
-  if (grey < 0 && spec.nchannels == 1 && !isDepthChannel(spec.channelnames[0])) grey = 0;
+  if (grey < 0 && spec.size() == 1 && !isDepthChannel(spec[0])) grey = 0;
   if (grey < 0) return false;
   *rgba = {grey, grey, grey, channelIndex(spec, "A")};
   return true;
-}
-
-// Reads the listed channels of the current subimage as interleaved floats (a channel index of -1 gives
-// `missingValue`), over the display window, top row first. Pixels outside the data window are 0.
-FloatImage readChannels(OIIO::ImageInput& input, const std::filesystem::path& path, int subimage,
-                        const std::vector<int>& channels, float missingValue) {
-  const OIIO::ImageSpec spec = input.spec();
-  if (spec.deep) fail(path, "deep images are not supported");
-  const bool hasDisplayWindow = spec.full_width > 0 && spec.full_height > 0;
-  const int originX = hasDisplayWindow ? spec.full_x : spec.x;
-  const int originY = hasDisplayWindow ? spec.full_y : spec.y;
-  FloatImage image;
-  image.width = hasDisplayWindow ? spec.full_width : spec.width;
-  image.height = hasDisplayWindow ? spec.full_height : spec.height;
-  image.channels = int(channels.size());
-  if (spec.width <= 0 || spec.height <= 0 || image.width <= 0 || image.height <= 0 ||
-      (long long)spec.width * spec.height > kMaxPixels ||
-      (long long)image.width * image.height > kMaxPixels) {
-    fail(path, "unsupported image size " + std::to_string(spec.width) + "x" + std::to_string(spec.height));
-  }
-
-  int firstChannel = spec.nchannels;
-  int lastChannel = -1;
-  for (int channel : channels) {
-    if (channel < 0) continue;
-    firstChannel = std::min(firstChannel, channel);
-    lastChannel = std::max(lastChannel, channel);
-  }
-  const int blockChannels = std::max(0, lastChannel + 1 - firstChannel);
-  // OpenImageIO 2.4 converts a scanline image through a buffer of a chunk of rows, about 256 of them however
-  // few the image has (fuzz_background_image: a 4,259,848 x 6 EXR made it allocate 13 GB, 3,072 bytes a
-  // column for three float channels), so that buffer counts too, at the file's channels and 4 bytes each.
-  constexpr std::uint64_t kConversionRows = 256;
-  requireMemory(
-      (std::uint64_t(spec.width) * std::uint64_t(spec.height) * std::uint64_t(blockChannels) +
-       std::uint64_t(image.width) * std::uint64_t(image.height) * std::uint64_t(image.channels) +
-       std::uint64_t(spec.width) * kConversionRows * std::uint64_t(std::max(blockChannels, spec.nchannels))) *
-          sizeof(float),
-      path.string() + ": a " + std::to_string(image.width) + "x" + std::to_string(image.height) + " image");
-  std::vector<float> block(std::size_t(spec.width) * spec.height * blockChannels);
-  if (blockChannels > 0 &&
-      !input.read_image(subimage, 0, firstChannel, lastChannel + 1, OIIO::TypeFloat, block.data())) {
-    fail(path, "cannot read pixels: " + oneLine(input.geterror()));
-  }
-
-  image.pixels.assign(std::size_t(image.width) * image.height * image.channels, 0.0f);
-  for (int dataY = 0; dataY < spec.height; ++dataY) {
-    const int y = spec.y + dataY - originY;
-    if (y < 0 || y >= image.height) continue;
-    for (int dataX = 0; dataX < spec.width; ++dataX) {
-      const int x = spec.x + dataX - originX;
-      if (x < 0 || x >= image.width) continue;
-      const float* source = &block[(std::size_t(dataY) * spec.width + dataX) * blockChannels];
-      float* target = &image.pixels[(std::size_t(y) * image.width + x) * image.channels];
-      for (int c = 0; c < image.channels; ++c) {
-        target[c] = channels[c] < 0 ? missingValue : source[channels[c] - firstChannel];
-      }
-    }
-  }
-  return image;
 }
 
 float linearFromSrgb(float encoded) {
@@ -154,18 +86,14 @@ float linearFromSrgb(float encoded) {
 
 // Brings colour stored in a display encoding to linear, and unassociated alpha to premultiplied, so every
 // colour image comes back as Blender's Combined pass is: linear and premultiplied.
-void toLinearPremultiplied(const OIIO::ImageSpec& spec, FloatImage* rgba) {
-  const std::string colorSpace = spec.get_string_attribute("oiio:ColorSpace");
-  const bool isSrgb = OIIO::Strutil::iequals(colorSpace, "sRGB");
-  const float gamma =
-      OIIO::Strutil::istarts_with(colorSpace, "Gamma") ? spec.get_float_attribute("oiio:Gamma", 1) : 1.0f;
-  const bool unassociatedAlpha = spec.get_int_attribute("oiio:UnassociatedAlpha", 0) != 0;
+void toLinearPremultiplied(const ColorEncoding& encoding, FloatImage* rgba) {
+  if (!encoding.srgb && encoding.gamma == 1.0f && !encoding.unassociatedAlpha) return;
   for (std::size_t pixel = 0; pixel < rgba->pixels.size(); pixel += 4) {
     float* value = &rgba->pixels[pixel];
     for (int c = 0; c < 3; ++c) {
-      if (isSrgb) value[c] = linearFromSrgb(value[c]);
-      if (gamma != 1.0f) value[c] = std::pow(std::max(value[c], 0.0f), gamma);
-      if (unassociatedAlpha) value[c] *= value[3];
+      if (encoding.srgb) value[c] = linearFromSrgb(value[c]);
+      if (encoding.gamma != 1.0f) value[c] = std::pow(std::max(value[c], 0.0f), encoding.gamma);
+      if (encoding.unassociatedAlpha) value[c] *= value[3];
     }
   }
 }
@@ -173,39 +101,39 @@ void toLinearPremultiplied(const OIIO::ImageSpec& spec, FloatImage* rgba) {
 }  // namespace
 
 FloatImage readColorImage(const std::filesystem::path& path) {
-  std::unique_ptr<OIIO::ImageInput> input = openImage(path);
-  for (int subimage = 0; input->seek_subimage(subimage, 0); ++subimage) {
+  std::unique_ptr<ImageReader> input = openImage(path);
+  for (int subimage = 0; subimage < input->imageCount(); ++subimage) {
     std::array<int, 4> rgba;
-    if (!findColorChannels(input->spec(), &rgba)) continue;
-    FloatImage image = readChannels(*input, path, subimage, {rgba.begin(), rgba.end()}, 1.0f);
-    toLinearPremultiplied(input->spec(), &image);
+    if (!findColorChannels(input->channelNames(subimage), &rgba)) continue;
+    FloatImage image = input->readChannels(subimage, {rgba.begin(), rgba.end()}, 1.0f);
+    toLinearPremultiplied(input->colorEncoding(subimage), &image);
     return image;
   }
   fail(path, "no colour channels (looked for a *Combined* layer, R G B, or grey)");
 }
 
 std::optional<FloatImage> readDepthImage(const std::filesystem::path& path) {
-  std::unique_ptr<OIIO::ImageInput> input = openImage(path);
-  for (int subimage = 0; input->seek_subimage(subimage, 0); ++subimage) {
-    const std::vector<std::string>& names = input->spec().channelnames;
+  std::unique_ptr<ImageReader> input = openImage(path);
+  for (int subimage = 0; subimage < input->imageCount(); ++subimage) {
+    const ChannelNames& names = input->channelNames(subimage);
     const auto depth = std::find_if(names.begin(), names.end(), isDepthChannel);
     if (depth == names.end()) continue;
-    return readChannels(*input, path, subimage, {int(depth - names.begin())}, 0.0f);
+    return input->readChannels(subimage, {int(depth - names.begin())}, 0.0f);
   }
   return std::nullopt;
 }
 
 std::optional<std::array<FloatImage, 3>> readLightPasses(const std::filesystem::path& path) {
-  std::unique_ptr<OIIO::ImageInput> input = openImage(path);
+  std::unique_ptr<ImageReader> input = openImage(path);
   const char* passNames[6] = {"DiffDir", "DiffInd", "DiffCol", "GlossDir", "GlossInd", "GlossCol"};
-  for (int subimage = 0; input->seek_subimage(subimage, 0); ++subimage) {
-    const OIIO::ImageSpec& spec = input->spec();
+  for (int subimage = 0; subimage < input->imageCount(); ++subimage) {
+    const ChannelNames& spec = input->channelNames(subimage);
     std::array<FloatImage, 6> passes;
     bool complete = true;
     for (int pass = 0; pass < 6 && complete; ++pass) {
       std::array<int, 4> rgba{-1, -1, -1, -1};
       complete = false;
-      for (const std::string& name : spec.channelnames) {
+      for (const std::string& name : spec) {
         const std::string layer = layerOf(name);
         const std::string suffix = passNames[pass];
         if (layer.size() >= suffix.size() &&
@@ -215,8 +143,7 @@ std::optional<std::array<FloatImage, 3>> readLightPasses(const std::filesystem::
           break;
         }
       }
-      if (complete)
-        passes[pass] = readChannels(*input, path, subimage, {rgba[0], rgba[1], rgba[2], -1}, 0.0f);
+      if (complete) passes[pass] = input->readChannels(subimage, {rgba[0], rgba[1], rgba[2], -1}, 0.0f);
     }
     if (!complete) continue;
     std::array<FloatImage, 3> light{passes[0], passes[3], passes[1]};
@@ -246,26 +173,45 @@ FloatImage resizeImage(const FloatImage& image, int width, int height, bool near
     throw Error("resizeImage: cannot resize to " + std::to_string(width) + "x" + std::to_string(height));
   }
   if (width == image.width && height == image.height) return image;
-  // The copy into OIIO, its result and ours: three images of the larger size at most.
-  requireMemory(
-      3 * std::uint64_t(std::max(width * (long long)height, image.width * (long long)image.height)) *
-          std::uint64_t(image.channels) * sizeof(float),
-      "resizing an image to " + std::to_string(width) + "x" + std::to_string(height));
+  requireMemory(std::uint64_t(width) * std::uint64_t(height) * std::uint64_t(image.channels) * sizeof(float),
+                "resizing an image to " + std::to_string(width) + "x" + std::to_string(height));
 
-  OIIO::ImageBuf source(OIIO::ImageSpec(image.width, image.height, image.channels, OIIO::TypeFloat));
-  source.set_pixels(OIIO::ROI::All(), OIIO::TypeFloat, image.pixels.data());
-  OIIO::ImageBuf resized(OIIO::ImageSpec(width, height, image.channels, OIIO::TypeFloat));
-  // resample() takes one sample per destination pixel centre: bilinear with `interpolate`, else the
-  // nearest source pixel, which keeps depth discontinuities from blending into phantom surfaces.
-  if (!OIIO::ImageBufAlgo::resample(resized, source, /*interpolate=*/!nearest)) {
-    throw Error("resizeImage: " + oneLine(resized.geterror()));
-  }
+  // One sample per destination pixel centre, as OpenImageIO's resample() takes it: bilinear between the four
+  // nearest source pixels (edges repeated), or for `nearest` the source pixel the centre falls in, which
+  // keeps depth discontinuities from blending into phantom surfaces.
   FloatImage result;
   result.width = width;
   result.height = height;
   result.channels = image.channels;
   result.pixels.resize(std::size_t(width) * height * image.channels);
-  resized.get_pixels(OIIO::ROI::All(), OIIO::TypeFloat, result.pixels.data());
+  const auto clampedPixel = [&](int x, int y) {
+    x = std::clamp(x, 0, image.width - 1);
+    y = std::clamp(y, 0, image.height - 1);
+    return &image.pixels[(std::size_t(y) * image.width + x) * image.channels];
+  };
+  for (int y = 0; y < height; ++y) {
+    const float sourceY = (float(y) + 0.5f) / float(height) * float(image.height);
+    for (int x = 0; x < width; ++x) {
+      const float sourceX = (float(x) + 0.5f) / float(width) * float(image.width);
+      float* target = &result.pixels[(std::size_t(y) * width + x) * image.channels];
+      if (nearest) {
+        const float* source = clampedPixel(int(std::floor(sourceX)), int(std::floor(sourceY)));
+        std::copy(source, source + image.channels, target);
+        continue;
+      }
+      const float left = std::floor(sourceX - 0.5f), top = std::floor(sourceY - 0.5f);
+      const float s = sourceX - 0.5f - left, t = sourceY - 0.5f - top;
+      const float* p00 = clampedPixel(int(left), int(top));
+      const float* p10 = clampedPixel(int(left) + 1, int(top));
+      const float* p01 = clampedPixel(int(left), int(top) + 1);
+      const float* p11 = clampedPixel(int(left) + 1, int(top) + 1);
+      for (int c = 0; c < image.channels; ++c) {
+        const float upper = (1.0f - s) * p00[c] + s * p10[c];
+        const float lower = (1.0f - s) * p01[c] + s * p11[c];
+        target[c] = (1.0f - t) * upper + t * lower;
+      }
+    }
+  }
   return result;
 }
 

@@ -7,12 +7,12 @@
 #include <string>
 #include <vector>
 
-#include "io/OiioErrors.h"
+#include "io/ImageFileErrors.h"
 
 namespace spindrift {
 namespace {
 
-using oiio_errors::fail;
+using image_file_errors::fail;
 
 // JPEG's markers (ITU T.81, B.1): 0xFF, a code, and for most a 2-byte big-endian length that counts itself.
 constexpr unsigned char kStartOfScan = 0xDA;

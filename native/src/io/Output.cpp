@@ -8,23 +8,33 @@
 #include <cstdint>
 #include <cstring>
 #include <functional>
+#include <map>
 #include <memory>
 #include <set>
 #include <string>
 #include <system_error>
+#include <thread>
+#include <utility>
 #include <vector>
 
-#include <Imath/half.h>
-#include <OpenImageIO/imageio.h>
+#include <png.h>
 
-#include "io/OiioErrors.h"
+#include <Imath/half.h>
+#include <OpenEXR/ImfChannelList.h>
+#include <OpenEXR/ImfCompression.h>
+#include <OpenEXR/ImfFrameBuffer.h>
+#include <OpenEXR/ImfHeader.h>
+#include <OpenEXR/ImfOutputFile.h>
+#include <OpenEXR/ImfThreading.h>
+
+#include "io/ImageFileErrors.h"
 #include "spindrift/Error.h"
 
 namespace spindrift {
 namespace {
 
-using oiio_errors::fail;
-using oiio_errors::oneLine;
+using image_file_errors::fail;
+using image_file_errors::oneLine;
 
 void checkLayerSizes(const RenderResult& result, const std::vector<const ImageLayer*>& layers,
                      const std::filesystem::path& path) {
@@ -70,12 +80,10 @@ class TemporaryFile {
   std::filesystem::path path_;
 };
 
-// Writes with the OIIO plugin `formatName` under a temporary name beside `target`, then renames it into
-// place, so `target` is either the old file or the complete new one. The format is named rather than
-// guessed from the extension because the temporary name has none.
-void writeThroughTemporaryFile(const std::filesystem::path& target, const char* formatName,
-                               const OIIO::ImageSpec& spec,
-                               const std::function<bool(OIIO::ImageOutput&)>& writePixels) {
+// Writes the file under a temporary name beside `target` with `write`, then renames it into place, so
+// `target` is either the old file or the complete new one. `write` throws on failure.
+void writeThroughTemporaryFile(const std::filesystem::path& target,
+                               const std::function<void(const std::filesystem::path&)>& write) {
   const std::filesystem::path directory = target.parent_path();
   if (!directory.empty()) {
     std::error_code directoryError;
@@ -84,18 +92,14 @@ void writeThroughTemporaryFile(const std::filesystem::path& target, const char* 
       fail(target, "cannot create directory " + directory.string() + ": " + directoryError.message());
     }
   }
-  std::unique_ptr<OIIO::ImageOutput> output = OIIO::ImageOutput::create(formatName);
-  if (!output) fail(target, std::string("no ") + formatName + " writer: " + oneLine(OIIO::geterror()));
-
   TemporaryFile temporary(temporaryPathBeside(target));
-  const bool written =
-      output->open(temporary.path().string(), spec) && writePixels(*output) && output->close();
-  if (!written) {
-    const std::string message = oneLine(output->geterror());
-    output.reset();  // Closes the file before the temporary is removed.
-    fail(target, "cannot write: " + message);
+  try {
+    write(temporary.path());
+  } catch (const Error&) {
+    throw;
+  } catch (const std::exception& error) {
+    fail(target, "cannot write: " + oneLine(error.what()));
   }
-  output.reset();
   std::error_code renameError;
   std::filesystem::rename(temporary.path(), target, renameError);
   if (renameError) fail(target, "cannot replace the file: " + renameError.message());
@@ -121,54 +125,71 @@ bool endsWith(const std::string& text, const std::string& suffix) {
          text.compare(text.size() - suffix.size(), suffix.size(), suffix) == 0;
 }
 
-// Rows per call to the writer: a multiple of every OpenEXR compression's block (1, 16 or 32 scanlines), and a
-// buffer small enough to be reused warm. Interleaving the whole image at once allocated tens of MB per frame,
-// and first touching those pages cost more than compressing them (docs/blender.md, "Per-final-frame
-// overhead").
+// OpenEXR compresses on its global thread pool, which is empty unless the host filled it (Blender does, to
+// its thread count): fill it only when nobody has, with one thread a core.
+void useEveryCoreUnlessTheHostChose() {
+  if (Imf::globalThreadCount() == 0)
+    Imf::setGlobalThreadCount(int(std::max(1u, std::thread::hardware_concurrency())));
+}
+
+// "zip:1" as OpenEXR's compression and zlib level (-1: OpenEXR's default level).
+std::pair<Imf::Compression, int> exrCompression(const std::string& compression) {
+  static const std::map<std::string, Imf::Compression> byName = {
+      {"none", Imf::NO_COMPRESSION},   {"rle", Imf::RLE_COMPRESSION},   {"zip", Imf::ZIP_COMPRESSION},
+      {"zips", Imf::ZIPS_COMPRESSION}, {"piz", Imf::PIZ_COMPRESSION},   {"pxr24", Imf::PXR24_COMPRESSION},
+      {"b44", Imf::B44_COMPRESSION},   {"b44a", Imf::B44A_COMPRESSION}, {"dwaa", Imf::DWAA_COMPRESSION},
+      {"dwab", Imf::DWAB_COMPRESSION}};
+  const std::size_t colon = compression.find(':');
+  const int level = colon == std::string::npos ? -1 : std::stoi(compression.substr(colon + 1));
+  return {byName.at(compression.substr(0, colon)), level};
+}
+
+// One channel of a layer as writeExr stores it. OpenEXR writes a channel only from a slice of its own type:
+// a float channel is written straight from its layer, a half one from `halves`, converted a chunk of rows
+// at a time.
+struct ExrChannel {
+  std::string name;
+  const float* source;  // the layer's first value of this channel
+  std::size_t stride;   // the layer's channel count
+  bool half;
+  std::vector<Imath::half> halves;
+};
+
+// Rows per chunk of converted halves: a multiple of every OpenEXR compression's block (1, 16 or 32
+// scanlines), and buffers small enough to be reused warm (converting the whole image at once allocated tens
+// of MB per frame, and first touching those pages cost more than compressing them; docs/blender.md,
+// "Per-final-frame overhead").
 constexpr int kRowsPerChunk = 64;
 
-// Writes the layers' channels interleaved into one pixel, layer after layer, in the spec's channel formats
-// (float or half), a chunk of rows at a time, so OpenImageIO writes them as they are instead of converting
-// mixed formats itself.
-bool writeInterleavedRows(OIIO::ImageOutput& output, const std::vector<const ImageLayer*>& layers,
-                          const OIIO::ImageSpec& spec) {
-  struct Channel {
-    const float* source;
-    std::size_t stride;  // The layer's channel count.
-    bool half;
-  };
-  std::vector<Channel> channels;
-  for (const ImageLayer* layer : layers)
-    for (std::size_t c = 0; c < layer->channelCount(); ++c)
-      channels.push_back({layer->pixels.data() + c, layer->channelCount(),
-                          spec.channelformat(int(channels.size())) == OIIO::TypeHalf});
-  const std::size_t width = std::size_t(spec.width);
-  std::vector<std::uint8_t> chunk(width * kRowsPerChunk * spec.pixel_bytes(true));
-  for (int firstRow = 0; firstRow < spec.height; firstRow += kRowsPerChunk) {
-    const int endRow = std::min(spec.height, firstRow + kRowsPerChunk);
-    std::uint8_t* target = chunk.data();
-    for (std::size_t pixel = std::size_t(firstRow) * width; pixel < std::size_t(endRow) * width; ++pixel) {
-      for (const Channel& channel : channels) {
-        const float value = channel.source[pixel * channel.stride];
-        if (channel.half) {
-          const Imath::half stored(value);
-          std::memcpy(target, &stored, sizeof(stored));
-          target += sizeof(stored);
-        } else {
-          std::memcpy(target, &value, sizeof(value));
-          target += sizeof(value);
-        }
+void writeExrRows(Imf::OutputFile& file, std::vector<ExrChannel>& channels, int width, int height) {
+  const std::size_t rowFloats = std::size_t(width);
+  for (int firstRow = 0; firstRow < height; firstRow += kRowsPerChunk) {
+    const int rows = std::min(height - firstRow, kRowsPerChunk);
+    Imf::FrameBuffer frameBuffer;
+    for (ExrChannel& channel : channels) {
+      const std::size_t floatBytes = channel.stride * sizeof(float);
+      if (!channel.half) {
+        frameBuffer.insert(channel.name, Imf::Slice::Make(Imf::FLOAT, channel.source, Imath::V2i(0, 0), width,
+                                                          height, floatBytes, floatBytes * rowFloats));
+        continue;
       }
+      channel.halves.resize(rowFloats * std::size_t(kRowsPerChunk));
+      const float* source = channel.source + std::size_t(firstRow) * rowFloats * channel.stride;
+      for (std::size_t i = 0; i < rowFloats * std::size_t(rows); ++i)
+        channel.halves[i] = Imath::half(source[i * channel.stride]);
+      frameBuffer.insert(channel.name,
+                         Imf::Slice::Make(Imf::HALF, channel.halves.data(), Imath::V2i(0, firstRow), width,
+                                          rows, sizeof(Imath::half), sizeof(Imath::half) * rowFloats));
     }
-    if (!output.write_scanlines(firstRow, endRow, 0, OIIO::TypeUnknown, chunk.data())) return false;
+    file.setFrameBuffer(frameBuffer);
+    file.writePixels(rows);
   }
-  return true;
 }
 
 }  // namespace
 
-// A misspelt name would make OpenImageIO's writer fall back to ZIP silently, and a level it cannot parse to
-// its default.
+// A misspelt name or level is refused rather than guessed at: OpenImageIO, which once wrote these files,
+// fell back to ZIP, or to its default level, without a word.
 bool exrCompressionIsValid(const std::string& compression) {
   static const std::set<std::string> names = {"none",  "rle", "zip",  "zips", "piz",
                                               "pxr24", "b44", "b44a", "dwaa", "dwab"};
@@ -204,26 +225,25 @@ void writeExr(const RenderResult& result, const std::filesystem::path& path, con
 
   if (!exrCompressionIsValid(options.compression))
     fail(path, "unknown EXR compression \"" + options.compression + "\"");
-  OIIO::ImageSpec spec(result.width, result.height, int(channelNames.size()), OIIO::TypeFloat);
-  spec.channelnames = channelNames;
-  if (options.halfColor) {
-    for (const ImageLayer* layer : layers)
-      for (std::size_t c = 0; c < layer->channelCount(); ++c)
-        spec.channelformats.push_back(exrLayerNeedsFloat(layer->name) ? OIIO::TypeFloat : OIIO::TypeHalf);
+  const auto [compression, level] = exrCompression(options.compression);
+  Imf::Header header(result.width, result.height);
+  header.compression() = compression;
+  if (level > 0) header.zipCompressionLevel() = level;
+  std::vector<ExrChannel> channels;
+  std::size_t name = 0;
+  for (const ImageLayer* layer : layers) {
+    const bool half = options.halfColor && !exrLayerNeedsFloat(layer->name);
+    for (std::size_t c = 0; c < layer->channelCount(); ++c, ++name) {
+      header.channels().insert(channelNames[name], Imf::Channel(half ? Imf::HALF : Imf::FLOAT));
+      channels.push_back({channelNames[name], layer->pixels.data() + c, layer->channelCount(), half, {}});
+    }
   }
-  const auto indexOf = [&](const std::string& name) {
-    const auto found = std::find(channelNames.begin(), channelNames.end(), name);
-    return found == channelNames.end() ? -1 : int(found - channelNames.begin());
-  };
-  spec.alpha_channel = indexOf("composite.A");
-  spec.z_channel = indexOf("depth.Z");
-  spec.attribute("compression", options.compression);
-  spec.attribute("oiio:ColorSpace", "Linear");
-  // OpenImageIO stamps the current time into the header (capDate) unless DateTime is given: left empty, the
-  // same frame gives the same file on every node and every run, so farm output can be checked byte for byte.
-  spec.attribute("DateTime", "");
-  writeThroughTemporaryFile(path, "openexr", spec, [&](OIIO::ImageOutput& output) {
-    return writeInterleavedRows(output, layers, spec);
+  // No time stamp or host name goes into the header: the same frame gives the same file on every node and
+  // every run, so farm output can be checked byte for byte.
+  useEveryCoreUnlessTheHostChose();
+  writeThroughTemporaryFile(path, [&](const std::filesystem::path& temporary) {
+    Imf::OutputFile file(temporary.c_str(), header);
+    writeExrRows(file, channels, result.width, result.height);
   });
 }
 
@@ -257,14 +277,16 @@ void writePng(const RenderResult& result, const std::filesystem::path& path) {
     target[3] = quantize(opacity);
   }
 
-  OIIO::ImageSpec spec(result.width, result.height, 4, OIIO::TypeUInt8);
-  spec.alpha_channel = 3;
-  // The values are already straight alpha; without this OIIO would divide by alpha a second time.
-  spec.attribute("oiio:UnassociatedAlpha", 1);
-  spec.attribute("oiio:ColorSpace", "sRGB");
-  spec.attribute("DateTime", "");  // As in writeExr: no time stamp, identical frames are identical files.
-  writeThroughTemporaryFile(path, "png", spec, [&](OIIO::ImageOutput& output) {
-    return output.write_image(OIIO::TypeUInt8, encoded.data());
+  // libpng's simplified writer: 8-bit sRGB with straight alpha (the values above), no time stamp, so
+  // identical frames are identical files.
+  writeThroughTemporaryFile(path, [&](const std::filesystem::path& temporary) {
+    png_image image{};
+    image.version = PNG_IMAGE_VERSION;
+    image.width = png_uint_32(result.width);
+    image.height = png_uint_32(result.height);
+    image.format = PNG_FORMAT_RGBA;
+    if (!png_image_write_to_file(&image, temporary.c_str(), 0, encoded.data(), 0, nullptr))
+      throw std::runtime_error(image.message);
   });
 }
 

@@ -5,12 +5,12 @@
 #include <fstream>
 #include <string>
 
-#include "io/OiioErrors.h"
+#include "io/ImageFileErrors.h"
 
 namespace spindrift {
 namespace {
 
-using oiio_errors::fail;
+using image_file_errors::fail;
 
 // The PNG layout (W3C PNG, 5.2-5.3): an 8-byte signature, then chunks of a 4-byte big-endian length, a 4-byte
 // type, `length` bytes of data and a 4-byte CRC, the last of type IEND.

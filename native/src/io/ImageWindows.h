@@ -1,0 +1,31 @@
+#pragma once
+
+#include <filesystem>
+#include <vector>
+
+#include "spindrift/FloatImage.h"
+
+namespace spindrift {
+
+/// A rectangle of pixels in an image file's coordinates.
+struct PixelWindow {
+  long long x = 0, y = 0, width = 0, height = 0;
+};
+
+/// The pixels a file stores (data) and the image they belong to (display), checked.
+struct ImageWindows {
+  PixelWindow data, display;
+};
+
+/// Throws Error naming the file when either window is empty or larger than any real image (a corrupt
+/// header, which must not become an allocation failure).
+ImageWindows checkedWindows(const std::filesystem::path& path, const PixelWindow& data,
+                            const PixelWindow& display);
+
+/// The image over the display window from `block` (the data window's pixels, `blockChannels` floats each):
+/// channel c is the block's channel slots[c], or `missingValue` where slots[c] is -1. Pixels outside the data
+/// window are 0.
+FloatImage placeInDisplayWindow(const ImageWindows& windows, const std::vector<float>& block,
+                                int blockChannels, const std::vector<int>& slots, float missingValue);
+
+}  // namespace spindrift
