@@ -5,7 +5,6 @@
 #include <fstream>
 #include <memory>
 #include <string>
-#include <thread>
 #include <vector>
 
 #include <OpenEXR/ImfChannelList.h>
@@ -14,8 +13,8 @@
 #include <OpenEXR/ImfInputPart.h>
 #include <OpenEXR/ImfMultiPartInputFile.h>
 #include <OpenEXR/ImfPartType.h>
-#include <OpenEXR/ImfThreading.h>
 
+#include "io/ExrThreads.h"
 #include "io/ImageFileErrors.h"
 #include "io/ImageReader.h"
 #include "io/ImageWindows.h"
@@ -28,13 +27,6 @@ namespace {
 using image_file_errors::fail;
 using image_file_errors::oneLine;
 
-// OpenEXR decompresses on its global thread pool, which is empty unless the host filled it (Blender does, to
-// its thread count): fill it only when nobody has, with one thread a core.
-void useEveryCoreUnlessTheHostChose() {
-  if (Imf::globalThreadCount() == 0)
-    Imf::setGlobalThreadCount(int(std::max(1u, std::thread::hardware_concurrency())));
-}
-
 PixelWindow windowOf(const Imath::Box2i& box) {
   return {box.min.x, box.min.y, (long long)box.max.x - box.min.x + 1, (long long)box.max.y - box.min.y + 1};
 }
@@ -42,7 +34,7 @@ PixelWindow windowOf(const Imath::Box2i& box) {
 class ExrReader final : public ImageReader {
  public:
   explicit ExrReader(const std::filesystem::path& path) : path_(path) {
-    useEveryCoreUnlessTheHostChose();
+    useEveryCoreForOpenExrUnlessTheHostChose();
     try {
       file_ = std::make_unique<Imf::MultiPartInputFile>(path.c_str());
     } catch (const std::exception& error) {

@@ -13,7 +13,6 @@
 #include <set>
 #include <string>
 #include <system_error>
-#include <thread>
 #include <utility>
 #include <vector>
 
@@ -25,8 +24,8 @@
 #include <OpenEXR/ImfFrameBuffer.h>
 #include <OpenEXR/ImfHeader.h>
 #include <OpenEXR/ImfOutputFile.h>
-#include <OpenEXR/ImfThreading.h>
 
+#include "io/ExrThreads.h"
 #include "io/ImageFileErrors.h"
 #include "spindrift/Error.h"
 
@@ -123,13 +122,6 @@ int channelIndex(const ImageLayer& layer, const std::string& channel) {
 bool endsWith(const std::string& text, const std::string& suffix) {
   return text.size() >= suffix.size() &&
          text.compare(text.size() - suffix.size(), suffix.size(), suffix) == 0;
-}
-
-// OpenEXR compresses on its global thread pool, which is empty unless the host filled it (Blender does, to
-// its thread count): fill it only when nobody has, with one thread a core.
-void useEveryCoreUnlessTheHostChose() {
-  if (Imf::globalThreadCount() == 0)
-    Imf::setGlobalThreadCount(int(std::max(1u, std::thread::hardware_concurrency())));
 }
 
 // "zip:1" as OpenEXR's compression and zlib level (-1: OpenEXR's default level).
@@ -240,7 +232,7 @@ void writeExr(const RenderResult& result, const std::filesystem::path& path, con
   }
   // No time stamp or host name goes into the header: the same frame gives the same file on every node and
   // every run, so farm output can be checked byte for byte.
-  useEveryCoreUnlessTheHostChose();
+  useEveryCoreForOpenExrUnlessTheHostChose();
   writeThroughTemporaryFile(path, [&](const std::filesystem::path& temporary) {
     Imf::OutputFile file(temporary.c_str(), header);
     writeExrRows(file, channels, result.width, result.height);
