@@ -44,8 +44,8 @@ SETTINGS = [
     ("no lights, absorption x2.5", False, True, {"liquid.absorption": 2.5}),
     ("sun, light passes, fixed 512-texel light views", True, True, {"light.texels_per_radius": 0}),
     ("sun, light passes, lights' views at 3 texels per radius", True, True, {"light.texels_per_radius": 3}),
-    # The marches' sample cap before session 36 (docs/frame-cost.md): what the cheaper default costs here.
-    ("sun, light passes, 96 samples a march", True, True, {"liquid.trace_max_steps": 96}),
+    # The marches' step before session 36 (docs/frame-cost.md): what the cheaper default costs here.
+    ("sun, light passes, marches in steps of 1.5 px", True, True, {"liquid.trace_step_pixels": 1.5}),
 ]
 
 
