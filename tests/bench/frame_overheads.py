@@ -139,7 +139,8 @@ def write_page(arguments, rows, load_start, load_end, renderer):
                      f"{row['from_cache']} | {row['frame_ms']:.0f} | {row['readback_ms']:.1f} | {later} | "
                      f"{row['channels']} | {row['max_difference']:.3g} |")
     lines += ["", "*Process*: the whole command's wall time; *setup*: the EGL context and the programs (from the "
-              "program binary cache, or compiled); *first frame*: `total_ms` of the process's first frame "
+              "program binary cache, or compiled; the programs are built beside the first frame's loading and "
+              "preparation, so setup and first frame overlap); *first frame*: `total_ms` of the process's first frame "
               "(loading, preparation, every pass, readback; not the EXR's write); *later frames*: the "
               "sequence's frames after the first, whose EXR writes overlap the next frame's render "
               "(`docs/farm.md`). What each lever costs and saves: `docs/frame-cost.md`."]
