@@ -10,6 +10,7 @@
 #include "io/ExrHeaderCheck.h"
 #include "io/ImageFileErrors.h"
 #include "io/ImageReader.h"
+#include "io/ImageWindows.h"
 #include "io/JpegMarkerCheck.h"
 #include "io/PngChunkCheck.h"
 #include "spindrift/Error.h"
@@ -17,10 +18,6 @@
 
 namespace spindrift {
 namespace {
-
-// A larger size is certainly a mistake, and refusing it keeps it from becoming an allocation failure instead
-// of an Error.
-constexpr long long kMaxPixels = 1LL << 30;
 
 using image_file_errors::fail;
 
@@ -169,7 +166,7 @@ FloatImage resizeImage(const FloatImage& image, int width, int height, bool near
       image.pixels.size() != std::size_t(image.width) * image.height * image.channels) {
     throw Error("resizeImage: the source image is empty or its pixel count does not match its size");
   }
-  if (width <= 0 || height <= 0 || (long long)width * height > kMaxPixels) {
+  if (width <= 0 || height <= 0 || (long long)width * height > kMaxImagePixels) {
     throw Error("resizeImage: cannot resize to " + std::to_string(width) + "x" + std::to_string(height));
   }
   if (width == image.width && height == image.height) return image;

@@ -7,13 +7,11 @@
 namespace spindrift {
 namespace {
 
-// Larger images are certainly a corrupt header.
-constexpr long long kMaxPixels = 1LL << 30;
 constexpr long long kMaxSide = 1LL << 30;
 
 bool isReasonable(const PixelWindow& window) {
   return window.width > 0 && window.height > 0 && window.width <= kMaxSide && window.height <= kMaxSide &&
-         window.width * window.height <= kMaxPixels && window.x > -kMaxSide && window.x < kMaxSide &&
+         window.width * window.height <= kMaxImagePixels && window.x > -kMaxSide && window.x < kMaxSide &&
          window.y > -kMaxSide && window.y < kMaxSide;
 }
 

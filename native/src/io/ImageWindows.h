@@ -7,6 +7,10 @@
 
 namespace spindrift {
 
+/// More pixels than this is certainly a corrupt header or a mistake, and refusing it keeps it from becoming
+/// an allocation failure instead of an Error.
+constexpr long long kMaxImagePixels = 1LL << 30;
+
 /// A rectangle of pixels in an image file's coordinates.
 struct PixelWindow {
   long long x = 0, y = 0, width = 0, height = 0;

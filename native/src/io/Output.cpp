@@ -124,16 +124,21 @@ bool endsWith(const std::string& text, const std::string& suffix) {
          text.compare(text.size() - suffix.size(), suffix.size(), suffix) == 0;
 }
 
-// "zip:1" as OpenEXR's compression and zlib level (-1: OpenEXR's default level).
-std::pair<Imf::Compression, int> exrCompression(const std::string& compression) {
+// OpenEXR's compressions by the names OpenImageIO gave them, which the command line and the module take.
+const std::map<std::string, Imf::Compression>& exrCompressionsByName() {
   static const std::map<std::string, Imf::Compression> byName = {
       {"none", Imf::NO_COMPRESSION},   {"rle", Imf::RLE_COMPRESSION},   {"zip", Imf::ZIP_COMPRESSION},
       {"zips", Imf::ZIPS_COMPRESSION}, {"piz", Imf::PIZ_COMPRESSION},   {"pxr24", Imf::PXR24_COMPRESSION},
       {"b44", Imf::B44_COMPRESSION},   {"b44a", Imf::B44A_COMPRESSION}, {"dwaa", Imf::DWAA_COMPRESSION},
       {"dwab", Imf::DWAB_COMPRESSION}};
+  return byName;
+}
+
+// "zip:1" as OpenEXR's compression and zlib level (-1: OpenEXR's default level); checked valid first.
+std::pair<Imf::Compression, int> exrCompression(const std::string& compression) {
   const std::size_t colon = compression.find(':');
   const int level = colon == std::string::npos ? -1 : std::stoi(compression.substr(colon + 1));
-  return {byName.at(compression.substr(0, colon)), level};
+  return {exrCompressionsByName().at(compression.substr(0, colon)), level};
 }
 
 // One channel of a layer as writeExr stores it. OpenEXR writes a channel only from a slice of its own type:
@@ -183,11 +188,9 @@ void writeExrRows(Imf::OutputFile& file, std::vector<ExrChannel>& channels, int 
 // A misspelt name or level is refused rather than guessed at: OpenImageIO, which once wrote these files,
 // fell back to ZIP, or to its default level, without a word.
 bool exrCompressionIsValid(const std::string& compression) {
-  static const std::set<std::string> names = {"none",  "rle", "zip",  "zips", "piz",
-                                              "pxr24", "b44", "b44a", "dwaa", "dwab"};
   const std::size_t colon = compression.find(':');
   const std::string name = compression.substr(0, colon);
-  if (names.count(name) == 0) return false;
+  if (exrCompressionsByName().count(name) == 0) return false;
   if (colon == std::string::npos) return true;
   const std::string level = compression.substr(colon + 1);
   return (name == "zip" || name == "zips") && level.size() == 1 && level[0] >= '1' && level[0] <= '9';
