@@ -9,6 +9,7 @@
 #include <glm/geometric.hpp>
 
 #include "prep/MantaflowSurface.h"
+#include "prep/NeighbourOffsets.h"
 
 namespace spindrift {
 namespace {
@@ -38,45 +39,37 @@ bool isInterior(const glm::vec3& meanOffset, const float covariance[3][3]) {
   return true;
 }
 
-// The hot loop of the preparation. It is branch-free (particles outside R get weight 0) and its sums are
-// declared reductions, so the compiler vectorises it without -ffast-math (-fopenmp-simd, no OpenMP runtime).
-NeighbourMoments accumulateMoments(const ParticleCloud& cloud, std::uint32_t particle, float inverseRadius,
-                                   const IndexRange* ranges, int rangeCount) {
-  const float px = cloud.x[particle], py = cloud.y[particle], pz = cloud.z[particle];
-  const float* xs = cloud.x.data();
-  const float* ys = cloud.y.data();
-  const float* zs = cloud.z.data();
+// The hot loop of the preparation. It is branch-free and its sums are declared reductions, so the compiler
+// vectorises it without -ffast-math (-fopenmp-simd, no OpenMP runtime). Every offset lies within R (`inside`
+// repeats the gathering's test on the same numbers, so that no rounding can let one past it).
+NeighbourMoments accumulateMoments(const NeighbourOffsets& neighbours, float inverseRadius) {
+  const float* xs = neighbours.x();
+  const float* ys = neighbours.y();
+  const float* zs = neighbours.z();
+  const int length = neighbours.count();
   float weightSum = 0, mx = 0, my = 0, mz = 0, xx = 0, xy = 0, xz = 0, yy = 0, yz = 0, zz = 0, kernelSum = 0;
   int count = 0;
-  for (int r = 0; r < rangeCount; ++r) {
-    // Contiguous loads need a pointer and a signed count: a 32-bit unsigned index may wrap, which makes the
-    // vectoriser gather each element.
-    const float* rangeX = xs + ranges[r].begin;
-    const float* rangeY = ys + ranges[r].begin;
-    const float* rangeZ = zs + ranges[r].begin;
-    const int length = int(ranges[r].end - ranges[r].begin);
 #pragma omp simd reduction(+ : weightSum, mx, my, mz, xx, xy, xz, yy, yz, zz, kernelSum, count)
-    for (int j = 0; j < length; ++j) {
-      const float qx = (rangeX[j] - px) * inverseRadius;
-      const float qy = (rangeY[j] - py) * inverseRadius;
-      const float qz = (rangeZ[j] - pz) * inverseRadius;
-      const float q2 = qx * qx + qy * qy + qz * qz;
-      const bool inside = q2 < 1.0f;
-      const float weight = inside ? 1.0f - q2 * std::sqrt(q2) : 0.0f;
-      const float falloff = inside ? 1.0f - q2 : 0.0f;
-      weightSum += weight;
-      mx += weight * qx;
-      my += weight * qy;
-      mz += weight * qz;
-      xx += weight * qx * qx;
-      xy += weight * qx * qy;
-      xz += weight * qx * qz;
-      yy += weight * qy * qy;
-      yz += weight * qy * qz;
-      zz += weight * qz * qz;
-      kernelSum += falloff * falloff * falloff;
-      count += inside;
-    }
+  for (int j = 0; j < length; ++j) {
+    const float qx = xs[j] * inverseRadius;
+    const float qy = ys[j] * inverseRadius;
+    const float qz = zs[j] * inverseRadius;
+    const float q2 = qx * qx + qy * qy + qz * qz;
+    const bool inside = q2 < 1.0f;
+    const float weight = inside ? 1.0f - q2 * std::sqrt(q2) : 0.0f;
+    const float falloff = inside ? 1.0f - q2 : 0.0f;
+    weightSum += weight;
+    mx += weight * qx;
+    my += weight * qy;
+    mz += weight * qz;
+    xx += weight * qx * qx;
+    xy += weight * qx * qy;
+    xz += weight * qx * qz;
+    yy += weight * qy * qy;
+    yz += weight * qy * qz;
+    zz += weight * qz * qz;
+    kernelSum += falloff * falloff * falloff;
+    count += inside;
   }
   NeighbourMoments sums;
   sums.weightSum = weightSum;
@@ -88,32 +81,25 @@ NeighbourMoments accumulateMoments(const ParticleCloud& cloud, std::uint32_t par
 }
 
 // sum_j P(|G (x_j - x_i)|) for the anisotropic kernel G = diag(1 / kernel semi-axes) R^T; vectorised like
-// accumulateMoments. The kernel's support lies inside the searched neighbourhood, so no distance test is
-// needed.
-float anisotropicKernelSum(const ParticleCloud& cloud, std::uint32_t particle, const ParticleShape& shape,
-                           const IndexRange* ranges, int rangeCount) {
-  const float px = cloud.x[particle], py = cloud.y[particle], pz = cloud.z[particle];
+// accumulateMoments. The kernel's support lies inside the ball of radius R, so the neighbours within it are
+// all it needs.
+float anisotropicKernelSum(const NeighbourOffsets& neighbours, const ParticleShape& shape) {
   const glm::vec3 a = shape.axes[0] / shape.kernelSemiAxes[0];
   const glm::vec3 b = shape.axes[1] / shape.kernelSemiAxes[1];
   const glm::vec3 c = shape.axes[2] / shape.kernelSemiAxes[2];
-  const float* xs = cloud.x.data();
-  const float* ys = cloud.y.data();
-  const float* zs = cloud.z.data();
+  const float* xs = neighbours.x();
+  const float* ys = neighbours.y();
+  const float* zs = neighbours.z();
+  const int length = neighbours.count();
   float sum = 0.0f;
-  for (int r = 0; r < rangeCount; ++r) {
-    const float* rangeX = xs + ranges[r].begin;
-    const float* rangeY = ys + ranges[r].begin;
-    const float* rangeZ = zs + ranges[r].begin;
-    const int length = int(ranges[r].end - ranges[r].begin);
 #pragma omp simd reduction(+ : sum)
-    for (int j = 0; j < length; ++j) {
-      const float dx = rangeX[j] - px, dy = rangeY[j] - py, dz = rangeZ[j] - pz;
-      const float u = a.x * dx + a.y * dy + a.z * dz;
-      const float v = b.x * dx + b.y * dy + b.z * dz;
-      const float w = c.x * dx + c.y * dy + c.z * dz;
-      const float falloff = std::max(0.0f, 1.0f - (u * u + v * v + w * w));
-      sum += falloff * falloff * falloff;
-    }
+  for (int j = 0; j < length; ++j) {
+    const float dx = xs[j], dy = ys[j], dz = zs[j];
+    const float u = a.x * dx + a.y * dy + a.z * dz;
+    const float v = b.x * dx + b.y * dy + b.z * dz;
+    const float w = c.x * dx + c.y * dy + c.z * dz;
+    const float falloff = std::max(0.0f, 1.0f - (u * u + v * v + w * w));
+    sum += falloff * falloff * falloff;
   }
   return sum;
 }
@@ -132,10 +118,12 @@ bool facesEye(const ParticleCloud& cloud, std::size_t i, const glm::vec3& weight
 
 // Particle i's shape and density from its neighbours in `ranges`.
 ViewlessShape shapeFromNeighbours(const ParticleCloud& cloud, std::uint32_t i, const IndexRange* ranges,
-                                  int rangeCount, const AnisotropySettings& settings) {
+                                  int rangeCount, const AnisotropySettings& settings,
+                                  NeighbourOffsets& neighbours) {
   const float radius = cloud.radius[i];
   const float neighbourhood = settings.neighbourRadius * radius;
-  const NeighbourMoments moments = accumulateMoments(cloud, i, 1.0f / neighbourhood, ranges, rangeCount);
+  neighbours.gather(cloud, i, 1.0f / neighbourhood, ranges, rangeCount);
+  const NeighbourMoments moments = accumulateMoments(neighbours, 1.0f / neighbourhood);
   ViewlessShape result;
   result.shape = shapeFromMoments(moments, radius, settings);
   result.weightedOffset = moments.weightedOffset;
@@ -143,7 +131,7 @@ ViewlessShape shapeFromNeighbours(const ParticleCloud& cloud, std::uint32_t i, c
   // Unit-free density: the kernel's normalisation over its support volume, times r^3.
   if (result.shape.kind == ShapeKind::Anisotropic) {
     const glm::vec3 support = result.shape.kernelSemiAxes / radius;
-    const float sum = anisotropicKernelSum(cloud, i, result.shape, ranges, rangeCount);
+    const float sum = anisotropicKernelSum(neighbours, result.shape);
     result.density = kKernelNormalisation * sum / (support.x * support.y * support.z);
   } else {
     const float radiusCubed = settings.neighbourRadius * settings.neighbourRadius * settings.neighbourRadius;
@@ -310,6 +298,7 @@ ParticleShapes shapeParticles(const NeighbourGrid& grid, const AnisotropySetting
       tbb::blocked_range<std::size_t>(0, grid.cellCount(), 8),
       [&](const tbb::blocked_range<std::size_t>& cells) {
         IndexRange ranges[9];
+        NeighbourOffsets neighbours;
         for (std::size_t cell = cells.begin(); cell != cells.end(); ++cell) {
           const IndexRange members = grid.cellParticles(cell);
           int rangeCount = -1;  // Looked up on the first particle of the cell that is shaped here.
@@ -322,7 +311,7 @@ ParticleShapes shapeParticles(const NeighbourGrid& grid, const AnisotropySetting
             ViewlessShape computed;
             if (!remembered) {
               if (rangeCount < 0) rangeCount = grid.neighbourRanges(cell, ranges);
-              computed = shapeFromNeighbours(cloud, i, ranges, rangeCount, settings);
+              computed = shapeFromNeighbours(cloud, i, ranges, rangeCount, settings, neighbours);
               if (settings.memory) settings.memory->remember(i, particle, radius, computed);
             }
             const ViewlessShape& viewless = remembered ? *remembered : computed;
