@@ -5,9 +5,11 @@
 #include <cmath>
 #include <cstdint>
 #include <limits>
+#include <utility>
 
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
+#include <tbb/parallel_sort.h>
 #include <glm/geometric.hpp>
 #include <glm/matrix.hpp>
 #include <glm/trigonometric.hpp>
@@ -117,12 +119,15 @@ OccludedAggregatesResult dropOccludedAggregates(std::vector<EllipsoidInstance>& 
   const int bands = (grid.height + kRowsPerBand - 1) / kRowsPerBand;
   // Nearest first: once a pixel's nearer surfaces are in, a farther ellipsoid that can change neither bound
   // there (nor take a face it cannot reach) is passed over without its chord.
-  std::vector<std::uint32_t> nearestFirst;
-  nearestFirst.reserve(count);
+  // Sorted as (depth, index) pairs: contiguous keys, and ties in the index's order.
+  std::vector<std::pair<double, std::uint32_t>> byDepth;
+  byDepth.reserve(count);
   for (std::size_t i = 0; i < count; ++i)
-    if (covers[i]) nearestFirst.push_back(std::uint32_t(i));
-  std::sort(nearestFirst.begin(), nearestFirst.end(),
-            [&](std::uint32_t a, std::uint32_t b) { return viewed[a].nearest < viewed[b].nearest; });
+    if (covers[i]) byDepth.emplace_back(viewed[i].nearest, std::uint32_t(i));
+  tbb::parallel_sort(byDepth.begin(), byDepth.end());
+  std::vector<std::uint32_t> nearestFirst(byDepth.size());
+  for (std::size_t k = 0; k < byDepth.size(); ++k)
+    nearestFirst[k] = byDepth[k].second;
   // Each band's ellipsoids, in that order: a band touches only the few it holds.
   std::vector<std::vector<std::uint32_t>> inBand(static_cast<std::size_t>(bands));
   for (const std::uint32_t i : nearestFirst) {

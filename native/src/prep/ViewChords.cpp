@@ -47,6 +47,12 @@ ChordPolynomials::ChordPolynomials(const CameraEllipsoid& ellipsoid) {
 
 ViewGrid::ViewGrid(const Camera& camera) : width(camera.width), height(camera.height) {
   focal = 1.0f / camera.pixelSizeAt(1.0f);
+  columnU_.resize(std::size_t(std::max(width, 0)));
+  rowV_.resize(std::size_t(std::max(height, 0)));
+  for (int x = 0; x < width; ++x)
+    columnU_[std::size_t(x)] = (x + 0.5 - 0.5 * width) / focal;
+  for (int y = 0; y < height; ++y)
+    rowV_[std::size_t(y)] = (0.5 * height - (y + 0.5)) / focal;
 }
 
 void ViewGrid::clipToBox(const DomainBox& domain, const glm::dmat4& boxFromCamera) {

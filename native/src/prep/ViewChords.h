@@ -74,8 +74,9 @@ struct RowChords {
     const double lengthSquared = lengths.at(u), missing = cone.at(u);
     if (!(missing >= 0.0) || !(lengthSquared > 0.0)) return false;
     const double along = alongSlope * u + alongOffset, half = std::sqrt(missing);
-    entry = (along - half) / lengthSquared;
-    exit = (along + half) / lengthSquared;
+    const double inverseLength = 1.0 / lengthSquared;
+    entry = (along - half) * inverseLength;
+    exit = (along + half) * inverseLength;
     return true;
   }
 };
@@ -89,9 +90,10 @@ struct ViewGrid {
   std::vector<double> boxEnter, boxLeave;
 
   explicit ViewGrid(const Camera& camera);
-  // The ray through a pixel centre (x right, y down) is (u, v, -1) in camera space.
-  double u(int x) const { return (x + 0.5 - 0.5 * width) / focal; }
-  double v(int y) const { return (0.5 * height - (y + 0.5)) / focal; }
+  // The ray through a pixel centre (x right, y down) is (u, v, -1) in camera space: looked up, as the
+  // occlusion test asks for them at every pixel it visits.
+  double u(int x) const { return columnU_[std::size_t(x)]; }
+  double v(int y) const { return rowV_[std::size_t(y)]; }
 
   // Fills boxEnter and boxLeave (an affine map keeps a ray's parameter, so the slab test runs in the box's
   // frame).
@@ -108,6 +110,9 @@ struct ViewGrid {
                  glm::ivec2& high) const;
   // The window position (x right, y down) of a camera-space point in front of the eye.
   glm::vec2 pixelOf(const glm::vec3& point) const;
+
+ private:
+  std::vector<double> columnU_, rowV_;
 };
 
 // Inline: called for every row and pixel of every ellipsoid the occlusion test visits.
