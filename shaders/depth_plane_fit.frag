@@ -30,9 +30,8 @@ void main() {
   if (!hasSurface(centreDepth)) return;  // smoothing never creates a surface
   outEyeDepth = centreDepth;
 
-  mat3 cameraFromWorld = mat3(frame.cameraFromWorld);
   vec3 centrePosition = cameraPositionAtPixel(pixel, centreDepth);
-  vec3 normalSum = vec3(0.0);
+  vec3 normalSum = vec3(0.0);  // Σ w_ij ñ_j in world space: turned into camera space once, after the sum
   vec3 offsetSum = vec3(0.0);  // Σ w_ij (p_j - p_i): eq. 4 relative to p_i, which keeps float precision
   float weightSum = 0.0;
   for (int dy = -halfWindow; dy <= halfWindow; ++dy)
@@ -42,13 +41,14 @@ void main() {
       if (!hasSurface(depth)) continue;
       float depthDifference = (depth - centreDepth) / sigma;
       float weight = exp(-depthDifference * depthDifference);
-      normalSum += weight * (cameraFromWorld * texelFetch(originalNormal, neighbour, 0).xyz);
+      normalSum += weight * texelFetch(originalNormal, neighbour, 0).xyz;
       offsetSum += weight * (cameraPositionAtPixel(neighbour, depth) - centrePosition);
       weightSum += weight;
     }
 
   // The centre pixel always counts with weight 1, so weightSum >= 1 unless the input held NaN; every test is
   // written so that NaN fails it and leaves the depth as it was.
+  normalSum = mat3(frame.cameraFromWorld) * normalSum;
   float normalLength = length(normalSum);
   if (!(weightSum >= 1.0) || !(normalLength > kMinimumNormalAgreement * weightSum)) return;
   vec3 planeNormal = normalSum / normalLength;

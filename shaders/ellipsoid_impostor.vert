@@ -1,13 +1,13 @@
 #version 450 core
-// Draws each liquid particle's ellipsoid as the screen rectangle along its projection's own axes that bounds
-// that exact projection (the silhouette's dual conic, as Sigg et al. 2006, section 3.2, derive its
-// axis-aligned box; on the dam-break example 19 % fewer fragments than that box), or, where that does not
-// exist (an ellipsoid reaching the camera plane), as a camera-facing quad around its bounding sphere's
-// silhouette; the fragment shader ray-casts the exact ellipsoid (lib/ellipsoid_ray.glsl). A flattened
-// ellipsoid seen edge-on covers a fraction of its bounding sphere's square, and every fragment of the quad
-// costs a ray cast. Four vertices per particle (gl_VertexID
-// / 4 names it), drawn as two indexed triangles rather than one instance each: llvmpipe pays per instance,
-// and the lights' views of a thick body drew 1.8 times faster so (docs/frame-cost.md).
+// Draws each liquid particle's ellipsoid as one triangle around its projection: the equilateral triangle that
+// circumscribes the unit circle, mapped onto the ellipse that the ellipsoid's silhouette is (its dual conic, as
+// Sigg et al. 2006, section 3.2, derive its axis-aligned box). Where that ellipse does not exist (an ellipsoid
+// reaching the camera plane) the triangle circumscribes its bounding sphere's silhouette instead. The fragment
+// shader ray-casts the exact ellipsoid (lib/ellipsoid_ray.glsl). On llvmpipe a particle costs the triangles
+// set up for it and the fragments they cover: one triangle of 1.3 times the area of the rectangle along the
+// ellipse's axes (two triangles) drew the dam break's aggregate layers in 60-63 ms instead of 61-70, the
+// layers bit-identical (docs/frame-cost.md). Three vertices per particle (gl_VertexID / 3 names it), drawn as
+// arrays rather than one instance each: llvmpipe pays per instance.
 #include "lib/frame.glsl"
 #include "lib/ellipsoid_ray.glsl"
 
@@ -19,9 +19,13 @@ flat out mat3 vInverseAxesCamera;  // maps camera-space offsets from the centre 
 flat out uint vEllipsoid;          // its index in the list
 
 const float kSilhouetteMarginPixels = 0.1;
+// The equilateral triangle around the unit circle (its vertices 2 from the centre, its sides 1 away; sqrt(3)
+// rounded down by 8e-9, far inside the margin).
+const vec2 kAroundUnitCircle[3] = vec2[3](vec2(0.0, 2.0), vec2(-1.7320508, -1.0), vec2(1.7320508, -1.0));
 
 void main() {
-  vEllipsoid = uint(firstEllipsoid + (gl_VertexID >> 2));
+  vEllipsoid = uint(firstEllipsoid + gl_VertexID / 3);
+  vec2 corner = kAroundUnitCircle[gl_VertexID % 3];
   Ellipsoid ellipsoid = ellipsoids[vEllipsoid];
   vec3 centre = (frame.cameraFromWorld * vec4(ellipsoid.centreAndBoundingRadius.xyz, 1.0)).xyz;
   float radius = ellipsoid.centreAndBoundingRadius.w;
@@ -48,8 +52,8 @@ void main() {
   mat2 shape = mat2(xx * pixelsPerUnit.x * pixelsPerUnit.x, xy * pixelsPerUnit.x * pixelsPerUnit.y,
                     xy * pixelsPerUnit.x * pixelsPerUnit.y, yy * pixelsPerUnit.y * pixelsPerUnit.y);
   if (wDw < 0.0 && shape[0][0] >= 0.0 && shape[1][1] >= 0.0) {
-    // The rectangle along the ellipse's own axes (the eigenvectors of its shape): a thin ellipse seen
-    // slanted fills a small part of its axis-aligned box, and llvmpipe pays for every fragment of the quad.
+    // The triangle along the ellipse's own axes (the eigenvectors of its shape): a thin ellipse seen slanted
+    // fills a small part of its axis-aligned box.
     float mean = 0.5 * (shape[0][0] + shape[1][1]);
     float spread = length(vec2(0.5 * (shape[0][0] - shape[1][1]), shape[0][1]));
     vec2 halfAxes = sqrt(max(vec2(mean + spread, mean - spread), 0.0));
@@ -57,9 +61,8 @@ void main() {
                                             : vec2(shape[0][1], spread - 0.5 * (shape[0][0] - shape[1][1]));
     major = dot(major, major) > 0.0 ? normalize(major) : vec2(1.0, 0.0);
     // A tenth of a pixel of margin keeps every pixel centre the exact silhouette covers inside, despite
-    // rounding (the images are bit-identical to those of the axis-aligned box with a whole pixel's margin).
+    // rounding (the images were bit-identical to those of the axis-aligned box with a whole pixel's margin).
     halfAxes += kSilhouetteMarginPixels;
-    vec2 corner = vec2(gl_VertexID & 1, (gl_VertexID >> 1) & 1) * 2.0 - 1.0;
     vec2 offset = corner.x * halfAxes.x * major + corner.y * halfAxes.y * vec2(-major.y, major.x);
     // The rectangle's depth is irrelevant (the fragment shader writes gl_FragDepth); mid-range keeps it
     // inside the clip volume.
@@ -69,12 +72,12 @@ void main() {
   }
 
   float distanceToCentre = length(centre);
-  vec2 corner = vec2(gl_VertexID & 1, (gl_VertexID >> 1) & 1) * 2.0 - 1.0;
   if (distanceToCentre <= radius * 1.0001) {
     // A camera inside the liquid sits inside a few particles. Their back surfaces are what it sees above it
     // (the liquid's surface from below), so the back layer draws them over the whole screen and the fragment
-    // shader ray-casts each pixel; the front layer has no use for them.
-    gl_Position = backFaces ? vec4(corner, 0.0, 1.0) : vec4(2.0, 2.0, 2.0, 1.0);
+    // shader ray-casts each pixel; the front layer has no use for them. Twice the triangle around the unit
+    // circle holds every point within 2 of the centre, the clip square [-1, 1]^2 among them.
+    gl_Position = backFaces ? vec4(2.0 * corner, 0.0, 1.0) : vec4(2.0, 2.0, 2.0, 1.0);
     return;
   }
   // Spheres behind the camera are culled; this also guards the square root below.
@@ -86,9 +89,9 @@ void main() {
   vec3 helper = abs(direction.y) < 0.99 ? vec3(0.0, 1.0, 0.0) : vec3(1.0, 0.0, 0.0);
   vec3 right = normalize(cross(helper, direction));
   vec3 up = cross(direction, right);
-  // The quad lies in the plane perpendicular to the view direction through the bounding sphere's nearest
+  // The triangle lies in the plane perpendicular to the view direction through the bounding sphere's nearest
   // point, kept in front of the near plane. The silhouette cone has half-angle asin(r / d), so at distance D
-  // its circle has radius D r / sqrt(d^2 - r^2); the square around it gets a 1% margin.
+  // its circle has radius D r / sqrt(d^2 - r^2); the triangle around it gets a 1% margin.
   float planeDistance = max(distanceToCentre - radius, 1.01 * getNearClip() / max(-direction.z, 1e-3));
   float halfSize = planeDistance * radius / sqrt((distanceToCentre - radius) * (distanceToCentre + radius));
   vec3 position = direction * planeDistance + (right * corner.x + up * corner.y) * halfSize * 1.01;

@@ -50,18 +50,6 @@ void EllipsoidImpostorPass::upload(const std::vector<EllipsoidInstance>& ellipso
     ellipsoidBufferBytes_ = bytes;
   }
   if (bytes > 0) glNamedBufferSubData(ellipsoidBuffer_.id(), 0, GLsizeiptr(bytes), ellipsoids.data());
-  // Two triangles per particle over its four vertices, the indices shared by every frame (grow-only).
-  if (ellipsoids.size() > quadCount_) {
-    std::vector<GLuint> indices(6 * ellipsoids.size());
-    for (std::size_t i = 0; i < ellipsoids.size(); ++i) {
-      const GLuint corner = GLuint(4 * i);
-      const GLuint quad[6] = {corner, corner + 1, corner + 2, corner + 2, corner + 1, corner + 3};
-      std::copy(quad, quad + 6, indices.begin() + std::ptrdiff_t(6 * i));
-    }
-    quadIndices_ = createBuffer();
-    glNamedBufferStorage(quadIndices_.id(), GLsizeiptr(indices.size() * sizeof(GLuint)), indices.data(), 0);
-    quadCount_ = ellipsoids.size();
-  }
   checkGlError("uploading liquid particles");
 }
 
@@ -114,8 +102,7 @@ SurfaceLayers EllipsoidImpostorPass::runDepthRange(const std::vector<EllipsoidIn
     glUniform1i(uniformLocation(program, "firstEllipsoid"), 0);
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, ellipsoidBuffer_.id());
     glBindVertexArray(emptyVertexArray_.id());
-    glVertexArrayElementBuffer(emptyVertexArray_.id(), quadIndices_.id());
-    glDrawElements(GL_TRIANGLES, GLsizei(6 * ellipsoids.size()), GL_UNSIGNED_INT, nullptr);
+    glDrawArrays(GL_TRIANGLES, 0, GLsizei(3 * ellipsoids.size()));
     glBlendEquation(GL_FUNC_ADD);
     glDisable(GL_BLEND);
     checkGlError("drawing the liquid particles' depth range");
@@ -167,7 +154,6 @@ void EllipsoidImpostorPass::drawLayer(Target& target, bool backFaces, const std:
   glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, ellipsoidBuffer_.id());
   if (background) glBindTextureUnit(0, background->eyeDepth.id());
   glBindVertexArray(emptyVertexArray_.id());
-  glVertexArrayElementBuffer(emptyVertexArray_.id(), quadIndices_.id());
   bool anyClipped = false;
   for (const ImpostorDraw& draw : draws) {
     const GLuint program = draw.clip ? clipProgram_.id() : background ? program_.id() : noSolidsProgram_.id();
@@ -175,7 +161,7 @@ void EllipsoidImpostorPass::drawLayer(Target& target, bool backFaces, const std:
     glUseProgram(program);
     setRayUniforms(program, backFaces, view, domain);
     glUniform1i(uniformLocation(program, "firstEllipsoid"), draw.first);
-    glDrawElements(GL_TRIANGLES, 6 * draw.count, GL_UNSIGNED_INT, nullptr);
+    glDrawArrays(GL_TRIANGLES, 0, 3 * draw.count);
   }
   glDisable(GL_DEPTH_TEST);
   glDepthFunc(GL_LESS);

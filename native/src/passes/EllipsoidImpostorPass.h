@@ -60,8 +60,6 @@ class EllipsoidImpostorPass {
   VertexArrayObject emptyVertexArray_;
   BufferObject ellipsoidBuffer_;
   std::size_t ellipsoidBufferBytes_ = 0;
-  BufferObject quadIndices_;
-  std::size_t quadCount_ = 0;
   Target front_;
   Target back_;
 };

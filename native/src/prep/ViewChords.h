@@ -42,11 +42,11 @@ glm::dvec3 cameraHalfExtents(const CameraEllipsoid& ellipsoid);
 // the same ray.
 // The ellipsoid grown and shrunk for the rounding margins differ in s alone, so A, g and B are kept once.
 struct ChordPolynomials {
-  glm::dmat3 lengths{0.0};  // A
-  glm::dvec3 along{0.0};    // g
-  glm::dmat3 crossed{0.0};  // B = (C M)^T (C M)
+  glm::dmat3 lengths;  // A
+  glm::dvec3 along;    // g
+  glm::dmat3 crossed;  // B = (C M)^T (C M)
 
-  ChordPolynomials() = default;
+  ChordPolynomials() = default;  // uninitialised: a trivial type for the occlusion test's bulk storage
   explicit ChordPolynomials(const CameraEllipsoid& ellipsoid);
   // The cone K of the ellipsoid scaled by s.
   glm::dmat3 cone(double scale) const { return scale * scale * lengths - crossed; }
