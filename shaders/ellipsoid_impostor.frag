@@ -14,7 +14,9 @@
 layout(binding = 0) uniform sampler2D backgroundEyeDepth;
 
 flat in vec3 vUnitSphereCamera;
-flat in mat3 vInverseAxesCamera;
+flat in vec3 vUnitRayAtOrigin;
+flat in vec3 vUnitRayPerPixelX;
+flat in vec3 vUnitRayPerPixelY;
 flat in uint vEllipsoid;
 
 #ifdef DEPTH_RANGE
@@ -29,10 +31,10 @@ layout(location = 1) out uint outEllipsoid;  // the ellipsoid's index + 1; 0 whe
 #endif
 
 void main() {
-  float eyeDepth, nearDepth;
-  vec3 unusedNormal;
-  bool hit = castEllipsoid(gl_FragCoord.xy, vUnitSphereCamera, vInverseAxesCamera, eyeDepth, nearDepth,
-                           unusedNormal);
+  EllipsoidCast surface;
+  bool hit = castEllipsoid(gl_FragCoord.xy, vUnitSphereCamera,
+                           PixelRays(vUnitRayAtOrigin, vUnitRayPerPixelX, vUnitRayPerPixelY), surface);
+  float eyeDepth = surface.eyeDepth, nearDepth = surface.nearDepth;
 #ifndef NO_SOLIDS  // a light's view has no background
   hit = hit && nearDepth < texelFetch(backgroundEyeDepth, ivec2(gl_FragCoord.xy), 0).r;
 #endif
@@ -49,7 +51,7 @@ void main() {
   // ellipsoid reaches past it, whichever others are drawn (prep/OccludedAggregates.cpp relies on it).
   float bufferDepth = depthBufferFromEyeDepth(eyeDepth);
   uint bufferBits = floatBitsToUint(bufferDepth);
-  if (clipToDomain && castOnDomainFace)
+  if (clipToDomain && surface.onDomainFace)
     bufferDepth = uintBitsToFloat(backFaces ? bufferBits + 1u : bufferBits - 1u);
   gl_FragDepth = bufferDepth;
 #endif

@@ -15,8 +15,11 @@ uniform int firstEllipsoid;  // This layer draws ellipsoids [firstEllipsoid, fir
 
 // The camera in the ellipsoid's unit-sphere space, -A^-1 c: every fragment's ray starts there.
 flat out vec3 vUnitSphereCamera;
-flat out mat3 vInverseAxesCamera;  // maps camera-space offsets from the centre to the unit sphere
-flat out uint vEllipsoid;          // its index in the list
+// The pixels' rays in the unit-sphere space (PixelRays of A^-1 in camera space).
+flat out vec3 vUnitRayAtOrigin;
+flat out vec3 vUnitRayPerPixelX;
+flat out vec3 vUnitRayPerPixelY;
+flat out uint vEllipsoid;  // its index in the list
 
 const float kSilhouetteMarginPixels = 0.1;
 // The equilateral triangle around the unit circle (its vertices 2 from the centre, its sides 1 away; sqrt(3)
@@ -29,16 +32,20 @@ void main() {
   Ellipsoid ellipsoid = ellipsoids[vEllipsoid];
   vec3 centre = (frame.cameraFromWorld * vec4(ellipsoid.centreAndBoundingRadius.xyz, 1.0)).xyz;
   float radius = ellipsoid.centreAndBoundingRadius.w;
-  // The normal resolve (ellipsoid_normals.frag) derives both with the same functions.
-  vInverseAxesCamera = inverseAxesInCamera(ellipsoid);
-  vUnitSphereCamera = cameraInUnitSphere(vInverseAxesCamera, centre);
+  // The normal resolve (ellipsoid_normals.frag) derives these with the same functions.
+  mat3 inverseAxesCamera = inverseAxesInCamera(ellipsoid);
+  vUnitSphereCamera = cameraInUnitSphere(inverseAxesCamera, centre);
+  PixelRays unitRays = pixelRays(inverseAxesCamera);
+  vUnitRayAtOrigin = unitRays.atOrigin;
+  vUnitRayPerPixelX = unitRays.perPixelX;
+  vUnitRayPerPixelY = unitRays.perPixelY;
 
   // Tight bounds: the unit sphere maps to clip space by T = clipFromCamera [A c; 0 1], and the ellipsoid's
   // dual quadric there is Q* = T D T^T with D = diag(1, 1, 1, -1), whose entries are the rows r of T paired
   // by D. Its silhouette's dual conic is Q*'s x, y, w rows and columns; an ellipse of centre m and shape S
   // ({m + S^1/2 u : |u| <= 1}) has the dual conic [m m^T - S, m; m^T, 1] up to scale, so dividing by wDw
   // gives both. It holds while the whole ellipsoid is in front of the camera plane, that is wDw < 0.
-  mat4 axes = mat4(inverse(vInverseAxesCamera));
+  mat4 axes = mat4(inverse(inverseAxesCamera));
   axes[3] = vec4(centre, 1.0);
   mat4 rows = transpose(frame.clipFromCamera * axes);
   const vec4 signs = vec4(1.0, 1.0, 1.0, -1.0);

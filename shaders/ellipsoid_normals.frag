@@ -16,10 +16,8 @@ void main() {
   Ellipsoid ellipsoid = ellipsoids[winner - 1u];
   vec3 centre = (frame.cameraFromWorld * vec4(ellipsoid.centreAndBoundingRadius.xyz, 1.0)).xyz;
   mat3 inverseAxes = inverseAxesInCamera(ellipsoid);
-  float eyeDepth, nearDepth;
-  vec3 normal;
+  EllipsoidCast surface;
   // The cast succeeded when the impostor pass drew this pixel; it is repeated with the same arithmetic.
-  if (castEllipsoid(gl_FragCoord.xy, cameraInUnitSphere(inverseAxes, centre), inverseAxes, eyeDepth, nearDepth,
-                    normal))
-    outNormal = vec4(normal, 1.0);
+  if (castEllipsoid(gl_FragCoord.xy, cameraInUnitSphere(inverseAxes, centre), pixelRays(inverseAxes), surface))
+    outNormal = vec4(castWorldNormal(surface, inverseAxes), 1.0);
 }

@@ -22,9 +22,13 @@ const bool clipToDomain = true;
 const bool clipToDomain = false;
 #endif
 uniform mat4 domainFromWorld;
-uniform mat4 domainFromCamera;  // domainFromWorld x the view's worldFromCamera, once per draw
 uniform vec3 domainLow;
 uniform vec3 domainHigh;
+// The pixels' rays in the box's frame, as PixelRays (EllipsoidImpostorPass.cpp computes them from the view).
+uniform vec3 domainRayAtOrigin;
+uniform vec3 domainRayPerPixelX;
+uniform vec3 domainRayPerPixelY;
+uniform vec3 domainCamera;  // the camera's position in the box's frame
 
 // Maps camera-space offsets from an ellipsoid's centre to its unit sphere: x_camera = R x_world + t, so the
 // camera-space inverse is the world inverse followed by R^T.
@@ -39,23 +43,44 @@ vec3 cameraInUnitSphere(mat3 inverseAxesCamera, vec3 cameraCentre) {
   return -(inverseAxesCamera * cameraCentre);
 }
 
-// Whether the last castEllipsoid's surface is the domain box's face (set by castEllipsoid).
-bool castOnDomainFace = false;
+// A linear map of the pixels' rays r = (u, v, -1) (cameraRayFromFragCoord, whose parameter is the planar eye
+// depth): r is affine in the window position, and so is its image, M r = M r(0, 0) + x M dr/dx + y M dr/dy.
+// Per pixel that is two multiply-adds per component where M r was a matrix product of a normalised ray: on
+// llvmpipe the ray cast is most of the impostor pass (the dam break's aggregate layers took 21-25 ms with a
+// fragment shader that wrote constants, 60-64 with the cast, 51-55 with these rays; docs/frame-cost.md).
+struct PixelRays {
+  vec3 atOrigin, perPixelX, perPixelY;
+};
 
-// Where the ray through a pixel meets the ellipsoid: the eye depth of the surface the layer keeps (the
-// nearest front-facing one, or with backFaces the farthest back-facing one), the eye depth where the ray
-// enters (which the background test needs) and the world outward normal there; false where the pixel has no
-// such surface.
-bool castEllipsoid(vec2 fragCoord, vec3 origin, mat3 inverseAxesCamera, out float eyeDepth,
-                   out float nearDepth, out vec3 worldNormal) {
-  eyeDepth = 0.0;
-  nearDepth = 0.0;
-  worldNormal = vec3(0.0);
-  vec3 direction = normalize(cameraRayFromFragCoord(fragCoord));
-  // In the ellipsoid's unit-sphere space the ray is o + t d. Solving around the closest approach
-  // t0 = -(o.d)/(d.d) keeps the discriminant accurate thousands of radii away, where the textbook b^2 - ac
-  // cancels catastrophically.
-  vec3 unitDirection = inverseAxesCamera * direction;
+PixelRays pixelRays(mat3 linear) {
+  vec2 perPixel = 2.0 * frame.tanHalfFov.xy * frame.viewportSize.zw;
+  return PixelRays(linear * vec3(-frame.tanHalfFov.xy, -1.0), linear * vec3(perPixel.x, 0.0, 0.0),
+                   linear * vec3(0.0, perPixel.y, 0.0));
+}
+
+vec3 pixelRay(PixelRays rays, vec2 fragCoord) {
+  return rays.atOrigin + fragCoord.x * rays.perPixelX + fragCoord.y * rays.perPixelY;
+}
+
+// Where one pixel's ray meets an ellipsoid (castEllipsoid).
+struct EllipsoidCast {
+  float eyeDepth;   // of the surface the layer keeps
+  float nearDepth;  // where the ray enters (the background test needs it)
+  vec3 unitPoint;   // that surface in the unit-sphere space
+  bool onDomainFace;
+  vec3 domainFaceNormal;  // in the box's frame, where onDomainFace
+};
+
+// Where the ray through a pixel meets the ellipsoid whose unit-sphere space holds the camera at `origin` and
+// the pixels' rays `rays`: the surface the layer keeps (the nearest front-facing one, or with backFaces the
+// farthest back-facing one) and where the ray enters; false where the pixel has no such surface. The
+// impostor pass and its normal resolve call it with the same arithmetic, so that they agree on every pixel.
+bool castEllipsoid(vec2 fragCoord, vec3 origin, PixelRays rays, out EllipsoidCast surface) {
+  surface = EllipsoidCast(0.0, 0.0, vec3(0.0), false, vec3(0.0));
+  // In the ellipsoid's unit-sphere space the ray is o + t d, t the eye depth. Solving around the closest
+  // approach t0 = -(o.d)/(d.d) keeps the discriminant accurate thousands of radii away, where the textbook
+  // b^2 - ac cancels catastrophically.
+  vec3 unitDirection = pixelRay(rays, fragCoord);
   float a = dot(unitDirection, unitDirection);
   float closest = -dot(origin, unitDirection) / a;
   vec3 closestPoint = origin + closest * unitDirection;
@@ -69,27 +94,24 @@ bool castEllipsoid(vec2 fragCoord, vec3 origin, mat3 inverseAxesCamera, out floa
   bool cameraInside = nearT <= 0.0;
   if (cameraInside && !backFaces) return false;
 
-  // Clip the chord [nearT, farT] to the domain's box (slab test in the box's frame); where the box cuts the
-  // ellipsoid the surface is the box's face, with its normal.
-  vec3 boxNormal = vec3(0.0);
-  bool onBox = false;
+  // Clip the chord [nearT, farT] to the domain's box (slab test in the box's frame, where the same ray has
+  // the same parameter); where the box cuts the ellipsoid the surface is the box's face, with its normal.
   if (clipToDomain) {
-    vec3 boxOrigin = (domainFromCamera * vec4(0.0, 0.0, 0.0, 1.0)).xyz;
-    vec3 boxDirection = mat3(domainFromCamera) * direction;
+    vec3 boxDirection = domainRayAtOrigin + fragCoord.x * domainRayPerPixelX + fragCoord.y * domainRayPerPixelY;
     vec3 inverse = 1.0 / boxDirection;
-    vec3 tLow = (domainLow - boxOrigin) * inverse, tHigh = (domainHigh - boxOrigin) * inverse;
+    vec3 tLow = (domainLow - domainCamera) * inverse, tHigh = (domainHigh - domainCamera) * inverse;
     vec3 tEnter = min(tLow, tHigh), tLeave = max(tLow, tHigh);
     float enter = max(tEnter.x, max(tEnter.y, tEnter.z)), leave = min(tLeave.x, min(tLeave.y, tLeave.z));
     float clippedNear = max(nearT, enter), clippedFar = min(farT, leave);
     if (!(clippedNear < clippedFar)) return false;
     if (!backFaces && enter > nearT) {
       int axis = enter == tEnter.x ? 0 : (enter == tEnter.y ? 1 : 2);
-      boxNormal[axis] = -sign(boxDirection[axis]);
-      onBox = true;
+      surface.domainFaceNormal[axis] = -sign(boxDirection[axis]);
+      surface.onDomainFace = true;
     } else if (backFaces && leave < farT) {
       int axis = leave == tLeave.x ? 0 : (leave == tLeave.y ? 1 : 2);
-      boxNormal[axis] = sign(boxDirection[axis]);
-      onBox = true;
+      surface.domainFaceNormal[axis] = sign(boxDirection[axis]);
+      surface.onDomainFace = true;
     }
     nearT = clippedNear;
     farT = clippedFar;
@@ -97,19 +119,18 @@ bool castEllipsoid(vec2 fragCoord, vec3 origin, mat3 inverseAxesCamera, out floa
     cameraInside = nearT <= 0.0;
   }
   float t = backFaces ? farT : nearT;
-  castOnDomainFace = onBox;
+  surface.nearDepth = cameraInside ? getNearClip() : nearT;
+  if (surface.nearDepth < getNearClip()) return false;
+  surface.eyeDepth = t;
+  if (t > getFarClip() || t < getNearClip()) return false;
+  surface.unitPoint = origin + t * unitDirection;
+  return true;
+}
 
-  nearDepth = cameraInside ? getNearClip() : nearT * -direction.z;
-  if (nearDepth < getNearClip()) return false;
-  eyeDepth = t * -direction.z;
-  if (eyeDepth > getFarClip() || eyeDepth < getNearClip()) return false;
-
-  // The gradient of |A^-1 x|^2 is A^-T A^-1 x: the outward normal.
-  vec3 unitPoint = origin + t * unitDirection;
-  vec3 cameraNormal = normalize(transpose(inverseAxesCamera) * unitPoint);
+// The world outward normal of a cast surface: the box's face, or the gradient of |A^-1 x|^2, A^-T A^-1 x.
+vec3 castWorldNormal(EllipsoidCast surface, mat3 inverseAxesCamera) {
   // The box frame is a rotation of the world's (unit scale), so its normals turn into the world's by the
   // transpose of its rotation.
-  worldNormal = normalize(onBox ? transpose(mat3(domainFromWorld)) * boxNormal
-                                : mat3(frame.worldFromCamera) * cameraNormal);
-  return true;
+  if (surface.onDomainFace) return normalize(transpose(mat3(domainFromWorld)) * surface.domainFaceNormal);
+  return normalize(mat3(frame.worldFromCamera) * normalize(transpose(inverseAxesCamera) * surface.unitPoint));
 }

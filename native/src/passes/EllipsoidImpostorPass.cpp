@@ -65,9 +65,21 @@ void setRayUniforms(GLuint program, bool backFaces, const Camera& view, const Do
   if (!domain) return;
   const glm::mat4 domainFromWorld = glm::inverse(domain->worldFromBox);
   glProgramUniformMatrix4fv(program, location("domainFromWorld"), 1, GL_FALSE, &domainFromWorld[0][0]);
-  // A product every fragment would otherwise repeat: on llvmpipe about 14 % of the impostor pass.
+  // The pixels' rays in the box's frame (PixelRays), which every fragment would otherwise compute: the rays
+  // of lib/frame.glsl's cameraRayFromFragCoord, from the view's frame uniforms.
   const glm::mat4 domainFromCamera = domainFromWorld * view.worldFromCamera;
-  glProgramUniformMatrix4fv(program, location("domainFromCamera"), 1, GL_FALSE, &domainFromCamera[0][0]);
+  const glm::mat3 linear(domainFromCamera);
+  const FrameUniforms frame = FrameUniforms::fromCamera(view);
+  const glm::vec2 tanHalfFov(frame.tanHalfFov),
+      perPixel = 2.0f * tanHalfFov * glm::vec2(frame.viewportSize.z, frame.viewportSize.w);
+  const glm::vec3 atOrigin = linear * glm::vec3(-tanHalfFov, -1.0f);
+  const glm::vec3 perPixelX = linear * glm::vec3(perPixel.x, 0.0f, 0.0f);
+  const glm::vec3 perPixelY = linear * glm::vec3(0.0f, perPixel.y, 0.0f);
+  const glm::vec3 camera(domainFromCamera[3]);
+  glProgramUniform3fv(program, location("domainRayAtOrigin"), 1, &atOrigin[0]);
+  glProgramUniform3fv(program, location("domainRayPerPixelX"), 1, &perPixelX[0]);
+  glProgramUniform3fv(program, location("domainRayPerPixelY"), 1, &perPixelY[0]);
+  glProgramUniform3fv(program, location("domainCamera"), 1, &camera[0]);
   glProgramUniform3fv(program, location("domainLow"), 1, &domain->low[0]);
   glProgramUniform3fv(program, location("domainHigh"), 1, &domain->high[0]);
 }
