@@ -1,7 +1,7 @@
 // The fragment side of a foam sprite (foam paper 2.1): a camera-facing disc whose depth is pushed towards
 // the camera to the sphere's, so sprites overlap as spheres do. Pairs with foam_sprite.vert.
 
-in vec2 vSpriteCoord;         // (u, v) in [-1, 1]^2 over the sprite
+in vec2 vSpriteCoord;         // (u, v) over the sprite: the disc is u^2 + v^2 <= 1
 flat in vec3 vCameraCentre;   // camera-space centre
 flat in float vRadius;        // drawn world radius r_i
 flat in int vFoamType;        // 0 spray, 1 surface foam, 2 bubble

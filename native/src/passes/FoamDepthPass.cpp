@@ -43,7 +43,7 @@ FoamSurfaceData FoamDepthPass::run(const std::vector<FoamInstance>& particles, c
   glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, particleBuffer_.id());
   glBindTextureUnit(0, scene.solidEyeDepth.id());
   glBindVertexArray(emptyVertexArray_.id());
-  glDrawArraysInstanced(GL_TRIANGLE_STRIP, 0, 4, GLsizei(particles.size()));
+  glDrawArrays(GL_TRIANGLES, 0, GLsizei(3 * particles.size()));
   glDisable(GL_DEPTH_TEST);
   checkGlError("drawing foam depth");
   return {depthAndSearchRadius_, normal_, particleBuffer_, GLsizei(particles.size())};

@@ -35,7 +35,7 @@ FoamThicknessData FoamThicknessPass::run(const FoamSurfaceData& surface, const F
   glBindTextureUnit(0, scene.solidEyeDepth.id());
   glBindTextureUnit(1, scene.fluidEyeDepth.id());
   glBindVertexArray(emptyVertexArray_.id());
-  glDrawArraysInstanced(GL_TRIANGLE_STRIP, 0, 4, surface.count);
+  glDrawArrays(GL_TRIANGLES, 0, 3 * surface.count);
   glDisable(GL_BLEND);
   checkGlError("accumulating foam thickness");
   return {thickness_};
