@@ -68,7 +68,10 @@ int keepWithinPortable(const ParticleCloud& cloud, IndexRange range, float px, f
 
 void NeighbourOffsets::gather(const ParticleCloud& cloud, std::uint32_t particle, float inverseRadius,
                               const IndexRange* ranges, int rangeCount, Compaction compaction) {
-  static const bool hasAvx512 = __builtin_cpu_supports("avx512f");
+  static const bool hasAvx512 = [] {
+    __builtin_cpu_init();  // harmless if libgcc's constructor has run; needed if it has not
+    return __builtin_cpu_supports("avx512f") != 0;
+  }();
   const bool avx512 = hasAvx512 && compaction == Compaction::Fastest;
   std::size_t candidates = 0, longest = 0;
   for (int r = 0; r < rangeCount; ++r) {
