@@ -7,35 +7,42 @@
 namespace spindrift {
 namespace {
 
-// AVX-512's lanes compacted in a register and stored whole (16 indices), the pointer then advanced by how
-// many were kept: `kept` has 16 entries of room past the last candidate. The compress is done in a register
+// AVX-512's lanes compacted in registers and stored whole (16 values), the pointers then advanced by how many
+// were kept: each output has 16 entries of room past the last candidate. The compress is done in a register
 // because some CPUs (AMD's Zen 4) microcode its form that stores to memory. |q|^2 is summed as the scalar
-// code sums it, (qx qx + qy qy) + qz qz, without fused multiply-adds.
-__attribute__((target("avx512f"))) int keepWithinAvx512(const ParticleCloud& cloud, IndexRange range,
-                                                        float px, float py, float pz, float inverseRadius,
-                                                        std::uint32_t* kept) {
+// code sums it, (qx qx + qy qy) + qz qz, without fused multiply-adds; the offsets kept are the same
+// differences x_j - x_i the portable gathering computes.
+__attribute__((target("avx512f"))) int keepWithinAvx512(const ParticleCloud& cloud, const IndexRange* ranges,
+                                                        int rangeCount, float px, float py, float pz,
+                                                        float inverseRadius, std::uint32_t* kept,
+                                                        float* keptX, float* keptY, float* keptZ) {
   const __m512 particleX = _mm512_set1_ps(px), particleY = _mm512_set1_ps(py), particleZ = _mm512_set1_ps(pz);
   const __m512 scale = _mm512_set1_ps(inverseRadius), one = _mm512_set1_ps(1.0f);
-  __m512i index = _mm512_add_epi32(_mm512_set1_epi32(int(range.begin)),
-                                   _mm512_setr_epi32(0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14, 15));
-  const __m512i sixteen = _mm512_set1_epi32(16);
-  const int length = int(range.end - range.begin);
+  const __m512i lanes = _mm512_setr_epi32(0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14, 15);
+  const float* xs = cloud.x.data();
+  const float* ys = cloud.y.data();
+  const float* zs = cloud.z.data();
   int keptCount = 0;
-  for (int j = 0; j < length; j += 16) {
-    const __mmask16 valid = length - j >= 16 ? __mmask16(0xffff) : __mmask16((1u << (length - j)) - 1u);
-    const std::size_t first = range.begin + std::size_t(j);
-    const __m512 qx =
-        _mm512_mul_ps(_mm512_sub_ps(_mm512_maskz_loadu_ps(valid, &cloud.x[first]), particleX), scale);
-    const __m512 qy =
-        _mm512_mul_ps(_mm512_sub_ps(_mm512_maskz_loadu_ps(valid, &cloud.y[first]), particleY), scale);
-    const __m512 qz =
-        _mm512_mul_ps(_mm512_sub_ps(_mm512_maskz_loadu_ps(valid, &cloud.z[first]), particleZ), scale);
-    const __m512 squared =
-        _mm512_add_ps(_mm512_add_ps(_mm512_mul_ps(qx, qx), _mm512_mul_ps(qy, qy)), _mm512_mul_ps(qz, qz));
-    const __mmask16 inside = _mm512_mask_cmp_ps_mask(valid, squared, one, _CMP_LT_OQ);
-    _mm512_storeu_si512(kept + keptCount, _mm512_maskz_compress_epi32(inside, index));
-    keptCount += __builtin_popcount(inside);
-    index = _mm512_add_epi32(index, sixteen);
+  for (int r = 0; r < rangeCount; ++r) {
+    const int length = int(ranges[r].end - ranges[r].begin);
+    for (int j = 0; j < length; j += 16) {
+      const __mmask16 valid = length - j >= 16 ? __mmask16(0xffff) : __mmask16((1u << (length - j)) - 1u);
+      const std::size_t first = ranges[r].begin + std::size_t(j);
+      const __m512 dx = _mm512_sub_ps(_mm512_maskz_loadu_ps(valid, xs + first), particleX);
+      const __m512 dy = _mm512_sub_ps(_mm512_maskz_loadu_ps(valid, ys + first), particleY);
+      const __m512 dz = _mm512_sub_ps(_mm512_maskz_loadu_ps(valid, zs + first), particleZ);
+      const __m512 qx = _mm512_mul_ps(dx, scale), qy = _mm512_mul_ps(dy, scale),
+                   qz = _mm512_mul_ps(dz, scale);
+      const __m512 squared =
+          _mm512_add_ps(_mm512_add_ps(_mm512_mul_ps(qx, qx), _mm512_mul_ps(qy, qy)), _mm512_mul_ps(qz, qz));
+      const __mmask16 inside = _mm512_mask_cmp_ps_mask(valid, squared, one, _CMP_LT_OQ);
+      const __m512i index = _mm512_add_epi32(_mm512_set1_epi32(int(first)), lanes);
+      _mm512_storeu_si512(kept + keptCount, _mm512_maskz_compress_epi32(inside, index));
+      _mm512_storeu_ps(keptX + keptCount, _mm512_maskz_compress_ps(inside, dx));
+      _mm512_storeu_ps(keptY + keptCount, _mm512_maskz_compress_ps(inside, dy));
+      _mm512_storeu_ps(keptZ + keptCount, _mm512_maskz_compress_ps(inside, dz));
+      keptCount += __builtin_popcount(inside);
+    }
   }
   return keptCount;
 }
@@ -72,22 +79,27 @@ void NeighbourOffsets::gather(const ParticleCloud& cloud, std::uint32_t particle
     __builtin_cpu_init();  // harmless if libgcc's constructor has run; needed if it has not
     return __builtin_cpu_supports("avx512f") != 0;
   }();
-  const bool avx512 = hasAvx512 && compaction == Compaction::Fastest;
   std::size_t candidates = 0, longest = 0;
   for (int r = 0; r < rangeCount; ++r) {
     candidates += ranges[r].end - ranges[r].begin;
     longest = std::max<std::size_t>(longest, ranges[r].end - ranges[r].begin);
   }
-  if (kept_.size() < candidates + 16) kept_.resize(candidates + 16);
-  if (squaredDistances_.size() < longest) squaredDistances_.resize(longest);
+  if (kept_.size() < candidates + 16) {
+    kept_.resize(candidates + 16);
+    x_.resize(candidates + 16), y_.resize(candidates + 16), z_.resize(candidates + 16);
+  }
   const float px = cloud.x[particle], py = cloud.y[particle], pz = cloud.z[particle];
+  if (hasAvx512 && compaction == Compaction::Fastest) {
+    count_ = keepWithinAvx512(cloud, ranges, rangeCount, px, py, pz, inverseRadius, kept_.data(), x_.data(),
+                              y_.data(), z_.data());
+    return;
+  }
+  if (squaredDistances_.size() < longest) squaredDistances_.resize(longest);
   int keptCount = 0;
   for (int r = 0; r < rangeCount; ++r)
-    keptCount += avx512 ? keepWithinAvx512(cloud, ranges[r], px, py, pz, inverseRadius, &kept_[keptCount])
-                        : keepWithinPortable(cloud, ranges[r], px, py, pz, inverseRadius,
-                                             squaredDistances_.data(), &kept_[keptCount]);
+    keptCount += keepWithinPortable(cloud, ranges[r], px, py, pz, inverseRadius, squaredDistances_.data(),
+                                    &kept_[keptCount]);
   count_ = keptCount;
-  if (x_.size() < std::size_t(keptCount)) x_.resize(keptCount), y_.resize(keptCount), z_.resize(keptCount);
   for (int k = 0; k < keptCount; ++k) {
     x_[k] = cloud.x[kept_[k]] - px;
     y_[k] = cloud.y[kept_[k]] - py;
