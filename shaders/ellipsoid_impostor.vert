@@ -8,6 +8,7 @@
 // ellipse's axes (two triangles) drew the dam break's aggregate layers in 60-63 ms instead of 61-70, the
 // layers bit-identical (docs/frame-cost.md). Three vertices per particle (gl_VertexID / 3 names it), drawn as
 // arrays rather than one instance each: llvmpipe pays per instance.
+#include "lib/around_unit_circle.glsl"
 #include "lib/frame.glsl"
 #include "lib/ellipsoid_ray.glsl"
 
@@ -22,9 +23,6 @@ flat out vec3 vUnitRayPerPixelY;
 flat out uint vEllipsoid;  // its index in the list
 
 const float kSilhouetteMarginPixels = 0.1;
-// The equilateral triangle around the unit circle (its vertices 2 from the centre, its sides 1 away; sqrt(3)
-// rounded down by 8e-9, far inside the margin).
-const vec2 kAroundUnitCircle[3] = vec2[3](vec2(0.0, 2.0), vec2(-1.7320508, -1.0), vec2(1.7320508, -1.0));
 
 void main() {
   vEllipsoid = uint(firstEllipsoid + gl_VertexID / 3);

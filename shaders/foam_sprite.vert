@@ -5,6 +5,7 @@
 // as plain arrays: llvmpipe pays per instance. On the drop example's 115,000 foam particles the instanced
 // quads they replaced took 62-64 ms in the depth pass and 66-67 in the thickness pass, the triangles 18-23 and
 // 21-23 (docs/frame-cost.md).
+#include "lib/around_unit_circle.glsl"
 #include "lib/frame.glsl"
 
 struct FoamParticle {
@@ -22,9 +23,6 @@ flat out float vRadius;
 flat out int vFoamType;
 flat out float vAge;
 flat out float vSearchRadius;
-
-// The equilateral triangle around the unit circle (its vertices 2 from the centre, its sides 1 away).
-const vec2 kAroundUnitCircle[3] = vec2[3](vec2(0.0, 2.0), vec2(-1.7320508, -1.0), vec2(1.7320508, -1.0));
 
 void main() {
   FoamParticle particle = particles[gl_VertexID / 3];
