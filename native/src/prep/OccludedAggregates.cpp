@@ -206,6 +206,8 @@ OccludedAggregatesResult dropOccludedAggregates(std::vector<EllipsoidInstance>& 
         grid.rowSpan(row.cone, view.reachLow.x, view.reachHigh.x, firstX, lastX);
         for (int x = firstX; x <= lastX && (hiddenFront || hiddenBack); ++x) {
           const std::size_t pixel = std::size_t(y) * grid.width + x;
+          // The impostor pass hides every fragment whose entry lies at or behind the solid there.
+          if (solids && view.nearest >= double(solids->farthestAt(pixel))) continue;
           const bool frontTie = domain && frontFaceOwner[pixel] != kNoOwner && frontFaceOwner[pixel] != i;
           const bool backTie = domain && backFaceOwner[pixel] != kNoOwner && backFaceOwner[pixel] != i;
           const bool frontSettled = !hiddenFront || frontTie || frontAtMost[pixel] < view.nearest;

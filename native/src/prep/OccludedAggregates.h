@@ -30,6 +30,9 @@ struct OccludedAggregatesResult {
 /// ellipsoid whose entry lies behind a solid). Where a domain box cuts Q, its chord is clipped to the box as
 /// the impostor pass clips it, and Q covers the pixels where some of it is left: liquid resting on a domain's
 /// floor or walls is mostly such ellipsoids (30,270 of the 37,070 drawn into the dam break's front layer).
+/// Where the background's depth puts a solid at or before an ellipsoid's nearest depth, the impostor pass
+/// hides it at that pixel in both layers: one hidden so at every pixel it may reach is dropped (the dam
+/// break's grazing camera, whose obstacle and walls hide most of the water: 11,654 → 51,943 dropped).
 /// `ellipsoids` and `split` come as dropHiddenInterior leaves them ([front only | both | back only]) and
 /// leave in that order too.
 OccludedAggregatesResult dropOccludedAggregates(std::vector<EllipsoidInstance>& ellipsoids, LayerSplit& split,

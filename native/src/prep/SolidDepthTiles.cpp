@@ -33,6 +33,13 @@ void SolidDepthTiles::lower(float firstX, float firstY, float lastX, float lastY
 }
 
 void SolidDepthTiles::addDepthImage(const FloatImage& eyeDepth) {
+  if (eyeDepth.width == camera_.width && eyeDepth.height == camera_.height) {
+    farthest_.resize(std::size_t(eyeDepth.width) * eyeDepth.height);
+    for (std::size_t i = 0; i < farthest_.size(); ++i) {
+      const float depth = eyeDepth.pixels[i * eyeDepth.channels];
+      farthest_[i] = depth > 0.0f ? depth : kNoSolid;  // NaN and infinity too
+    }
+  }
   for (int y = 0; y < eyeDepth.height; ++y)
     for (int x = 0; x < eyeDepth.width; ++x) {
       const float depth = eyeDepth.pixels[(std::size_t(y) * eyeDepth.width + x) * eyeDepth.channels];

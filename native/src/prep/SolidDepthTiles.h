@@ -1,5 +1,6 @@
 #pragma once
 
+#include <limits>
 #include <vector>
 
 #include <glm/vec3.hpp>
@@ -10,16 +11,21 @@
 
 namespace spindrift {
 
-/// A conservative low-resolution picture of where the frame's solids are: for each tile of pixels, a planar
-/// eye depth that no solid in the tile is nearer than (the background's depth image and the occluder
-/// triangles). dropHiddenInterior keeps every ellipsoid that may reach behind a solid, because the impostor
-/// passes hide particles by the solid depth pixel by pixel.
+/// A conservative picture of where the frame's solids are: for each tile of pixels, a planar eye depth that
+/// no solid in the tile is nearer than (the background's depth image and the occluder triangles), and for
+/// each pixel one that a solid is certainly at or nearer than (the background's depth image alone: the
+/// occluders only bring the solids nearer). dropHiddenInterior keeps every ellipsoid that may reach behind a
+/// solid, because the impostor passes hide particles by the solid depth pixel by pixel; the occlusion test
+/// drops those the solids hide wholly.
 class SolidDepthTiles {
  public:
   static constexpr int kTileSize = 8;
+  static constexpr float kNoSolid = std::numeric_limits<float>::infinity();
 
-  /// No solids: every tile is infinitely deep.
+  /// No solids: every tile and pixel is infinitely deep.
   explicit SolidDepthTiles(const Camera& camera);
+  /// The background's depth image, the camera's size (the impostor passes read it texel by texel; where it
+  /// is NaN or not positive there is no solid, as background.frag reads it).
   void addDepthImage(const FloatImage& eyeDepth);
   void addTriangles(const TriangleMesh& mesh);
 
@@ -30,6 +36,9 @@ class SolidDepthTiles {
   float nearestAt(int x, int y) const {
     return nearest_[std::size_t(y / kTileSize) * std::size_t(columns_) + std::size_t(x / kTileSize)];
   }
+  /// The depth a solid certainly lies at or nearer than at a pixel (y * width + x, x right, y down): infinite
+  /// where there is none. Every fragment there whose entry lies at or beyond it is hidden.
+  float farthestAt(std::size_t pixel) const { return farthest_.empty() ? kNoSolid : farthest_[pixel]; }
 
  private:
   // Lowers the tiles under a pixel rectangle (inclusive pixel coordinates, clamped to the frame) to `depth`.
@@ -39,6 +48,7 @@ class SolidDepthTiles {
   int columns_ = 0;
   int rows_ = 0;
   std::vector<float> nearest_;
+  std::vector<float> farthest_;  // per pixel; empty without a depth image
 };
 
 }  // namespace spindrift
