@@ -140,7 +140,7 @@ TEST(OccludedAggregates, EveryPixelSeesInEachLayerWhatAllEllipsoidsGive) {
   EXPECT_GT(result.hiddenFromBack, all.size() / 2) << "of " << all.size();
   EXPECT_GT(result.dropped, all.size() / 4) << "of " << all.size();
   const PixelCheck check = everyPixel(all, kept, split, camera);
-  EXPECT_GT(check.hits, 3000u);
+  EXPECT_GT(check.hits, 2500u);  // 3,000 or so: the block fills much of the view
   EXPECT_EQ(check.differing, 0u) << "of " << 2 * check.hits << " layer values";
 }
 

@@ -18,6 +18,7 @@
 
 #include "prep/EllipsoidBounds.h"
 #include "prep/LayerOrder.h"
+#include "prep/OcclusionRows.h"
 #include "prep/ViewChords.h"
 
 namespace spindrift {
@@ -113,7 +114,7 @@ OccludedAggregatesResult dropOccludedAggregates(std::vector<EllipsoidInstance>& 
   // computed by every fragment there from the pixel's ray alone: nothing can be nearer (farther), the others
   // that reach past it tie, and the impostor pass gives the face any exact tie with an ellipsoid's own
   // surface (ellipsoid_impostor.frag). The first one met keeps the pixel; the others need not be drawn there.
-  constexpr std::uint32_t kNoOwner = std::numeric_limits<std::uint32_t>::max();
+  using occlusion_rows::kNoOwner;
   std::vector<std::uint32_t> frontFaceOwner, backFaceOwner;
   if (domain) {
     frontFaceOwner.assign(pixels, kNoOwner);
@@ -141,47 +142,46 @@ OccludedAggregatesResult dropOccludedAggregates(std::vector<EllipsoidInstance>& 
     for (int band = first; band <= last; ++band)
       inBand[std::size_t(band)].push_back(i);
   }
+  // The solids' depths by pixel, for the rows' contiguous loads.
+  std::vector<double> solidNearest, solidFarthest;
+  if (solids) {
+    solidNearest.resize(pixels);
+    solidFarthest.resize(pixels);
+    for (int y = 0; y < grid.height; ++y)
+      for (int x = 0; x < grid.width; ++x) {
+        const std::size_t pixel = std::size_t(y) * grid.width + x;
+        solidNearest[pixel] = solids->nearestAt(x, y);
+        solidFarthest[pixel] = solids->farthestAt(pixel);
+      }
+  }
+  const auto rowBounds = [&](int y) {
+    const std::size_t rowStart = std::size_t(y) * grid.width;
+    occlusion_rows::RowBounds bounds;
+    bounds.frontAtMost = frontAtMost.data() + rowStart;
+    bounds.backAtLeast = backAtLeast.data() + rowStart;
+    if (domain) {
+      bounds.boxEnter = grid.boxEnter.data() + rowStart;
+      bounds.boxLeave = grid.boxLeave.data() + rowStart;
+      bounds.frontFaceOwner = frontFaceOwner.data() + rowStart;
+      bounds.backFaceOwner = backFaceOwner.data() + rowStart;
+    }
+    if (solids) {
+      bounds.solidNearest = solidNearest.data() + rowStart;
+      bounds.solidFarthest = solidFarthest.data() + rowStart;
+    }
+    return bounds;
+  };
   tbb::parallel_for(0, bands, [&](int band) {
     const int firstRow = band * kRowsPerBand, lastRow = std::min(firstRow + kRowsPerBand, grid.height) - 1;
     for (const std::uint32_t i : inBand[std::size_t(band)]) {
       const ViewedEllipsoid& view = viewed[i];
+      const occlusion_rows::Cover cover{
+          i, view.nearest, view.farthest, view.chordMargin, i < backFrom, i >= split.frontOnly};
       for (int y = std::max(view.coverLow.y, firstRow); y <= std::min(view.coverHigh.y, lastRow); ++y) {
         int firstX, lastX;
         const RowChords row(view.chords, view.shrunk, grid.v(y));
         grid.rowSpan(row.cone, view.coverLow.x, view.coverHigh.x, firstX, lastX);
-        for (int x = firstX; x <= lastX; ++x) {
-          const std::size_t here = std::size_t(y) * grid.width + x;
-          const bool frontSettled =
-              domain ? frontFaceOwner[here] != kNoOwner ||
-                           (frontAtMost[here] <= view.nearest && view.nearest >= grid.boxEnter[here])
-                     : frontAtMost[here] <= view.nearest;
-          const bool backSettled =
-              domain ? backFaceOwner[here] != kNoOwner ||
-                           (backAtLeast[here] >= view.farthest && view.farthest <= grid.boxLeave[here])
-                     : backAtLeast[here] >= view.farthest;
-          if (frontSettled && backSettled) continue;
-          double entry, exit;
-          if (!row.at(grid.u(x), entry, exit)) continue;
-          const std::size_t pixel = std::size_t(y) * grid.width + x;
-          // Where a domain box cuts it, its surfaces are the clipped chord's ends, if any are left.
-          const double unclippedEntry = entry, unclippedExit = exit;
-          grid.clip(pixel, entry, exit);
-          const bool clipped = entry != unclippedEntry || exit != unclippedExit;
-          if (clipped && !(entry < exit - 2.0 * view.chordMargin)) continue;
-          // It covers the back layer only where its front lies before the solids (the impostor pass hides
-          // it where its entry lies behind one).
-          const bool coversBackHere = !solids || entry + view.chordMargin < double(solids->nearestAt(x, y));
-          frontAtMost[pixel] = std::min(frontAtMost[pixel], entry + view.chordMargin);
-          if (coversBackHere) backAtLeast[pixel] = std::max(backAtLeast[pixel], exit - view.chordMargin);
-          if (!domain) continue;
-          const std::uint32_t index = std::uint32_t(i);
-          if (i < backFrom && frontFaceOwner[pixel] == kNoOwner &&
-              unclippedEntry < grid.boxEnter[pixel] - 2.0 * view.chordMargin)
-            frontFaceOwner[pixel] = index;
-          if (coversBackHere && i >= split.frontOnly && backFaceOwner[pixel] == kNoOwner &&
-              unclippedExit > grid.boxLeave[pixel] + 2.0 * view.chordMargin)
-            backFaceOwner[pixel] = index;
-        }
+        occlusion_rows::coverRow(row, grid.columnsU(), firstX, lastX, cover, rowBounds(y));
       }
     }
   });
@@ -206,7 +206,7 @@ OccludedAggregatesResult dropOccludedAggregates(std::vector<EllipsoidInstance>& 
           const std::size_t pixel = std::size_t(y) * grid.width + x;
           front = std::max(front, frontAtMost[pixel]);
           back = std::min(back, backAtLeast[pixel]);
-          solid = std::max(solid, solids ? double(solids->farthestAt(pixel)) : SolidDepthTiles::kNoSolid);
+          solid = std::max(solid, solids ? solidFarthest[pixel] : SolidDepthTiles::kNoSolid);
         }
       const std::size_t tile = std::size_t(tileRow) * tileColumns + column;
       frontTileMost[tile] = front;
@@ -225,34 +225,22 @@ OccludedAggregatesResult dropOccludedAggregates(std::vector<EllipsoidInstance>& 
       bool hiddenFront = inFront[i], hiddenBack = inBack[i];
       // No ray meets the grown ellipsoid nearer than its bounding sphere's near side or farther than its far
       // side: where those alone settle a pixel (deep inside a body, most pixels), no chord is needed.
+      const occlusion_rows::Cover cover{std::uint32_t(i), view.nearest, view.farthest, view.chordMargin};
       for (int y = view.reachLow.y; y <= view.reachHigh.y && (hiddenFront || hiddenBack); ++y) {
         int firstX, lastX;
         const RowChords row(view.chords, view.grown, grid.v(y));
         grid.rowSpan(row.cone, view.reachLow.x, view.reachHigh.x, firstX, lastX);
+        const occlusion_rows::RowBounds bounds = rowBounds(y);
         for (int x = firstX; x <= lastX && (hiddenFront || hiddenBack);) {
           const int segmentEnd = std::min(lastX, (x / kTile + 1) * kTile - 1);
           const std::size_t tile = std::size_t(y / kTile) * tileColumns + std::size_t(x / kTile);
-          if (view.nearest >= solidTileMost[tile] || ((!hiddenFront || frontTileMost[tile] < view.nearest) &&
-                                                      (!hiddenBack || backTileLeast[tile] > view.farthest))) {
-            x = segmentEnd + 1;
-            continue;
-          }
-          for (; x <= segmentEnd && (hiddenFront || hiddenBack); ++x) {
-            const std::size_t pixel = std::size_t(y) * grid.width + x;
-            // The impostor pass hides every fragment whose entry lies at or behind the solid there.
-            if (solids && view.nearest >= double(solids->farthestAt(pixel))) continue;
-            const bool frontTie = domain && frontFaceOwner[pixel] != kNoOwner && frontFaceOwner[pixel] != i;
-            const bool backTie = domain && backFaceOwner[pixel] != kNoOwner && backFaceOwner[pixel] != i;
-            const bool frontSettled = !hiddenFront || frontTie || frontAtMost[pixel] < view.nearest;
-            const bool backSettled = !hiddenBack || backTie || backAtLeast[pixel] > view.farthest;
-            if (frontSettled && backSettled) continue;
-            double entry, exit;
-            if (!row.at(grid.u(x), entry, exit)) continue;
-            grid.clip(pixel, entry, exit);
-            if (entry > exit + 2.0 * view.chordMargin) continue;  // the box leaves nothing of it here
-            hiddenFront = hiddenFront && (frontTie || frontAtMost[pixel] < entry - view.chordMargin);
-            hiddenBack = hiddenBack && (backTie || backAtLeast[pixel] > exit + view.chordMargin);
-          }
+          const bool settled =
+              view.nearest >= solidTileMost[tile] || ((!hiddenFront || frontTileMost[tile] < view.nearest) &&
+                                                      (!hiddenBack || backTileLeast[tile] > view.farthest));
+          if (!settled)
+            occlusion_rows::hideRow(row, grid.columnsU(), x, segmentEnd, cover, bounds, hiddenFront,
+                                    hiddenBack);
+          x = segmentEnd + 1;
         }
       }
       if (hiddenFront) inFront[i] = 0;

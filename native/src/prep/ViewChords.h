@@ -94,6 +94,7 @@ struct ViewGrid {
   // occlusion test asks for them at every pixel it visits.
   double u(int x) const { return columnU_[std::size_t(x)]; }
   double v(int y) const { return rowV_[std::size_t(y)]; }
+  const double* columnsU() const { return columnU_.data(); }
 
   // Fills boxEnter and boxLeave (an affine map keeps a ray's parameter, so the slab test runs in the box's
   // frame).

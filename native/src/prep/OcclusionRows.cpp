@@ -1,0 +1,275 @@
+#include "prep/OcclusionRows.h"
+
+#include <algorithm>
+
+#include <immintrin.h>
+
+namespace spindrift::occlusion_rows {
+namespace {
+
+// Pixel by pixel. A pixel both of whose bounds are settled (the ellipsoid can neither lower the front's nor
+// raise the back's, nor take a face it cannot reach) is passed over without its chord.
+void coverRowPortable(const view_chords::RowChords& row, const double* u, int firstX, int lastX,
+                      const Cover& cover, const RowBounds& bounds) {
+  const bool domain = bounds.boxEnter != nullptr;
+  for (int x = firstX; x <= lastX; ++x) {
+    const bool frontSettled =
+        domain ? bounds.frontFaceOwner[x] != kNoOwner ||
+                     (bounds.frontAtMost[x] <= cover.nearest && cover.nearest >= bounds.boxEnter[x])
+               : bounds.frontAtMost[x] <= cover.nearest;
+    const bool backSettled =
+        domain ? bounds.backFaceOwner[x] != kNoOwner ||
+                     (bounds.backAtLeast[x] >= cover.farthest && cover.farthest <= bounds.boxLeave[x])
+               : bounds.backAtLeast[x] >= cover.farthest;
+    if (frontSettled && backSettled) continue;
+    double entry, exit;
+    if (!row.at(u[x], entry, exit)) continue;
+    // Where a domain box cuts it, its surfaces are the clipped chord's ends, if any are left (as
+    // ViewGrid::clip clips them).
+    const double unclippedEntry = entry, unclippedExit = exit;
+    if (domain) {
+      entry = std::max(entry, bounds.boxEnter[x]);
+      exit = std::min(exit, bounds.boxLeave[x]);
+    }
+    const bool clipped = entry != unclippedEntry || exit != unclippedExit;
+    if (clipped && !(entry < exit - 2.0 * cover.chordMargin)) continue;
+    // It covers the back layer only where its front lies before the solids (the impostor pass hides it
+    // where its entry lies behind one).
+    const bool coversBack = !bounds.solidNearest || entry + cover.chordMargin < bounds.solidNearest[x];
+    bounds.frontAtMost[x] = std::min(bounds.frontAtMost[x], entry + cover.chordMargin);
+    if (coversBack) bounds.backAtLeast[x] = std::max(bounds.backAtLeast[x], exit - cover.chordMargin);
+    if (!domain) continue;
+    if (cover.mayOwnFront && bounds.frontFaceOwner[x] == kNoOwner &&
+        unclippedEntry < bounds.boxEnter[x] - 2.0 * cover.chordMargin)
+      bounds.frontFaceOwner[x] = cover.index;
+    if (coversBack && cover.mayOwnBack && bounds.backFaceOwner[x] == kNoOwner &&
+        unclippedExit > bounds.boxLeave[x] + 2.0 * cover.chordMargin)
+      bounds.backFaceOwner[x] = cover.index;
+  }
+}
+
+// Eight pixels at a time, each lane as the portable walk computes it (the same operations in the same order,
+// no fused multiply-adds, std::min and std::max as blends on the same comparisons), the settled lanes
+// masked: on the dam break nearly every pixel's back is unsettled in the nearest-first order, so its chord
+// is needed anyway, and eight cost about what one does.
+__attribute__((target("avx512f"))) void coverRowAvx512(const view_chords::RowChords& row, const double* u,
+                                                       int firstX, int lastX, const Cover& cover,
+                                                       const RowBounds& bounds) {
+  const bool domain = bounds.boxEnter != nullptr;
+  const __m512d lengths2 = _mm512_set1_pd(row.lengths.q2), lengths1 = _mm512_set1_pd(row.lengths.q1),
+                lengths0 = _mm512_set1_pd(row.lengths.q0);
+  const __m512d cone2 = _mm512_set1_pd(row.cone.q2), cone1 = _mm512_set1_pd(row.cone.q1),
+                cone0 = _mm512_set1_pd(row.cone.q0);
+  const __m512d alongSlope = _mm512_set1_pd(row.alongSlope), alongOffset = _mm512_set1_pd(row.alongOffset);
+  const __m512d zero = _mm512_setzero_pd(), one = _mm512_set1_pd(1.0);
+  const __m512d margin = _mm512_set1_pd(cover.chordMargin),
+                twoMargins = _mm512_set1_pd(2.0 * cover.chordMargin);
+  const __m512d nearest = _mm512_set1_pd(cover.nearest), farthest = _mm512_set1_pd(cover.farthest);
+  const __m512i noOwner = _mm512_set1_epi32(int(kNoOwner)), index = _mm512_set1_epi32(int(cover.index));
+  for (int x = firstX; x <= lastX; x += 8) {
+    const int left = lastX - x + 1;
+    const __mmask8 lanes = left >= 8 ? __mmask8(0xff) : __mmask8((1u << left) - 1u);
+    const __m512d front = _mm512_maskz_loadu_pd(lanes, bounds.frontAtMost + x);
+    const __m512d back = _mm512_maskz_loadu_pd(lanes, bounds.backAtLeast + x);
+    __m512d boxEnter = zero, boxLeave = zero;
+    __mmask8 frontOwned = 0, backOwned = 0, frontUnowned = 0, backUnowned = 0;
+    __mmask8 frontSettled, backSettled;
+    if (domain) {
+      boxEnter = _mm512_maskz_loadu_pd(lanes, bounds.boxEnter + x);
+      boxLeave = _mm512_maskz_loadu_pd(lanes, bounds.boxLeave + x);
+      const __mmask16 lanes16 = lanes;
+      const __mmask16 frontFree = _mm512_mask_cmpeq_epi32_mask(
+          lanes16, _mm512_maskz_loadu_epi32(lanes16, bounds.frontFaceOwner + x), noOwner);
+      const __mmask16 backFree = _mm512_mask_cmpeq_epi32_mask(
+          lanes16, _mm512_maskz_loadu_epi32(lanes16, bounds.backFaceOwner + x), noOwner);
+      frontUnowned = __mmask8(frontFree), backUnowned = __mmask8(backFree);
+      frontOwned = lanes & ~frontUnowned, backOwned = lanes & ~backUnowned;
+      frontSettled = frontOwned | (_mm512_cmp_pd_mask(front, nearest, _CMP_LE_OQ) &
+                                   _mm512_cmp_pd_mask(nearest, boxEnter, _CMP_GE_OQ));
+      backSettled = backOwned | (_mm512_cmp_pd_mask(back, farthest, _CMP_GE_OQ) &
+                                 _mm512_cmp_pd_mask(farthest, boxLeave, _CMP_LE_OQ));
+    } else {
+      frontSettled = _mm512_cmp_pd_mask(front, nearest, _CMP_LE_OQ);
+      backSettled = _mm512_cmp_pd_mask(back, farthest, _CMP_GE_OQ);
+    }
+    __mmask8 active = lanes & ~(frontSettled & backSettled);
+    if (!active) continue;
+    const __m512d us = _mm512_maskz_loadu_pd(lanes, u + x);
+    // RowQuadratic::at and RowChords::at.
+    const __m512d lengthSquared =
+        _mm512_add_pd(_mm512_mul_pd(_mm512_add_pd(_mm512_mul_pd(lengths2, us), lengths1), us), lengths0);
+    const __m512d missing =
+        _mm512_add_pd(_mm512_mul_pd(_mm512_add_pd(_mm512_mul_pd(cone2, us), cone1), us), cone0);
+    active &=
+        _mm512_cmp_pd_mask(missing, zero, _CMP_GE_OQ) & _mm512_cmp_pd_mask(lengthSquared, zero, _CMP_GT_OQ);
+    if (!active) continue;
+    const __m512d along = _mm512_add_pd(_mm512_mul_pd(alongSlope, us), alongOffset);
+    // Only the active lanes: the others may be negative or zero.
+    const __m512d half = _mm512_maskz_sqrt_pd(active, missing);
+    const __m512d inverseLength = _mm512_maskz_div_pd(active, one, lengthSquared);
+    const __m512d unclippedEntry = _mm512_mul_pd(_mm512_sub_pd(along, half), inverseLength);
+    const __m512d unclippedExit = _mm512_mul_pd(_mm512_add_pd(along, half), inverseLength);
+    __m512d entry = unclippedEntry, exit = unclippedExit;
+    if (domain) {
+      // std::max(entry, enter) is enter where entry < enter; std::min(exit, leave) is leave where leave <
+      // exit.
+      entry = _mm512_mask_blend_pd(_mm512_cmp_pd_mask(entry, boxEnter, _CMP_LT_OQ), entry, boxEnter);
+      exit = _mm512_mask_blend_pd(_mm512_cmp_pd_mask(boxLeave, exit, _CMP_LT_OQ), exit, boxLeave);
+      const __mmask8 clipped = _mm512_cmp_pd_mask(entry, unclippedEntry, _CMP_NEQ_UQ) |
+                               _mm512_cmp_pd_mask(exit, unclippedExit, _CMP_NEQ_UQ);
+      const __mmask8 leftOver = _mm512_cmp_pd_mask(entry, _mm512_sub_pd(exit, twoMargins), _CMP_LT_OQ);
+      active &= ~(clipped & ~leftOver);
+      if (!active) continue;
+    }
+    const __m512d frontCandidate = _mm512_add_pd(entry, margin);
+    __mmask8 coversBack = active;
+    if (bounds.solidNearest)
+      coversBack &= _mm512_cmp_pd_mask(frontCandidate, _mm512_maskz_loadu_pd(lanes, bounds.solidNearest + x),
+                                       _CMP_LT_OQ);
+    // std::min(front, candidate) is the candidate where candidate < front; std::max likewise.
+    _mm512_mask_storeu_pd(bounds.frontAtMost + x,
+                          active & _mm512_cmp_pd_mask(frontCandidate, front, _CMP_LT_OQ), frontCandidate);
+    const __m512d backCandidate = _mm512_sub_pd(exit, margin);
+    _mm512_mask_storeu_pd(bounds.backAtLeast + x,
+                          coversBack & _mm512_cmp_pd_mask(back, backCandidate, _CMP_LT_OQ), backCandidate);
+    if (!domain) continue;
+    if (cover.mayOwnFront) {
+      const __mmask8 owns =
+          active & frontUnowned &
+          _mm512_cmp_pd_mask(unclippedEntry, _mm512_sub_pd(boxEnter, twoMargins), _CMP_LT_OQ);
+      _mm512_mask_storeu_epi32(bounds.frontFaceOwner + x, __mmask16(owns), index);
+    }
+    if (cover.mayOwnBack) {
+      const __mmask8 owns =
+          coversBack & backUnowned &
+          _mm512_cmp_pd_mask(unclippedExit, _mm512_add_pd(boxLeave, twoMargins), _CMP_GT_OQ);
+      _mm512_mask_storeu_epi32(bounds.backFaceOwner + x, __mmask16(owns), index);
+    }
+  }
+}
+
+// Pixel by pixel, as long as the ellipsoid is hidden from a layer. A pixel a solid hides, or whose bounds
+// settle both layers, needs no chord.
+void hideRowPortable(const view_chords::RowChords& row, const double* u, int firstX, int lastX,
+                     const Cover& cover, const RowBounds& bounds, bool& hiddenFront, bool& hiddenBack) {
+  const bool domain = bounds.boxEnter != nullptr;
+  for (int x = firstX; x <= lastX && (hiddenFront || hiddenBack); ++x) {
+    // The impostor pass hides every fragment whose entry lies at or behind the solid there.
+    if (bounds.solidFarthest && cover.nearest >= bounds.solidFarthest[x]) continue;
+    const bool frontTie =
+        domain && bounds.frontFaceOwner[x] != kNoOwner && bounds.frontFaceOwner[x] != cover.index;
+    const bool backTie =
+        domain && bounds.backFaceOwner[x] != kNoOwner && bounds.backFaceOwner[x] != cover.index;
+    const bool frontSettled = !hiddenFront || frontTie || bounds.frontAtMost[x] < cover.nearest;
+    const bool backSettled = !hiddenBack || backTie || bounds.backAtLeast[x] > cover.farthest;
+    if (frontSettled && backSettled) continue;
+    double entry, exit;
+    if (!row.at(u[x], entry, exit)) continue;
+    if (domain) {
+      entry = std::max(entry, bounds.boxEnter[x]);
+      exit = std::min(exit, bounds.boxLeave[x]);
+    }
+    if (entry > exit + 2.0 * cover.chordMargin) continue;  // the box leaves nothing of it here
+    hiddenFront = hiddenFront && (frontTie || bounds.frontAtMost[x] < entry - cover.chordMargin);
+    hiddenBack = hiddenBack && (backTie || bounds.backAtLeast[x] > exit + cover.chordMargin);
+  }
+}
+
+// Eight pixels at a time, each lane computed as the portable walk computes it. A layer's flag falls at the
+// first lane that shows the ellipsoid there; the portable walk, which stops testing a layer once its flag
+// has fallen, ends with the same flags.
+__attribute__((target("avx512f"))) void hideRowAvx512(const view_chords::RowChords& row, const double* u,
+                                                      int firstX, int lastX, const Cover& cover,
+                                                      const RowBounds& bounds, bool& hiddenFront,
+                                                      bool& hiddenBack) {
+  const bool domain = bounds.boxEnter != nullptr;
+  const __m512d lengths2 = _mm512_set1_pd(row.lengths.q2), lengths1 = _mm512_set1_pd(row.lengths.q1),
+                lengths0 = _mm512_set1_pd(row.lengths.q0);
+  const __m512d cone2 = _mm512_set1_pd(row.cone.q2), cone1 = _mm512_set1_pd(row.cone.q1),
+                cone0 = _mm512_set1_pd(row.cone.q0);
+  const __m512d alongSlope = _mm512_set1_pd(row.alongSlope), alongOffset = _mm512_set1_pd(row.alongOffset);
+  const __m512d zero = _mm512_setzero_pd(), one = _mm512_set1_pd(1.0);
+  const __m512d margin = _mm512_set1_pd(cover.chordMargin),
+                twoMargins = _mm512_set1_pd(2.0 * cover.chordMargin);
+  const __m512d nearest = _mm512_set1_pd(cover.nearest), farthest = _mm512_set1_pd(cover.farthest);
+  const __m512i noOwner = _mm512_set1_epi32(int(kNoOwner)), index = _mm512_set1_epi32(int(cover.index));
+  for (int x = firstX; x <= lastX && (hiddenFront || hiddenBack); x += 8) {
+    const int left = lastX - x + 1;
+    const __mmask8 lanes = left >= 8 ? __mmask8(0xff) : __mmask8((1u << left) - 1u);
+    __mmask8 active = lanes;
+    if (bounds.solidFarthest)
+      active &=
+          ~_mm512_cmp_pd_mask(nearest, _mm512_maskz_loadu_pd(lanes, bounds.solidFarthest + x), _CMP_GE_OQ);
+    __mmask8 frontTie = 0, backTie = 0;
+    if (domain) {
+      const __mmask16 lanes16 = lanes;
+      const __m512i frontOwner = _mm512_maskz_loadu_epi32(lanes16, bounds.frontFaceOwner + x);
+      const __m512i backOwner = _mm512_maskz_loadu_epi32(lanes16, bounds.backFaceOwner + x);
+      frontTie = __mmask8(_mm512_mask_cmpneq_epi32_mask(lanes16, frontOwner, noOwner) &
+                          _mm512_mask_cmpneq_epi32_mask(lanes16, frontOwner, index));
+      backTie = __mmask8(_mm512_mask_cmpneq_epi32_mask(lanes16, backOwner, noOwner) &
+                         _mm512_mask_cmpneq_epi32_mask(lanes16, backOwner, index));
+    }
+    const __m512d front = _mm512_maskz_loadu_pd(lanes, bounds.frontAtMost + x);
+    const __m512d back = _mm512_maskz_loadu_pd(lanes, bounds.backAtLeast + x);
+    const __mmask8 frontSettled = (hiddenFront ? __mmask8(0) : __mmask8(0xff)) | frontTie |
+                                  _mm512_cmp_pd_mask(front, nearest, _CMP_LT_OQ);
+    const __mmask8 backSettled = (hiddenBack ? __mmask8(0) : __mmask8(0xff)) | backTie |
+                                 _mm512_cmp_pd_mask(back, farthest, _CMP_GT_OQ);
+    active &= ~(frontSettled & backSettled);
+    if (!active) continue;
+    const __m512d us = _mm512_maskz_loadu_pd(lanes, u + x);
+    const __m512d lengthSquared =
+        _mm512_add_pd(_mm512_mul_pd(_mm512_add_pd(_mm512_mul_pd(lengths2, us), lengths1), us), lengths0);
+    const __m512d missing =
+        _mm512_add_pd(_mm512_mul_pd(_mm512_add_pd(_mm512_mul_pd(cone2, us), cone1), us), cone0);
+    active &=
+        _mm512_cmp_pd_mask(missing, zero, _CMP_GE_OQ) & _mm512_cmp_pd_mask(lengthSquared, zero, _CMP_GT_OQ);
+    if (!active) continue;
+    const __m512d along = _mm512_add_pd(_mm512_mul_pd(alongSlope, us), alongOffset);
+    const __m512d half = _mm512_maskz_sqrt_pd(active, missing);
+    const __m512d inverseLength = _mm512_maskz_div_pd(active, one, lengthSquared);
+    __m512d entry = _mm512_mul_pd(_mm512_sub_pd(along, half), inverseLength);
+    __m512d exit = _mm512_mul_pd(_mm512_add_pd(along, half), inverseLength);
+    if (domain) {
+      const __m512d boxEnter = _mm512_maskz_loadu_pd(lanes, bounds.boxEnter + x);
+      const __m512d boxLeave = _mm512_maskz_loadu_pd(lanes, bounds.boxLeave + x);
+      entry = _mm512_mask_blend_pd(_mm512_cmp_pd_mask(entry, boxEnter, _CMP_LT_OQ), entry, boxEnter);
+      exit = _mm512_mask_blend_pd(_mm512_cmp_pd_mask(boxLeave, exit, _CMP_LT_OQ), exit, boxLeave);
+    }
+    active &= ~_mm512_cmp_pd_mask(entry, _mm512_add_pd(exit, twoMargins), _CMP_GT_OQ);
+    const __mmask8 frontShown =
+        active & ~frontTie & ~_mm512_cmp_pd_mask(front, _mm512_sub_pd(entry, margin), _CMP_LT_OQ);
+    const __mmask8 backShown =
+        active & ~backTie & ~_mm512_cmp_pd_mask(back, _mm512_add_pd(exit, margin), _CMP_GT_OQ);
+    hiddenFront = hiddenFront && frontShown == 0;
+    hiddenBack = hiddenBack && backShown == 0;
+  }
+}
+bool hasAvx512() {
+  static const bool has = [] {
+    __builtin_cpu_init();  // harmless if libgcc's constructor has run; needed if it has not
+    return __builtin_cpu_supports("avx512f") != 0;
+  }();
+  return has;
+}
+
+}  // namespace
+
+void coverRow(const view_chords::RowChords& row, const double* u, int firstX, int lastX, const Cover& cover,
+              const RowBounds& bounds, Walk walk) {
+  if (walk == Walk::Fastest && hasAvx512())
+    coverRowAvx512(row, u, firstX, lastX, cover, bounds);
+  else
+    coverRowPortable(row, u, firstX, lastX, cover, bounds);
+}
+
+void hideRow(const view_chords::RowChords& row, const double* u, int firstX, int lastX, const Cover& cover,
+             const RowBounds& bounds, bool& hiddenFront, bool& hiddenBack, Walk walk) {
+  if (walk == Walk::Fastest && hasAvx512())
+    hideRowAvx512(row, u, firstX, lastX, cover, bounds, hiddenFront, hiddenBack);
+  else
+    hideRowPortable(row, u, firstX, lastX, cover, bounds, hiddenFront, hiddenBack);
+}
+
+}  // namespace spindrift::occlusion_rows

@@ -1,0 +1,58 @@
+#pragma once
+
+#include <cstdint>
+#include <limits>
+
+#include "prep/ViewChords.h"
+
+// The occlusion test's work along one row of a view (prep/OccludedAggregates.cpp): what one covering
+// ellipsoid does to the layer bounds (its shrunk chord's entry bounds the front layer there, its exit the
+// back layer, and where it reaches past a domain box's face it may own that face), and whether the bounds
+// still hide one ellipsoid from each layer.
+namespace spindrift::occlusion_rows {
+
+constexpr std::uint32_t kNoOwner = std::numeric_limits<std::uint32_t>::max();
+
+// A view's bounds and what settles them, each array one value per pixel of the row (indexed by x).
+struct RowBounds {
+  double* frontAtMost = nullptr;  // the front layer's surface lies no farther
+  double* backAtLeast = nullptr;  // the back layer's surface lies no nearer
+  // With a domain box: where each pixel's ray enters and leaves it, and which ellipsoid owns its faces
+  // (kNoOwner); all null without one.
+  const double* boxEnter = nullptr;
+  const double* boxLeave = nullptr;
+  std::uint32_t* frontFaceOwner = nullptr;
+  std::uint32_t* backFaceOwner = nullptr;
+  // With solids: the depth no solid is nearer than (SolidDepthTiles::nearestAt) and the one a solid lies at
+  // or nearer than (farthestAt); null without.
+  const double* solidNearest = nullptr;
+  const double* solidFarthest = nullptr;
+};
+
+// The ellipsoid as the row sees it.
+struct Cover {
+  std::uint32_t index = 0;
+  double nearest = 0.0, farthest = 0.0;  // its grown bounding sphere's depths, margins included
+  double chordMargin = 0.0;
+  bool mayOwnFront = false, mayOwnBack = false;  // it is in that layer
+};
+
+// How the row is walked: AVX-512, eight pixels at a time and every pixel's chord computed, where the CPU has
+// it; else pixel by pixel, skipping the chord where the bounds already settle a pixel (a settled pixel's
+// update changes nothing, so both give the same bounds and owners to the bit).
+enum class Walk { Fastest, Portable };
+
+/// Lowers frontAtMost to the chord's entry and raises backAtLeast to its exit (each by the margin) over the
+/// pixels [firstX, lastX] of the row, whose rays are (u[x], v, -1), as prep/OccludedAggregates.cpp
+/// explains; `row` is the shrunk ellipsoid's chords along the row.
+void coverRow(const view_chords::RowChords& row, const double* u, int firstX, int lastX, const Cover& cover,
+              const RowBounds& bounds, Walk walk = Walk::Fastest);
+
+/// Keeps `hiddenFront` (`hiddenBack`) only if at every pixel of [firstX, lastX] where the ellipsoid may be
+/// drawn (`row`: its grown chords) another surface is certainly nearer than its entry (farther than its
+/// exit), another ellipsoid holds the box's face, or a solid hides it. `cover.index` is the ellipsoid's;
+/// the bounds are read, not written.
+void hideRow(const view_chords::RowChords& row, const double* u, int firstX, int lastX, const Cover& cover,
+             const RowBounds& bounds, bool& hiddenFront, bool& hiddenBack, Walk walk = Walk::Fastest);
+
+}  // namespace spindrift::occlusion_rows
