@@ -190,31 +190,6 @@ OccludedAggregatesResult dropOccludedAggregates(std::vector<EllipsoidInstance>& 
   // surface is certainly nearer than its grown self's entry (front) or farther than its exit (back), or
   // another one holds the box's face there. Its own shrunk self never hides it: that chord lies inside the
   // grown one's, and the margins only widen that; a face's owner is never hidden where it owns it.
-  // Most of a hidden ellipsoid's pixels are settled by its bounding sphere alone, and so are whole tiles of
-  // them: each tile keeps its front layer's farthest bound, its back layer's nearest and its solids'
-  // farthest, and a row passes a settled tile's pixels by (the drop's close-up camera: 70 → 47 ms).
-  constexpr int kTile = 8;
-  const int tileColumns = (grid.width + kTile - 1) / kTile, tileRows = (grid.height + kTile - 1) / kTile;
-  const std::size_t tiles = std::size_t(tileColumns) * tileRows;
-  std::vector<double> frontTileMost(tiles), backTileLeast(tiles), solidTileMost(tiles);
-  tbb::parallel_for(0, tileRows, [&](int tileRow) {
-    for (int column = 0; column < tileColumns; ++column) {
-      double front = -std::numeric_limits<double>::infinity(), back = std::numeric_limits<double>::infinity();
-      double solid = -std::numeric_limits<double>::infinity();
-      for (int y = tileRow * kTile; y < std::min((tileRow + 1) * kTile, grid.height); ++y)
-        for (int x = column * kTile; x < std::min((column + 1) * kTile, grid.width); ++x) {
-          const std::size_t pixel = std::size_t(y) * grid.width + x;
-          front = std::max(front, frontAtMost[pixel]);
-          back = std::min(back, backAtLeast[pixel]);
-          solid = std::max(solid, solids ? solidFarthest[pixel] : SolidDepthTiles::kNoSolid);
-        }
-      const std::size_t tile = std::size_t(tileRow) * tileColumns + column;
-      frontTileMost[tile] = front;
-      backTileLeast[tile] = back;
-      solidTileMost[tile] = solid;
-    }
-  });
-
   std::vector<char> inFront(count), inBack(count);
   tbb::parallel_for(tbb::blocked_range<std::size_t>(0, count), [&](const tbb::blocked_range<std::size_t>& r) {
     for (std::size_t i = r.begin(); i != r.end(); ++i) {
@@ -230,18 +205,8 @@ OccludedAggregatesResult dropOccludedAggregates(std::vector<EllipsoidInstance>& 
         int firstX, lastX;
         const RowChords row(view.chords, view.grown, grid.v(y));
         grid.rowSpan(row.cone, view.reachLow.x, view.reachHigh.x, firstX, lastX);
-        const occlusion_rows::RowBounds bounds = rowBounds(y);
-        for (int x = firstX; x <= lastX && (hiddenFront || hiddenBack);) {
-          const int segmentEnd = std::min(lastX, (x / kTile + 1) * kTile - 1);
-          const std::size_t tile = std::size_t(y / kTile) * tileColumns + std::size_t(x / kTile);
-          const bool settled =
-              view.nearest >= solidTileMost[tile] || ((!hiddenFront || frontTileMost[tile] < view.nearest) &&
-                                                      (!hiddenBack || backTileLeast[tile] > view.farthest));
-          if (!settled)
-            occlusion_rows::hideRow(row, grid.columnsU(), x, segmentEnd, cover, bounds, hiddenFront,
-                                    hiddenBack);
-          x = segmentEnd + 1;
-        }
+        occlusion_rows::hideRow(row, grid.columnsU(), firstX, lastX, cover, rowBounds(y), hiddenFront,
+                                hiddenBack);
       }
       if (hiddenFront) inFront[i] = 0;
       if (hiddenBack) inBack[i] = 0;
