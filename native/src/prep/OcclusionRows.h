@@ -37,9 +37,9 @@ struct Cover {
   bool mayOwnFront = false, mayOwnBack = false;  // it is in that layer
 };
 
-// How the row is walked: AVX-512, eight pixels at a time and every pixel's chord computed, where the CPU has
-// it; else pixel by pixel, skipping the chord where the bounds already settle a pixel (a settled pixel's
-// update changes nothing, so both give the same bounds and owners to the bit).
+// How the row is walked: AVX-512, eight pixels at a time and every unsettled pixel's chord computed, where
+// the CPU has it and the row is longer than a pixel; else pixel by pixel, skipping the chord where the bounds
+// already settle a pixel. Both give the same bounds, owners and flags to the bit.
 enum class Walk { Fastest, Portable };
 
 /// Lowers frontAtMost to the chord's entry and raises backAtLeast to its exit (each by the margin) over the
