@@ -69,6 +69,30 @@ std::vector<double> rayColumns() {
   return u;
 }
 
+// The ellipsoid of tiltedEllipsoidChords as both tests cover or hide it.
+occlusion_rows::Cover tiltedCover() {
+  occlusion_rows::Cover cover;
+  cover.index = 7;
+  cover.chordMargin = 0.01;
+  cover.nearest = 3.0 - 0.3 - 0.02;
+  cover.farthest = 3.0 + 0.3 + 0.02;
+  return cover;
+}
+
+// Every case both tests walk: rows across the ellipsoid scaled by `scale`, with and without a domain box and
+// solids, spans of 0 to 40 pixels from every start modulo the eight lanes.
+template <typename Walk>
+void forEveryRow(const view_chords::ChordPolynomials& chords, double scale, const Walk& walk) {
+  for (int y = -12; y <= 12; y += 3) {
+    const view_chords::RowChords row(chords, scale, y / kFocal);
+    for (const bool domain : {false, true})
+      for (const bool solids : {false, true})
+        for (int first = 0; first < 8; ++first)
+          for (int length = 0; length <= 40; ++length)
+            walk(row, domain, solids, first, std::min(first + length - 1, kWidth - 1));
+  }
+}
+
 template <typename T>
 std::size_t differing(const std::vector<T>& a, const std::vector<T>& b) {
   std::size_t count = 0;
@@ -79,57 +103,45 @@ std::size_t differing(const std::vector<T>& a, const std::vector<T>& b) {
 
 TEST(OcclusionRows, AvxAndPortableWalksLeaveTheSameBoundsAndOwners) {
   if (!cpuHasAvx512()) GTEST_SKIP() << "this CPU has no AVX-512: only the portable walk runs";
-  const view_chords::ChordPolynomials chords = tiltedEllipsoidChords();
   const std::vector<double> u = rayColumns();
-
   std::mt19937 random(11);
   std::uniform_real_distribution<double> unit(0.0, 1.0);
-  occlusion_rows::Cover cover;
-  cover.index = 7;
-  cover.chordMargin = 0.01;
-  cover.nearest = 3.0 - 0.3 - 0.02;
-  cover.farthest = 3.0 + 0.3 + 0.02;
+  occlusion_rows::Cover cover = tiltedCover();
   std::size_t rows = 0, lowered = 0, raised = 0, frontOwned = 0, backOwned = 0;
-  for (int y = -12; y <= 12; y += 3) {
-    const view_chords::RowChords row(chords, 0.98, y / kFocal);
-    for (const bool domain : {false, true})
-      for (const bool solids : {false, true})
-        for (int first = 0; first < 8; ++first)
-          for (int length = 0; length <= 40; ++length) {
-            // Bounds around the chord where there is one, anything elsewhere; some infinite.
-            RowArrays arrays;
-            for (int x = 0; x < kWidth; ++x) {
-              double entry = 3.0, exit = 3.2;
-              row.at(u[std::size_t(x)], entry, exit);
-              const auto around = [&](double value) { return value + 0.08 * (unit(random) - 0.5); };
-              const double pick = unit(random);
-              arrays.front.push_back(pick < 0.1 ? INFINITY : around(entry));
-              arrays.back.push_back(pick > 0.9 ? -INFINITY : around(exit));
-              arrays.enter.push_back(unit(random) < 0.5 ? around(entry) : entry - 1.0);
-              arrays.leave.push_back(unit(random) < 0.5 ? around(exit) : exit + 1.0);
-              arrays.solid.push_back(unit(random) < 0.3 ? around(entry) : INFINITY);
-              arrays.frontOwner.push_back(unit(random) < 0.3 ? 3u : kNoOwner);
-              arrays.backOwner.push_back(unit(random) < 0.3 ? 4u : kNoOwner);
-            }
-            cover.mayOwnFront = unit(random) < 0.8;
-            cover.mayOwnBack = unit(random) < 0.8;
-            RowArrays portable = arrays, fastest = arrays;
-            const int last = std::min(first + length - 1, kWidth - 1);
-            occlusion_rows::coverRow(row, u.data(), first, last, cover, portable.bounds(domain, solids),
-                                     occlusion_rows::Walk::Portable);
-            occlusion_rows::coverRow(row, u.data(), first, last, cover, fastest.bounds(domain, solids),
-                                     occlusion_rows::Walk::Fastest);
-            ASSERT_EQ(differing(portable.front, fastest.front), 0u) << y << " " << first << " " << length;
-            ASSERT_EQ(differing(portable.back, fastest.back), 0u) << y << " " << first << " " << length;
-            ASSERT_EQ(differing(portable.frontOwner, fastest.frontOwner), 0u) << y << " " << first;
-            ASSERT_EQ(differing(portable.backOwner, fastest.backOwner), 0u) << y << " " << first;
-            ++rows;
-            lowered += differing(arrays.front, portable.front);
-            raised += differing(arrays.back, portable.back);
-            frontOwned += differing(arrays.frontOwner, portable.frontOwner);
-            backOwned += differing(arrays.backOwner, portable.backOwner);
-          }
-  }
+  forEveryRow(tiltedEllipsoidChords(), 0.98,
+              [&](const view_chords::RowChords& row, bool domain, bool solids, int first, int last) {
+                // Bounds around the chord where there is one, anything elsewhere; some infinite.
+                RowArrays arrays;
+                for (int x = 0; x < kWidth; ++x) {
+                  double entry = 3.0, exit = 3.2;
+                  row.at(u[std::size_t(x)], entry, exit);
+                  const auto around = [&](double value) { return value + 0.08 * (unit(random) - 0.5); };
+                  const double pick = unit(random);
+                  arrays.front.push_back(pick < 0.1 ? INFINITY : around(entry));
+                  arrays.back.push_back(pick > 0.9 ? -INFINITY : around(exit));
+                  arrays.enter.push_back(unit(random) < 0.5 ? around(entry) : entry - 1.0);
+                  arrays.leave.push_back(unit(random) < 0.5 ? around(exit) : exit + 1.0);
+                  arrays.solid.push_back(unit(random) < 0.3 ? around(entry) : INFINITY);
+                  arrays.frontOwner.push_back(unit(random) < 0.3 ? 3u : kNoOwner);
+                  arrays.backOwner.push_back(unit(random) < 0.3 ? 4u : kNoOwner);
+                }
+                cover.mayOwnFront = unit(random) < 0.8;
+                cover.mayOwnBack = unit(random) < 0.8;
+                RowArrays portable = arrays, fastest = arrays;
+                occlusion_rows::coverRow(row, u.data(), first, last, cover, portable.bounds(domain, solids),
+                                         occlusion_rows::Walk::Portable);
+                occlusion_rows::coverRow(row, u.data(), first, last, cover, fastest.bounds(domain, solids),
+                                         occlusion_rows::Walk::Fastest);
+                EXPECT_EQ(differing(portable.front, fastest.front), 0u) << first << " " << last;
+                EXPECT_EQ(differing(portable.back, fastest.back), 0u) << first << " " << last;
+                EXPECT_EQ(differing(portable.frontOwner, fastest.frontOwner), 0u) << first << " " << last;
+                EXPECT_EQ(differing(portable.backOwner, fastest.backOwner), 0u) << first << " " << last;
+                ++rows;
+                lowered += differing(arrays.front, portable.front);
+                raised += differing(arrays.back, portable.back);
+                frontOwned += differing(arrays.frontOwner, portable.frontOwner);
+                backOwned += differing(arrays.backOwner, portable.backOwner);
+              });
   // Every kind of change happened, many times.
   EXPECT_GT(rows, 2000u);
   EXPECT_GT(lowered, 1000u);
@@ -140,57 +152,47 @@ TEST(OcclusionRows, AvxAndPortableWalksLeaveTheSameBoundsAndOwners) {
 
 TEST(OcclusionRows, AvxAndPortableHidingWalksEndWithTheSameFlags) {
   if (!cpuHasAvx512()) GTEST_SKIP() << "this CPU has no AVX-512: only the portable walk runs";
-  const view_chords::ChordPolynomials chords = tiltedEllipsoidChords();
   const std::vector<double> u = rayColumns();
   std::mt19937 random(13);
   std::uniform_real_distribution<double> unit(0.0, 1.0);
-  occlusion_rows::Cover cover;
-  cover.index = 7;
-  cover.chordMargin = 0.01;
-  cover.nearest = 3.0 - 0.3 - 0.02;
-  cover.farthest = 3.0 + 0.3 + 0.02;
+  const occlusion_rows::Cover cover = tiltedCover();
   std::size_t walks = 0, flags[2][2] = {{0, 0}, {0, 0}};
-  for (int y = -12; y <= 12; y += 3) {
-    const view_chords::RowChords row(chords, 1.02, y / kFocal);
-    for (const bool domain : {false, true})
-      for (const bool solids : {false, true})
-        for (int first = 0; first < 8; ++first)
-          for (int length = 0; length <= 40; ++length)
-            for (const double spread : {0.02, 0.2}) {
-              // Bounds that hide the ellipsoid at every pixel but one, or none (-1), each layer its own: a
-              // flag falls at that pixel alone, whichever lane it is.
-              const int frontShown = int(unit(random) * (kWidth + 8)) - 8;
-              const int backShown = int(unit(random) * (kWidth + 8)) - 8;
-              RowArrays arrays;
-              for (int x = 0; x < kWidth; ++x) {
-                double entry = 3.0, exit = 3.2;
-                row.at(u[std::size_t(x)], entry, exit);
-                arrays.front.push_back(x == frontShown ? entry : entry - 0.011 - spread * unit(random));
-                arrays.back.push_back(x == backShown ? exit : exit + 0.011 + spread * unit(random));
-                arrays.enter.push_back(unit(random) < 0.5 ? entry + 0.05 * (unit(random) - 0.5)
-                                                          : entry - 1.0);
-                arrays.leave.push_back(unit(random) < 0.5 ? exit + 0.05 * (unit(random) - 0.5) : exit + 1.0);
-                arrays.solid.push_back(unit(random) < 0.05 ? cover.nearest - 0.01 : INFINITY);
-                const double owner = unit(random);
-                arrays.frontOwner.push_back(owner < 0.03 ? 3u : owner < 0.06 ? 7u : kNoOwner);
-                arrays.backOwner.push_back(owner > 0.97 ? 4u : owner > 0.94 ? 7u : kNoOwner);
-              }
-              const occlusion_rows::RowBounds bounds = arrays.bounds(domain, solids);
-              const bool startFront = unit(random) < 0.8, startBack = unit(random) < 0.8;
-              bool portableFront = startFront, portableBack = startBack;
-              bool fastestFront = startFront, fastestBack = startBack;
-              const int last = std::min(first + length - 1, kWidth - 1);
-              occlusion_rows::hideRow(row, u.data(), first, last, cover, bounds, portableFront, portableBack,
-                                      occlusion_rows::Walk::Portable);
-              occlusion_rows::hideRow(row, u.data(), first, last, cover, bounds, fastestFront, fastestBack,
-                                      occlusion_rows::Walk::Fastest);
-              ASSERT_EQ(portableFront, fastestFront) << y << " " << first << " " << length;
-              ASSERT_EQ(portableBack, fastestBack) << y << " " << first << " " << length;
-              ++walks;
-              ++flags[0][startFront && portableFront];
-              ++flags[1][startBack && portableBack];
-            }
-  }
+  forEveryRow(
+      tiltedEllipsoidChords(), 1.02,
+      [&](const view_chords::RowChords& row, bool domain, bool solids, int first, int last) {
+        for (const double spread : {0.02, 0.2}) {
+          // Bounds that hide the ellipsoid at every pixel but one, or none, each layer its own: a flag falls
+          // at that pixel alone, whichever lane it is.
+          const int frontShown = int(unit(random) * (kWidth + 8)) - 8;
+          const int backShown = int(unit(random) * (kWidth + 8)) - 8;
+          RowArrays arrays;
+          for (int x = 0; x < kWidth; ++x) {
+            double entry = 3.0, exit = 3.2;
+            row.at(u[std::size_t(x)], entry, exit);
+            arrays.front.push_back(x == frontShown ? entry : entry - 0.011 - spread * unit(random));
+            arrays.back.push_back(x == backShown ? exit : exit + 0.011 + spread * unit(random));
+            arrays.enter.push_back(unit(random) < 0.5 ? entry + 0.05 * (unit(random) - 0.5) : entry - 1.0);
+            arrays.leave.push_back(unit(random) < 0.5 ? exit + 0.05 * (unit(random) - 0.5) : exit + 1.0);
+            arrays.solid.push_back(unit(random) < 0.05 ? cover.nearest - 0.01 : INFINITY);
+            const double owner = unit(random);
+            arrays.frontOwner.push_back(owner < 0.03 ? 3u : owner < 0.06 ? 7u : kNoOwner);
+            arrays.backOwner.push_back(owner > 0.97 ? 4u : owner > 0.94 ? 7u : kNoOwner);
+          }
+          const occlusion_rows::RowBounds bounds = arrays.bounds(domain, solids);
+          const bool startFront = unit(random) < 0.8, startBack = unit(random) < 0.8;
+          bool portableFront = startFront, portableBack = startBack;
+          bool fastestFront = startFront, fastestBack = startBack;
+          occlusion_rows::hideRow(row, u.data(), first, last, cover, bounds, portableFront, portableBack,
+                                  occlusion_rows::Walk::Portable);
+          occlusion_rows::hideRow(row, u.data(), first, last, cover, bounds, fastestFront, fastestBack,
+                                  occlusion_rows::Walk::Fastest);
+          EXPECT_EQ(portableFront, fastestFront) << first << " " << last;
+          EXPECT_EQ(portableBack, fastestBack) << first << " " << last;
+          ++walks;
+          ++flags[0][startFront && portableFront];
+          ++flags[1][startBack && portableBack];
+        }
+      });
   // Each flag kept in some walks and fallen in others.
   EXPECT_GT(walks, 4000u);
   for (const auto& layer : flags) {

@@ -24,8 +24,8 @@ void coverRowPortable(const view_chords::RowChords& row, const double* u, int fi
     if (frontSettled && backSettled) continue;
     double entry, exit;
     if (!row.at(u[x], entry, exit)) continue;
-    // Where a domain box cuts it, its surfaces are the clipped chord's ends, if any are left (as
-    // ViewGrid::clip clips them).
+    // Where a domain box cuts it, its surfaces are the clipped chord's ends, if any are left (as the impostor
+    // pass clips them, lib/ellipsoid_ray.glsl).
     const double unclippedEntry = entry, unclippedExit = exit;
     if (domain) {
       entry = std::max(entry, bounds.boxEnter[x]);
@@ -48,6 +48,41 @@ void coverRowPortable(const view_chords::RowChords& row, const double* u, int fi
   }
 }
 
+// RowChords::at for eight rays at once, each lane computed as it computes one: the same operations in the
+// same order, no fused multiply-adds.
+struct VectorRowChords {
+  __m512d lengths2, lengths1, lengths0, cone2, cone1, cone0, alongSlope, alongOffset;
+
+  __attribute__((target("avx512f"))) explicit VectorRowChords(const view_chords::RowChords& row)
+      : lengths2(_mm512_set1_pd(row.lengths.q2)),
+        lengths1(_mm512_set1_pd(row.lengths.q1)),
+        lengths0(_mm512_set1_pd(row.lengths.q0)),
+        cone2(_mm512_set1_pd(row.cone.q2)),
+        cone1(_mm512_set1_pd(row.cone.q1)),
+        cone0(_mm512_set1_pd(row.cone.q0)),
+        alongSlope(_mm512_set1_pd(row.alongSlope)),
+        alongOffset(_mm512_set1_pd(row.alongOffset)) {}
+
+  // The lanes of `active` whose rays (u, v, -1) meet the ellipsoid, with their entries and exits.
+  __attribute__((target("avx512f"))) __mmask8 at(__m512d u, __mmask8 active, __m512d& entry,
+                                                 __m512d& exit) const {
+    const __m512d zero = _mm512_setzero_pd();
+    const __m512d lengthSquared =
+        _mm512_add_pd(_mm512_mul_pd(_mm512_add_pd(_mm512_mul_pd(lengths2, u), lengths1), u), lengths0);
+    const __m512d missing =
+        _mm512_add_pd(_mm512_mul_pd(_mm512_add_pd(_mm512_mul_pd(cone2, u), cone1), u), cone0);
+    active &=
+        _mm512_cmp_pd_mask(missing, zero, _CMP_GE_OQ) & _mm512_cmp_pd_mask(lengthSquared, zero, _CMP_GT_OQ);
+    const __m512d along = _mm512_add_pd(_mm512_mul_pd(alongSlope, u), alongOffset);
+    // Only the active lanes: the others may be negative or zero.
+    const __m512d half = _mm512_maskz_sqrt_pd(active, missing);
+    const __m512d inverseLength = _mm512_maskz_div_pd(active, _mm512_set1_pd(1.0), lengthSquared);
+    entry = _mm512_mul_pd(_mm512_sub_pd(along, half), inverseLength);
+    exit = _mm512_mul_pd(_mm512_add_pd(along, half), inverseLength);
+    return active;
+  }
+};
+
 // Eight pixels at a time, each lane as the portable walk computes it (the same operations in the same order,
 // no fused multiply-adds, std::min and std::max as blends on the same comparisons), the settled lanes
 // masked: on the dam break nearly every pixel's back is unsettled in the nearest-first order, so its chord
@@ -56,12 +91,8 @@ __attribute__((target("avx512f"))) void coverRowAvx512(const view_chords::RowCho
                                                        int firstX, int lastX, const Cover& cover,
                                                        const RowBounds& bounds) {
   const bool domain = bounds.boxEnter != nullptr;
-  const __m512d lengths2 = _mm512_set1_pd(row.lengths.q2), lengths1 = _mm512_set1_pd(row.lengths.q1),
-                lengths0 = _mm512_set1_pd(row.lengths.q0);
-  const __m512d cone2 = _mm512_set1_pd(row.cone.q2), cone1 = _mm512_set1_pd(row.cone.q1),
-                cone0 = _mm512_set1_pd(row.cone.q0);
-  const __m512d alongSlope = _mm512_set1_pd(row.alongSlope), alongOffset = _mm512_set1_pd(row.alongOffset);
-  const __m512d zero = _mm512_setzero_pd(), one = _mm512_set1_pd(1.0);
+  const VectorRowChords chords(row);
+  const __m512d zero = _mm512_setzero_pd();
   const __m512d margin = _mm512_set1_pd(cover.chordMargin),
                 twoMargins = _mm512_set1_pd(2.0 * cover.chordMargin);
   const __m512d nearest = _mm512_set1_pd(cover.nearest), farthest = _mm512_set1_pd(cover.farthest);
@@ -94,21 +125,9 @@ __attribute__((target("avx512f"))) void coverRowAvx512(const view_chords::RowCho
     }
     __mmask8 active = lanes & ~(frontSettled & backSettled);
     if (!active) continue;
-    const __m512d us = _mm512_maskz_loadu_pd(lanes, u + x);
-    // RowQuadratic::at and RowChords::at.
-    const __m512d lengthSquared =
-        _mm512_add_pd(_mm512_mul_pd(_mm512_add_pd(_mm512_mul_pd(lengths2, us), lengths1), us), lengths0);
-    const __m512d missing =
-        _mm512_add_pd(_mm512_mul_pd(_mm512_add_pd(_mm512_mul_pd(cone2, us), cone1), us), cone0);
-    active &=
-        _mm512_cmp_pd_mask(missing, zero, _CMP_GE_OQ) & _mm512_cmp_pd_mask(lengthSquared, zero, _CMP_GT_OQ);
+    __m512d unclippedEntry, unclippedExit;
+    active = chords.at(_mm512_maskz_loadu_pd(lanes, u + x), active, unclippedEntry, unclippedExit);
     if (!active) continue;
-    const __m512d along = _mm512_add_pd(_mm512_mul_pd(alongSlope, us), alongOffset);
-    // Only the active lanes: the others may be negative or zero.
-    const __m512d half = _mm512_maskz_sqrt_pd(active, missing);
-    const __m512d inverseLength = _mm512_maskz_div_pd(active, one, lengthSquared);
-    const __m512d unclippedEntry = _mm512_mul_pd(_mm512_sub_pd(along, half), inverseLength);
-    const __m512d unclippedExit = _mm512_mul_pd(_mm512_add_pd(along, half), inverseLength);
     __m512d entry = unclippedEntry, exit = unclippedExit;
     if (domain) {
       // std::max(entry, enter) is enter where entry < enter; std::min(exit, leave) is leave where leave <
@@ -183,12 +202,7 @@ __attribute__((target("avx512f"))) void hideRowAvx512(const view_chords::RowChor
                                                       const RowBounds& bounds, bool& hiddenFront,
                                                       bool& hiddenBack) {
   const bool domain = bounds.boxEnter != nullptr;
-  const __m512d lengths2 = _mm512_set1_pd(row.lengths.q2), lengths1 = _mm512_set1_pd(row.lengths.q1),
-                lengths0 = _mm512_set1_pd(row.lengths.q0);
-  const __m512d cone2 = _mm512_set1_pd(row.cone.q2), cone1 = _mm512_set1_pd(row.cone.q1),
-                cone0 = _mm512_set1_pd(row.cone.q0);
-  const __m512d alongSlope = _mm512_set1_pd(row.alongSlope), alongOffset = _mm512_set1_pd(row.alongOffset);
-  const __m512d zero = _mm512_setzero_pd(), one = _mm512_set1_pd(1.0);
+  const VectorRowChords chords(row);
   const __m512d margin = _mm512_set1_pd(cover.chordMargin),
                 twoMargins = _mm512_set1_pd(2.0 * cover.chordMargin);
   const __m512d nearest = _mm512_set1_pd(cover.nearest), farthest = _mm512_set1_pd(cover.farthest);
@@ -218,19 +232,9 @@ __attribute__((target("avx512f"))) void hideRowAvx512(const view_chords::RowChor
                                  _mm512_cmp_pd_mask(back, farthest, _CMP_GT_OQ);
     active &= ~(frontSettled & backSettled);
     if (!active) continue;
-    const __m512d us = _mm512_maskz_loadu_pd(lanes, u + x);
-    const __m512d lengthSquared =
-        _mm512_add_pd(_mm512_mul_pd(_mm512_add_pd(_mm512_mul_pd(lengths2, us), lengths1), us), lengths0);
-    const __m512d missing =
-        _mm512_add_pd(_mm512_mul_pd(_mm512_add_pd(_mm512_mul_pd(cone2, us), cone1), us), cone0);
-    active &=
-        _mm512_cmp_pd_mask(missing, zero, _CMP_GE_OQ) & _mm512_cmp_pd_mask(lengthSquared, zero, _CMP_GT_OQ);
+    __m512d entry, exit;
+    active = chords.at(_mm512_maskz_loadu_pd(lanes, u + x), active, entry, exit);
     if (!active) continue;
-    const __m512d along = _mm512_add_pd(_mm512_mul_pd(alongSlope, us), alongOffset);
-    const __m512d half = _mm512_maskz_sqrt_pd(active, missing);
-    const __m512d inverseLength = _mm512_maskz_div_pd(active, one, lengthSquared);
-    __m512d entry = _mm512_mul_pd(_mm512_sub_pd(along, half), inverseLength);
-    __m512d exit = _mm512_mul_pd(_mm512_add_pd(along, half), inverseLength);
     if (domain) {
       const __m512d boxEnter = _mm512_maskz_loadu_pd(lanes, bounds.boxEnter + x);
       const __m512d boxLeave = _mm512_maskz_loadu_pd(lanes, bounds.boxLeave + x);

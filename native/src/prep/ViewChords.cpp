@@ -61,7 +61,7 @@ void ViewGrid::clipToBox(const DomainBox& domain, const glm::dmat4& boxFromCamer
   boxLeave.assign(pixels, 0.0);
   const glm::dvec3 origin(boxFromCamera[3]), low(domain.low), high(domain.high);
   for (std::size_t pixel = 0; pixel < pixels; ++pixel) {
-    const glm::dvec3 ray(u(int(pixel % std::size_t(width))), v(int(pixel / std::size_t(width))), -1.0);
+    const glm::dvec3 ray(columnU_[pixel % std::size_t(width)], v(int(pixel / std::size_t(width))), -1.0);
     const glm::dvec3 direction = glm::dmat3(boxFromCamera) * ray;
     double enter = -std::numeric_limits<double>::infinity(), leave = std::numeric_limits<double>::infinity();
     for (int axis = 0; axis < 3; ++axis) {

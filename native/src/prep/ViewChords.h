@@ -91,16 +91,13 @@ struct ViewGrid {
 
   explicit ViewGrid(const Camera& camera);
   // The ray through a pixel centre (x right, y down) is (u, v, -1) in camera space: looked up, as the
-  // occlusion test asks for them at every pixel it visits.
-  double u(int x) const { return columnU_[std::size_t(x)]; }
+  // occlusion test asks for them at every row and pixel it visits (columnsU()[x] is u).
   double v(int y) const { return rowV_[std::size_t(y)]; }
   const double* columnsU() const { return columnU_.data(); }
 
   // Fills boxEnter and boxLeave (an affine map keeps a ray's parameter, so the slab test runs in the box's
   // frame).
   void clipToBox(const DomainBox& domain, const glm::dmat4& boxFromCamera);
-  // A chord clipped to the box, as the impostor pass clips it (lib/ellipsoid_ray.glsl).
-  void clip(std::size_t pixel, double& entry, double& exit) const;
   // The pixels of a row (clamped to [low, high]) whose centres' rays may meet an ellipsoid, from its cone's
   // quadratic along the row, widened by a hundredth of a pixel each side for rounding (a row the quadratic
   // cannot bound keeps [low, high]). Leaves first > last where the row misses it.
@@ -115,13 +112,6 @@ struct ViewGrid {
  private:
   std::vector<double> columnU_, rowV_;
 };
-
-// Inline: called for every row and pixel of every ellipsoid the occlusion test visits.
-inline void ViewGrid::clip(std::size_t pixel, double& entry, double& exit) const {
-  if (boxEnter.empty()) return;
-  entry = std::max(entry, boxEnter[pixel]);
-  exit = std::min(exit, boxLeave[pixel]);
-}
 
 inline void ViewGrid::rowSpan(const RowQuadratic& cone, int low, int high, int& first, int& last) const {
   first = low;
