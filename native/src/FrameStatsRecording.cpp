@@ -11,6 +11,7 @@ void recordPreparation(const LiquidPreparation& liquid, const FoamPreparation& f
   stats.liquid.fullNeighbours = liquid.fullNeighbours;
   stats.liquid.minNeighboursApplied = liquid.minNeighboursApplied;
   stats.liquid.culled = liquid.culled;
+  stats.liquid.hiddenBehindSolids = liquid.behindSolids;
   stats.liquid.splashesAbsorbed = liquid.splashesAbsorbed;
   stats.liquid.neighbourMilliseconds = liquid.neighbourMilliseconds;
   stats.liquid.anisotropyMilliseconds = liquid.anisotropyMilliseconds;

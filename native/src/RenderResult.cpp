@@ -54,6 +54,7 @@ nlohmann::json FrameStats::toJson() const {
         {"full_neighbours", liquid.fullNeighbours},
         {"min_neighbours_applied", liquid.minNeighboursApplied},
         {"culled", liquid.culled},
+        {"hidden_behind_solids", liquid.hiddenBehindSolids},
         {"splashes_absorbed", liquid.splashesAbsorbed},
         {"hidden_interior_dropped", liquid.hiddenInteriorDropped},
         {"hidden_interior_front_layer_only", liquid.hiddenInteriorFrontLayerOnly},

@@ -276,15 +276,6 @@ RenderResult Renderer::renderPrepared(const Scene& scene, const Particles& parti
   // camera's near plane whole, so the ellipsoids around the camera are still drawn.
   // Each particle is shaped, and Mantaflow's surface built and searched, once for the camera's view and every
   // light's; a frame without lights has no other view to share them with.
-  FrameLiquidCache frameCache;
-  FrameLiquidCache* sharedWithLights = scene.lights.empty() ? nullptr : &frameCache;
-  LiquidPreparation liquid = prepareLiquid(particles, camera, liquidParameters, sharedWithLights);
-  const bool cameraInLiquid = aggregatesContain(liquid.aggregates, camera.position(), domainBox);
-  const float radius = typicalLiquidRadius(particles);
-  const FoamPreparation foam = prepareFoam(particles, camera, foamParameters);
-  std::optional<RaymarchPreparation> raymarch;
-  if (liquidParameters.surface == "raymarch")
-    raymarch.emplace(prepareRaymarch(liquid, camera, radius, liquidParameters, domainBox));
   BackgroundImages backgroundImages = impl_->backgroundCache.load(scene.background, frame, width, height);
   if (extras.backgroundColor) {
     requireCameraSize(*extras.backgroundColor, 4, "background colour", width, height);
@@ -297,16 +288,28 @@ RenderResult Renderer::renderPrepared(const Scene& scene, const Particles& parti
   }
   if (extras.backgroundColor || extras.backgroundDepth)
     backgroundImages.generation = ++impl_->hostBackgroundGeneration;
+  // The solids the impostor passes test against: the background's depth and the occluder triangles. The
+  // particles they hide wholly are not shaped, and those they hide from the view are not drawn.
+  std::optional<SolidDepthTiles> solids;
   if (liquidParameters.drop_hidden_interior) {
-    // The solids the impostor passes test against: the background's depth and the occluder triangles.
-    const auto solids = [&] {
-      SolidDepthTiles tiles(camera);
-      if (backgroundImages.eyeDepth) tiles.addDepthImage(*backgroundImages.eyeDepth);
-      for (const TriangleMesh* mesh : extras.occluders)
-        tiles.addTriangles(*mesh);
-      return tiles;
-    };
-    const HiddenInteriorResult hidden = dropHiddenAggregates(liquid, camera, domainBox, solids);
+    solids.emplace(camera);
+    if (backgroundImages.eyeDepth) solids->addDepthImage(*backgroundImages.eyeDepth);
+    for (const TriangleMesh* mesh : extras.occluders)
+      solids->addTriangles(*mesh);
+  }
+  const SolidDepthTiles* frameSolids = solids ? &*solids : nullptr;
+  FrameLiquidCache frameCache;
+  FrameLiquidCache* sharedWithLights = scene.lights.empty() ? nullptr : &frameCache;
+  LiquidPreparation liquid =
+      prepareLiquid(particles, camera, liquidParameters, sharedWithLights, frameSolids);
+  const bool cameraInLiquid = aggregatesContain(liquid.aggregates, camera.position(), domainBox);
+  const float radius = typicalLiquidRadius(particles);
+  const FoamPreparation foam = prepareFoam(particles, camera, foamParameters);
+  std::optional<RaymarchPreparation> raymarch;
+  if (liquidParameters.surface == "raymarch")
+    raymarch.emplace(prepareRaymarch(liquid, camera, radius, liquidParameters, domainBox));
+  if (liquidParameters.drop_hidden_interior) {
+    const HiddenInteriorResult hidden = dropHiddenAggregates(liquid, camera, domainBox, frameSolids);
     stats.liquid.hiddenInteriorDropped = hidden.dropped;
     stats.liquid.hiddenInteriorFrontLayerOnly = hidden.split.frontOnly;
     stats.liquid.hiddenInteriorBackLayerOnly = hidden.split.backOnly;

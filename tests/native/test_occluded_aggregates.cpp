@@ -6,6 +6,7 @@
 // layer bit-identical, with a domain box, solids and a sun) are in test_hidden_interior.cpp.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstring>
 #include <random>
@@ -19,6 +20,8 @@
 #include "prep/HiddenInterior.h"
 #include "prep/LiquidPreparation.h"
 #include "prep/OccludedAggregates.h"
+#include "prep/SolidDepthTiles.h"
+#include "spindrift/FloatImage.h"
 
 namespace spindrift {
 namespace {
@@ -65,6 +68,22 @@ std::pair<double, double> clippedEntryAndExit(const std::vector<EllipsoidInstanc
   return {nearest, farthest};
 }
 
+// Nearest entry and farthest exit over the ellipsoids whose entry lies before `solid` (a planar eye depth;
+// `cosine` turns the ray's distances into planar depths), as the impostor pass draws them: a fragment whose
+// entry lies at or behind the background's depth is discarded in both layers.
+std::pair<double, double> entryAndExitBeforeSolid(const std::vector<EllipsoidInstance>& ellipsoids,
+                                                  const glm::dvec3& origin, const glm::dvec3& direction,
+                                                  double cosine, double solid) {
+  double nearest = 1e10, farthest = -1e10;
+  for (const EllipsoidInstance& ellipsoid : ellipsoids) {
+    const ellipsoid_test::Chord chord = ellipsoid_test::castRay(ellipsoid, origin, direction);
+    if (chord.miss < 0.0 || !(chord.entry * cosine < solid)) continue;
+    nearest = std::min(nearest, chord.entry);
+    farthest = std::max(farthest, chord.exit);
+  }
+  return {nearest, farthest};
+}
+
 struct PixelCheck {
   std::size_t hits = 0;
   std::size_t differing = 0;
@@ -90,6 +109,30 @@ PixelCheck everyPixel(const std::vector<EllipsoidInstance>& all, const std::vect
       ++check.hits;
       check.differing += layers(front).first != allFront;
       check.differing += layers(back).second != allBack;
+    }
+  return check;
+}
+
+// Through every pixel centre: the layers' lists against all ellipsoids, with a solid at a planar depth per
+// pixel (top row first).
+PixelCheck everyPixelBeforeSolids(const std::vector<EllipsoidInstance>& all,
+                                  const std::vector<EllipsoidInstance>& kept, const LayerSplit& split,
+                                  const Camera& camera, const std::vector<float>& solids) {
+  const std::vector<EllipsoidInstance> front(kept.begin(), kept.end() - std::ptrdiff_t(split.backOnly));
+  const std::vector<EllipsoidInstance> back(kept.begin() + std::ptrdiff_t(split.frontOnly), kept.end());
+  const glm::dvec3 eye(camera.position());
+  const glm::dvec3 forward = -glm::dvec3(glm::mat3(camera.worldFromCamera)[2]);
+  PixelCheck check;
+  for (int y = 0; y < camera.height; ++y)
+    for (int x = 0; x < camera.width; ++x) {
+      const glm::dvec3 direction = pixelRay(camera, x, y);
+      const double cosine = glm::dot(direction, forward);
+      const double solid = solids[std::size_t(y) * camera.width + x];
+      const auto [allFront, allBack] = entryAndExitBeforeSolid(all, eye, direction, cosine, solid);
+      if (allFront > 1e9) continue;
+      ++check.hits;
+      check.differing += entryAndExitBeforeSolid(front, eye, direction, cosine, solid).first != allFront;
+      check.differing += entryAndExitBeforeSolid(back, eye, direction, cosine, solid).second != allBack;
     }
   return check;
 }
@@ -141,6 +184,56 @@ TEST(OccludedAggregates, EveryPixelSeesInEachLayerWhatAllEllipsoidsGive) {
   EXPECT_GT(result.dropped, all.size() / 4) << "of " << all.size();
   const PixelCheck check = everyPixel(all, kept, split, camera);
   EXPECT_GT(check.hits, 2500u);  // 3,000 or so: the block fills much of the view
+  EXPECT_EQ(check.differing, 0u) << "of " << 2 * check.hits << " layer values";
+}
+
+TEST(OccludedAggregates, WhatTheSolidsHideAtEveryPixelGoesFromBothLayers) {
+  // The background's depth holds a wall before the block's left part and a floor-like slope behind its
+  // right part; every layer must still give, through every pixel, what all the ellipsoids the impostor pass
+  // keeps there give (those whose entry lies before the solid).
+  const Camera camera = Camera::lookAt(128, 96, 40.0f, {4.0f, -2.5f, 3.0f}, {0.8f, 0.8f, 0.4f}, {0, 0, 1});
+  const std::vector<EllipsoidInstance> all = jitteredBlock(camera);
+  FloatImage depth{camera.width, camera.height, 1, {}};
+  for (int y = 0; y < camera.height; ++y)
+    for (int x = 0; x < camera.width; ++x)
+      depth.pixels.push_back(x < 64 ? 3.7f : x > 96 ? 4.2f + 0.01f * float(y) : INFINITY);
+  SolidDepthTiles solids(camera);
+  solids.addDepthImage(depth);
+
+  std::vector<EllipsoidInstance> open = all, walled = all;
+  LayerSplit openSplit, walledSplit;
+  const OccludedAggregatesResult withoutSolids =
+      dropOccludedAggregates(open, openSplit, camera, nullptr, nullptr);
+  const OccludedAggregatesResult withSolids =
+      dropOccludedAggregates(walled, walledSplit, camera, nullptr, &solids);
+  // Every ellipsoid whose entry lies a margin behind the solid at every pixel its ray meets it goes, though
+  // the solids keep the view from hiding much else (a covering ellipsoid counts for the back layer only where
+  // no solid may lie before it).
+  const glm::dvec3 eye(camera.position());
+  const glm::dvec3 forward = -glm::dvec3(glm::mat3(camera.worldFromCamera)[2]);
+  std::size_t whollyHidden = 0, keptThough = 0;
+  for (const EllipsoidInstance& ellipsoid : all) {
+    bool seen = false, hidden = true;
+    for (int y = 0; y < camera.height && hidden; ++y)
+      for (int x = 0; x < camera.width && hidden; ++x) {
+        const glm::dvec3 direction = pixelRay(camera, x, y);
+        const ellipsoid_test::Chord chord = ellipsoid_test::castRay(ellipsoid, eye, direction);
+        if (chord.miss < 0.0) continue;
+        seen = true;
+        hidden = chord.entry * glm::dot(direction, forward) >
+                 depth.pixels[std::size_t(y) * camera.width + x] + 0.05;
+      }
+    if (!seen || !hidden) continue;
+    ++whollyHidden;
+    keptThough += std::any_of(walled.begin(), walled.end(), [&](const EllipsoidInstance& kept) {
+      return std::memcmp(&kept, &ellipsoid, sizeof(EllipsoidInstance)) == 0;
+    });
+  }
+  EXPECT_GT(whollyHidden, 500u) << "of " << all.size();
+  EXPECT_EQ(keptThough, 0u) << "of " << whollyHidden;
+  EXPECT_GT(withoutSolids.dropped, 0u);
+  const PixelCheck check = everyPixelBeforeSolids(all, walled, walledSplit, camera, depth.pixels);
+  EXPECT_GT(check.hits, 1000u);
   EXPECT_EQ(check.differing, 0u) << "of " << 2 * check.hits << " layer values";
 }
 

@@ -45,7 +45,10 @@ struct LiquidFrameStats {
   /// Yu and Turk's N_epsilon as applied to the frame (liquid.anisotropy_min_neighbours, lowered by
   /// liquid.anisotropy_min_neighbour_fraction for a coarsely sampled body).
   float minNeighboursApplied = 0.0f;
-  std::size_t culled = 0;            ///< Outside the view frustum.
+  std::size_t culled = 0;  ///< Outside the view frustum.
+  /// In the frustum, but the background's solids hide them wholly (liquid.drop_hidden_interior): not shaped,
+  /// not drawn.
+  std::size_t hiddenBehindSolids = 0;
   std::size_t splashesAbsorbed = 0;  ///< Splashes below Mantaflow's surface: not drawn.
   /// Aggregates left out because they lie inside the union of the others (liquid.drop_hidden_interior).
   std::size_t hiddenInteriorDropped = 0;         ///< Aggregates hidden from both depth layers: not drawn.

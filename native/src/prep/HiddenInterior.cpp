@@ -6,7 +6,6 @@
 #include <cmath>
 #include <cstdint>
 #include <memory>
-#include <optional>
 
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
@@ -360,11 +359,7 @@ bool manyDeepAggregates(const LiquidPreparation& liquid) {
 }
 
 HiddenInteriorResult dropHiddenAggregates(LiquidPreparation& liquid, const Camera& camera,
-                                          const DomainBox* domain,
-                                          const std::function<SolidDepthTiles()>& solids) {
-  std::optional<SolidDepthTiles> tiles;
-  if (solids) tiles.emplace(solids());
-  const SolidDepthTiles* solidTiles = tiles ? &*tiles : nullptr;
+                                          const DomainBox* domain, const SolidDepthTiles* solidTiles) {
   // Deep particles are the ones the anisotropy found isotropic; where they are few the body is a sheet or a
   // spray, which hides little: on the dam-break example (5 % deep) 0.8 % of the aggregates are hidden from
   // both layers and 6 % from one, fewer fragments than the grid's cost on the CPU (docs/frame-cost.md).

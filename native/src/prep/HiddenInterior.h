@@ -1,7 +1,6 @@
 #pragma once
 
 #include <cstddef>
-#include <functional>
 #include <string>
 #include <vector>
 
@@ -46,11 +45,9 @@ HiddenInteriorResult dropHiddenInterior(std::vector<EllipsoidInstance>& ellipsoi
 bool manyDeepAggregates(const LiquidPreparation& liquid);
 
 /// dropHiddenInterior on a preparation's aggregates (where manyDeepAggregates), then
-/// dropOccludedAggregates, recording the split in `liquid.aggregateLayers`.
-/// `solids`, when given, makes the frame's solids; it is called only when the step is tried (its cost, a pass
-/// over the background's depth, is not paid on frames that skip the step).
+/// dropOccludedAggregates, recording the split in `liquid.aggregateLayers`; `solids` are the frame's, or
+/// null.
 HiddenInteriorResult dropHiddenAggregates(LiquidPreparation& liquid, const Camera& camera,
-                                          const DomainBox* domain,
-                                          const std::function<SolidDepthTiles()>& solids = {});
+                                          const DomainBox* domain, const SolidDepthTiles* solids = nullptr);
 
 }  // namespace spindrift

@@ -28,7 +28,13 @@ double millisecondsBetween(Clock::time_point start, Clock::time_point end) {
 }
 
 // Ineligible: not a liquid particle, or one without a finite position and a positive finite radius.
-enum CandidateRole : std::uint8_t { kIneligible = 0, kOutside = 1, kNeighbourOnly = 2, kVisible = 3 };
+enum CandidateRole : std::uint8_t {
+  kIneligible = 0,
+  kOutside = 1,
+  kNeighbourOnly = 2,
+  kBehindSolids = 3,  // a neighbour only
+  kVisible = 4
+};
 
 // Particles are packed in blocks so that splashes and aggregates can be written in parallel, each block at an
 // offset found by a prefix sum of the blocks' counts.
@@ -41,7 +47,7 @@ constexpr float kMaxBlobPerKernel = 1.25f;
 }  // namespace
 
 LiquidCandidates selectLiquidCandidates(const Particles& particles, const Camera& camera,
-                                        const LiquidParameters& parameters) {
+                                        const LiquidParameters& parameters, const SolidDepthTiles* solids) {
   const ViewFrustum frustum(camera);
   const std::size_t count = particles.size();
   std::vector<std::uint8_t> roles(count, kIneligible);
@@ -61,8 +67,10 @@ LiquidCandidates selectLiquidCandidates(const Particles& particles, const Camera
           const float drawnReach = (std::max(1.0f, parameters.max_ellipsoid_scale) + largestOffset) * radius +
                                    parameters.anisotropy_smoothing * neighbourhood;
           const glm::vec3 centre = frustum.cameraFromWorld(position);
+          // One the solids hide wholly is still a neighbour of those drawn beside it, as one outside the
+          // frustum is.
           if (frustum.reachedBySphere(centre, drawnReach))
-            roles[i] = kVisible;
+            roles[i] = solids && solids->hidesSphere(centre, drawnReach) ? kBehindSolids : kVisible;
           else if (frustum.reachedBySphere(centre, drawnReach + neighbourhood))
             roles[i] = kNeighbourOnly;
           else
@@ -76,6 +84,7 @@ LiquidCandidates selectLiquidCandidates(const Particles& particles, const Camera
     liquid += particles.kinds[i] == ParticleKind::Liquid;
     selected += roles[i] >= kNeighbourOnly;
     candidates.eligible += roles[i] != kIneligible;
+    candidates.behindSolids += roles[i] == kBehindSolids;
   }
   ParticleCloud& cloud = candidates.cloud;
   cloud.resize(selected);
@@ -92,7 +101,7 @@ LiquidCandidates selectLiquidCandidates(const Particles& particles, const Camera
     largestRadius = std::max(largestRadius, particles.radii[i]);
     ++next;
   }
-  candidates.culled = liquid - visible;
+  candidates.culled = liquid - visible - candidates.behindSolids;
   candidates.cellSize = selected > 0 ? parameters.neighbour_radius * largestRadius : 1.0f;
   return candidates;
 }
@@ -219,11 +228,14 @@ bool aggregatesContain(const std::vector<EllipsoidInstance>& aggregates, const g
 }
 
 LiquidPreparation prepareLiquid(const Particles& particles, const Camera& camera,
-                                const LiquidParameters& parameters, FrameLiquidCache* frameCache) {
+                                const LiquidParameters& parameters, FrameLiquidCache* frameCache,
+                                const SolidDepthTiles* solids) {
   const Clock::time_point start = Clock::now();
   LiquidPreparation preparation;
-  LiquidCandidates candidates = selectLiquidCandidates(particles, camera, parameters);
+  LiquidCandidates candidates = selectLiquidCandidates(particles, camera, parameters,
+                                                       parameters.surface == "raymarch" ? nullptr : solids);
   preparation.culled = candidates.culled;
+  preparation.behindSolids = candidates.behindSolids;
   const bool wholeLiquid = candidates.cloud.size() == candidates.eligible;
   const NeighbourGrid grid(std::move(candidates.cloud), candidates.cellSize);
   const Clock::time_point gridBuilt = Clock::now();

@@ -35,6 +35,8 @@ struct LiquidPreparation {
   std::vector<EllipsoidInstance> aggregates;  ///< Ellipsoids whose longest axis is at most 1.2 r.
   LayerSplit aggregateLayers;                 ///< Which aggregates each depth layer draws.
   std::size_t culled = 0;                     ///< Outside the view frustum (they still count as neighbours).
+  std::size_t behindSolids =
+      0;  ///< In the frustum but hidden wholly by the solids: neighbours only, likewise.
   std::size_t isotropicInterior = 0;  ///< Aggregates deep inside the body, drawn as spheres without PCA.
   float fullNeighbours = 0.0f;        ///< A particle inside the body has this many neighbours within R.
   float minNeighboursApplied = 0.0f;  ///< N_epsilon as applied: fewer neighbours make a sphere of k_n r.
@@ -54,6 +56,7 @@ struct LiquidPreparation {
 };
 
 struct FrameLiquidCache;
+class SolidDepthTiles;
 
 /// Frustum-culls, finds neighbours, classifies each liquid particle as splash or aggregate by its anisotropic
 /// density, and builds the ellipsoids (TBB-parallel). Only particles of kind Liquid are considered.
@@ -61,8 +64,12 @@ struct FrameLiquidCache;
 /// The views of one frame pass the same `frameCache` so that what they share (each particle's shape from its
 /// neighbours, Mantaflow's surface for liquid.mesh_kernel_radius) is computed once for all of them; the
 /// result is the same with or without it.
+/// `solids`, when given, is what the background's depth hides: a particle it hides wholly is not drawn (but
+/// is a neighbour), unless the surface is ray-marched (liquid.surface = raymarch), whose density sums every
+/// particle near the view.
 LiquidPreparation prepareLiquid(const Particles& particles, const Camera& camera,
-                                const LiquidParameters& parameters, FrameLiquidCache* frameCache = nullptr);
+                                const LiquidParameters& parameters, FrameLiquidCache* frameCache = nullptr,
+                                const SolidDepthTiles* solids = nullptr);
 
 /// Whether `point` lies inside the drawn aggregated body: inside one of its ellipsoids and, for a Mantaflow
 /// liquid, inside the domain's box that clips them. This is how the renderer knows the camera is under water.

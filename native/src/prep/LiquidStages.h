@@ -6,6 +6,7 @@
 #include "prep/LiquidPreparation.h"
 #include "prep/MantaflowSurface.h"
 #include "prep/NeighbourGrid.h"
+#include "prep/SolidDepthTiles.h"
 
 // The stages of prepareLiquid, exposed for the benchmark and the tests: select → grid → shape → classify.
 namespace spindrift {
@@ -14,13 +15,17 @@ namespace spindrift {
 /// neighbourhood radius of the frustum), and the grid cell size their neighbourhoods need.
 struct LiquidCandidates {
   ParticleCloud cloud;
-  std::size_t culled = 0;
-  std::size_t eligible = 0;  ///< Liquid particles with a finite position and a positive finite radius.
+  std::size_t culled = 0;        ///< Outside the frustum: not drawn.
+  std::size_t behindSolids = 0;  ///< In the frustum, but the solids hide them wholly: not drawn.
+  std::size_t eligible = 0;      ///< Liquid particles with a finite position and a positive finite radius.
   float cellSize = 1.0f;
 };
 
+/// The liquid particles this view draws (their drawn reach meets the frustum and, given `solids`, the
+/// background's solids do not hide it wholly) and their neighbours.
 LiquidCandidates selectLiquidCandidates(const Particles& particles, const Camera& camera,
-                                        const LiquidParameters& parameters);
+                                        const LiquidParameters& parameters,
+                                        const SolidDepthTiles* solids = nullptr);
 
 /// The density an interior particle has in this frame: the median over the visible interior particles, or,
 /// when fewer than kMinInteriorForRestDensity are visible, the density of particles one radius apart (1).

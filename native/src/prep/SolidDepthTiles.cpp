@@ -35,9 +35,13 @@ void SolidDepthTiles::lower(float firstX, float firstY, float lastX, float lastY
 void SolidDepthTiles::addDepthImage(const FloatImage& eyeDepth) {
   if (eyeDepth.width == camera_.width && eyeDepth.height == camera_.height) {
     farthest_.resize(std::size_t(eyeDepth.width) * eyeDepth.height);
+    farthestTiles_.assign(nearest_.size(), 0.0f);
     for (std::size_t i = 0; i < farthest_.size(); ++i) {
       const float depth = eyeDepth.pixels[i * eyeDepth.channels];
       farthest_[i] = depth > 0.0f ? depth : kNoSolid;  // NaN and infinity too
+      const int x = int(i % std::size_t(eyeDepth.width)), y = int(i / std::size_t(eyeDepth.width));
+      float& tile = farthestTiles_[std::size_t(y / kTileSize) * columns_ + std::size_t(x / kTileSize)];
+      tile = std::max(tile, farthest_[i]);
     }
   }
   for (int y = 0; y < eyeDepth.height; ++y)
@@ -69,9 +73,8 @@ void SolidDepthTiles::addTriangles(const TriangleMesh& mesh) {
   }
 }
 
-bool SolidDepthTiles::solidNearerThan(const glm::vec3& centre, float radius, float farthestDepth) const {
-  const glm::mat4 cameraFromWorld = camera_.cameraFromWorld();
-  const glm::vec3 point = glm::vec3(cameraFromWorld * glm::vec4(centre, 1.0f));
+bool SolidDepthTiles::tilesUnder(const glm::vec3& point, float radius, int& column0, int& row0, int& column1,
+                                 int& row1) const {
   // Screen x and y are monotonic in each camera-space coordinate over the sphere's camera-space box (whose
   // depth is positive), so the box's corners bound the sphere's screen rectangle.
   float firstX = kInfinity, firstY = kInfinity, lastX = -kInfinity, lastY = -kInfinity;
@@ -85,14 +88,33 @@ bool SolidDepthTiles::solidNearerThan(const glm::vec3& centre, float radius, flo
       }
   if (!(lastX >= 0.0f && lastY >= 0.0f && firstX < float(camera_.width) && firstY < float(camera_.height)))
     return false;  // Off screen: it draws no pixel.
-  const int column0 = std::max(0, int(firstX) / kTileSize), row0 = std::max(0, int(firstY) / kTileSize);
-  const int column1 =
-      std::min(columns_ - 1, int(std::min(lastX + 1.0f, float(camera_.width - 1))) / kTileSize);
-  const int row1 = std::min(rows_ - 1, int(std::min(lastY + 1.0f, float(camera_.height - 1))) / kTileSize);
+  column0 = std::max(0, int(firstX) / kTileSize), row0 = std::max(0, int(firstY) / kTileSize);
+  column1 = std::min(columns_ - 1, int(std::min(lastX + 1.0f, float(camera_.width - 1))) / kTileSize);
+  row1 = std::min(rows_ - 1, int(std::min(lastY + 1.0f, float(camera_.height - 1))) / kTileSize);
+  return true;
+}
+
+bool SolidDepthTiles::solidNearerThan(const glm::vec3& centre, float radius, float farthestDepth) const {
+  const glm::vec3 point = glm::vec3(camera_.cameraFromWorld() * glm::vec4(centre, 1.0f));
+  int column0, row0, column1, row1;
+  if (!tilesUnder(point, radius, column0, row0, column1, row1)) return false;
   for (int row = row0; row <= row1; ++row)
     for (int column = column0; column <= column1; ++column)
       if (nearest_[std::size_t(row) * columns_ + column] <= farthestDepth) return true;
   return false;
+}
+
+bool SolidDepthTiles::hidesSphere(const glm::vec3& cameraCentre, float radius) const {
+  // The shaders compute a fragment's entry in float, in another order: a margin of 1e-4 of the depth.
+  constexpr float kMargin = 1e-4f;
+  const float nearest = -cameraCentre.z - radius;
+  if (farthestTiles_.empty() || !(nearest > camera_.nearClip)) return false;
+  int column0, row0, column1, row1;
+  if (!tilesUnder(cameraCentre, radius, column0, row0, column1, row1)) return false;
+  for (int row = row0; row <= row1; ++row)
+    for (int column = column0; column <= column1; ++column)
+      if (!(farthestTiles_[std::size_t(row) * columns_ + column] * (1.0f + kMargin) < nearest)) return false;
+  return true;
 }
 
 }  // namespace spindrift

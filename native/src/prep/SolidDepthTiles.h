@@ -39,6 +39,10 @@ class SolidDepthTiles {
   /// The depth a solid certainly lies at or nearer than at a pixel (y * width + x, x right, y down): infinite
   /// where there is none. Every fragment there whose entry lies at or beyond it is hidden.
   float farthestAt(std::size_t pixel) const { return farthest_.empty() ? kNoSolid : farthest_[pixel]; }
+  /// Whether the background's depth hides a sphere (its centre in camera space) at every pixel it may cover:
+  /// its nearest depth lies beyond each covered tile's farthest solid. Whatever lies inside it is then never
+  /// drawn (the impostor passes discard a fragment whose entry lies at or behind the solid).
+  bool hidesSphere(const glm::vec3& cameraCentre, float radius) const;
 
  private:
   // Lowers the tiles under a pixel rectangle (inclusive pixel coordinates, clamped to the frame) to `depth`.
@@ -48,7 +52,12 @@ class SolidDepthTiles {
   int columns_ = 0;
   int rows_ = 0;
   std::vector<float> nearest_;
-  std::vector<float> farthest_;  // per pixel; empty without a depth image
+  std::vector<float> farthest_;       // per pixel; empty without a depth image
+  std::vector<float> farthestTiles_;  // the largest of each tile's pixels
+  // The tiles under the screen rectangle of a camera-space sphere in front of the eye (widened by a pixel),
+  // clamped to the frame; false where it lies off the frame.
+  bool tilesUnder(const glm::vec3& cameraCentre, float radius, int& column0, int& row0, int& column1,
+                  int& row1) const;
 };
 
 }  // namespace spindrift
