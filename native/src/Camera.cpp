@@ -25,7 +25,10 @@ glm::mat4 Camera::clipFromCamera() const {
 }
 
 glm::vec3 Camera::pixelAndDepthFromWorld(const glm::vec3& world) const {
-  const glm::vec3 eye = glm::vec3(cameraFromWorld() * glm::vec4(world, 1.0f));
+  return pixelAndDepthFromCamera(glm::vec3(cameraFromWorld() * glm::vec4(world, 1.0f)));
+}
+
+glm::vec3 Camera::pixelAndDepthFromCamera(const glm::vec3& eye) const {
   const float eyeDepth = -eye.z;
   const float tanHalfY = std::tan(glm::radians(fovYDegrees) * 0.5f);
   const float ndcX = eye.x / (eyeDepth * tanHalfY * aspect());

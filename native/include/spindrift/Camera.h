@@ -30,6 +30,8 @@ struct Camera {
 
   /// Pixel coordinates (x right, y down, pixel centres at +0.5) and planar eye depth of a world point.
   glm::vec3 pixelAndDepthFromWorld(const glm::vec3& world) const;
+  /// The same for a point in camera space.
+  glm::vec3 pixelAndDepthFromCamera(const glm::vec3& eye) const;
   /// The world size of a pixel's side at a planar eye depth.
   float pixelSizeAt(float eyeDepth) const;
   /// The world point seen at pixel coordinates (x right, y down) at a planar eye depth.

@@ -33,23 +33,23 @@ void SolidDepthTiles::lower(float firstX, float firstY, float lastX, float lastY
 }
 
 void SolidDepthTiles::addDepthImage(const FloatImage& eyeDepth) {
-  if (eyeDepth.width == camera_.width && eyeDepth.height == camera_.height) {
+  // The farthest solids are kept where the image is the camera's size, as the impostor passes read it.
+  const bool perPixel = eyeDepth.width == camera_.width && eyeDepth.height == camera_.height;
+  if (perPixel) {
     farthest_.resize(std::size_t(eyeDepth.width) * eyeDepth.height);
     farthestTiles_.assign(nearest_.size(), 0.0f);
-    for (std::size_t i = 0; i < farthest_.size(); ++i) {
-      const float depth = eyeDepth.pixels[i * eyeDepth.channels];
-      farthest_[i] = depth > 0.0f ? depth : kNoSolid;  // NaN and infinity too
-      const int x = int(i % std::size_t(eyeDepth.width)), y = int(i / std::size_t(eyeDepth.width));
-      float& tile = farthestTiles_[std::size_t(y / kTileSize) * columns_ + std::size_t(x / kTileSize)];
-      tile = std::max(tile, farthest_[i]);
-    }
   }
   for (int y = 0; y < eyeDepth.height; ++y)
     for (int x = 0; x < eyeDepth.width; ++x) {
-      const float depth = eyeDepth.pixels[(std::size_t(y) * eyeDepth.width + x) * eyeDepth.channels];
+      const std::size_t pixel = std::size_t(y) * eyeDepth.width + x;
+      const float depth = eyeDepth.pixels[pixel * eyeDepth.channels];
       // NaN counts as a solid at the camera: whatever the passes make of it, nothing is dropped there.
       if (!(depth >= kInfinity))
         lower(float(x), float(y), float(x), float(y), std::isnan(depth) ? 0.0f : depth);
+      if (!perPixel) continue;
+      farthest_[pixel] = depth > 0.0f ? depth : kNoSolid;  // NaN and infinity too
+      float& tile = farthestTiles_[std::size_t(y / kTileSize) * columns_ + std::size_t(x / kTileSize)];
+      tile = std::max(tile, farthest_[pixel]);
     }
 }
 
@@ -81,8 +81,7 @@ bool SolidDepthTiles::tilesUnder(const glm::vec3& point, float radius, int& colu
   for (float z : {point.z - radius, point.z + radius})
     for (float x : {point.x - radius, point.x + radius})
       for (float y : {point.y - radius, point.y + radius}) {
-        const glm::vec3 pixel =
-            camera_.pixelAndDepthFromWorld(glm::vec3(camera_.worldFromCamera * glm::vec4(x, y, z, 1.0f)));
+        const glm::vec3 pixel = camera_.pixelAndDepthFromCamera({x, y, z});
         firstX = std::min(firstX, pixel.x), lastX = std::max(lastX, pixel.x);
         firstY = std::min(firstY, pixel.y), lastY = std::max(lastY, pixel.y);
       }
@@ -109,11 +108,20 @@ bool SolidDepthTiles::hidesSphere(const glm::vec3& cameraCentre, float radius) c
   constexpr float kMargin = 1e-4f;
   const float nearest = -cameraCentre.z - radius;
   if (farthestTiles_.empty() || !(nearest > camera_.nearClip)) return false;
+  const auto hiddenIn = [&](int column, int row) {
+    return farthestTiles_[std::size_t(row) * columns_ + column] * (1.0f + kMargin) < nearest;
+  };
+  // Most spheres in view are not hidden, and the tile under the centre, one of those the sphere covers,
+  // says so without the eight corners' projections.
+  const glm::vec3 centre = camera_.pixelAndDepthFromCamera(cameraCentre);
+  if (centre.x >= 0.0f && centre.y >= 0.0f && centre.x < float(camera_.width) &&
+      centre.y < float(camera_.height) && !hiddenIn(int(centre.x) / kTileSize, int(centre.y) / kTileSize))
+    return false;
   int column0, row0, column1, row1;
   if (!tilesUnder(cameraCentre, radius, column0, row0, column1, row1)) return false;
   for (int row = row0; row <= row1; ++row)
     for (int column = column0; column <= column1; ++column)
-      if (!(farthestTiles_[std::size_t(row) * columns_ + column] * (1.0f + kMargin) < nearest)) return false;
+      if (!hiddenIn(column, row)) return false;
   return true;
 }
 
