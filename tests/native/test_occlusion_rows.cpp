@@ -15,6 +15,7 @@
 #include <glm/glm.hpp>
 #include <glm/gtc/matrix_transform.hpp>
 
+#include "prep/CpuFeatures.h"
 #include "prep/OcclusionRows.h"
 #include "prep/ViewChords.h"
 
@@ -22,11 +23,6 @@ namespace spindrift {
 namespace {
 
 using occlusion_rows::kNoOwner;
-
-bool cpuHasAvx512() {
-  __builtin_cpu_init();
-  return __builtin_cpu_supports("avx512f") != 0;
-}
 
 // One row's arrays, owned.
 struct RowArrays {

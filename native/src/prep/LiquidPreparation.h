@@ -35,8 +35,8 @@ struct LiquidPreparation {
   std::vector<EllipsoidInstance> aggregates;  ///< Ellipsoids whose longest axis is at most 1.2 r.
   LayerSplit aggregateLayers;                 ///< Which aggregates each depth layer draws.
   std::size_t culled = 0;                     ///< Outside the view frustum (they still count as neighbours).
-  std::size_t behindSolids =
-      0;  ///< In the frustum but hidden wholly by the solids: neighbours only, likewise.
+  /// In the frustum but hidden wholly by the solids: neighbours only, likewise.
+  std::size_t behindSolids = 0;
   std::size_t isotropicInterior = 0;  ///< Aggregates deep inside the body, drawn as spheres without PCA.
   float fullNeighbours = 0.0f;        ///< A particle inside the body has this many neighbours within R.
   float minNeighboursApplied = 0.0f;  ///< N_epsilon as applied: fewer neighbours make a sphere of k_n r.

@@ -4,6 +4,8 @@
 
 #include <immintrin.h>
 
+#include "prep/CpuFeatures.h"
+
 namespace spindrift {
 namespace {
 
@@ -75,10 +77,6 @@ int keepWithinPortable(const ParticleCloud& cloud, IndexRange range, float px, f
 
 void NeighbourOffsets::gather(const ParticleCloud& cloud, std::uint32_t particle, float inverseRadius,
                               const IndexRange* ranges, int rangeCount, Compaction compaction) {
-  static const bool hasAvx512 = [] {
-    __builtin_cpu_init();  // harmless if libgcc's constructor has run; needed if it has not
-    return __builtin_cpu_supports("avx512f") != 0;
-  }();
   std::size_t candidates = 0, longest = 0;
   for (int r = 0; r < rangeCount; ++r) {
     candidates += ranges[r].end - ranges[r].begin;
@@ -89,7 +87,7 @@ void NeighbourOffsets::gather(const ParticleCloud& cloud, std::uint32_t particle
     x_.resize(candidates + 16), y_.resize(candidates + 16), z_.resize(candidates + 16);
   }
   const float px = cloud.x[particle], py = cloud.y[particle], pz = cloud.z[particle];
-  if (hasAvx512 && compaction == Compaction::Fastest) {
+  if (cpuHasAvx512() && compaction == Compaction::Fastest) {
     count_ = keepWithinAvx512(cloud, ranges, rangeCount, px, py, pz, inverseRadius, kept_.data(), x_.data(),
                               y_.data(), z_.data());
     return;

@@ -4,6 +4,8 @@
 
 #include <immintrin.h>
 
+#include "prep/CpuFeatures.h"
+
 namespace spindrift::occlusion_rows {
 namespace {
 
@@ -256,19 +258,11 @@ __attribute__((target("avx512f"))) void hideRowAvx512(const view_chords::RowChor
 // vectorised.
 constexpr int kShortestVectorRow = 2;
 
-bool hasAvx512() {
-  static const bool has = [] {
-    __builtin_cpu_init();  // harmless if libgcc's constructor has run; needed if it has not
-    return __builtin_cpu_supports("avx512f") != 0;
-  }();
-  return has;
-}
-
 }  // namespace
 
 void coverRow(const view_chords::RowChords& row, const double* u, int firstX, int lastX, const Cover& cover,
               const RowBounds& bounds, Walk walk) {
-  if (walk == Walk::Fastest && hasAvx512() && lastX - firstX + 1 >= kShortestVectorRow)
+  if (walk == Walk::Fastest && cpuHasAvx512() && lastX - firstX + 1 >= kShortestVectorRow)
     coverRowAvx512(row, u, firstX, lastX, cover, bounds);
   else
     coverRowPortable(row, u, firstX, lastX, cover, bounds);
@@ -276,7 +270,7 @@ void coverRow(const view_chords::RowChords& row, const double* u, int firstX, in
 
 void hideRow(const view_chords::RowChords& row, const double* u, int firstX, int lastX, const Cover& cover,
              const RowBounds& bounds, bool& hiddenFront, bool& hiddenBack, Walk walk) {
-  if (walk == Walk::Fastest && hasAvx512() && lastX - firstX + 1 >= kShortestVectorRow)
+  if (walk == Walk::Fastest && cpuHasAvx512() && lastX - firstX + 1 >= kShortestVectorRow)
     hideRowAvx512(row, u, firstX, lastX, cover, bounds, hiddenFront, hiddenBack);
   else
     hideRowPortable(row, u, firstX, lastX, cover, bounds, hiddenFront, hiddenBack);
