@@ -10,6 +10,7 @@ void recordPreparation(const LiquidPreparation& liquid, const FoamPreparation& f
   stats.liquid.isotropicInterior = liquid.isotropicInterior;
   stats.liquid.fullNeighbours = liquid.fullNeighbours;
   stats.liquid.minNeighboursApplied = liquid.minNeighboursApplied;
+  stats.liquid.restDensity = liquid.restDensity;
   stats.liquid.culled = liquid.culled;
   stats.liquid.hiddenBehindSolids = liquid.behindSolids;
   stats.liquid.splashesAbsorbed = liquid.splashesAbsorbed;

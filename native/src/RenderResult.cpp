@@ -53,6 +53,7 @@ nlohmann::json FrameStats::toJson() const {
         {"isotropic_interior", liquid.isotropicInterior},
         {"full_neighbours", liquid.fullNeighbours},
         {"min_neighbours_applied", liquid.minNeighboursApplied},
+        {"rest_density", liquid.restDensity},
         {"culled", liquid.culled},
         {"hidden_behind_solids", liquid.hiddenBehindSolids},
         {"splashes_absorbed", liquid.splashesAbsorbed},

@@ -13,6 +13,7 @@
 #include <tbb/info.h>
 
 #include "prep/Anisotropy.h"
+#include "prep/FullNeighbourhood.h"
 #include "prep/LiquidPreparation.h"
 #include "prep/LiquidStages.h"
 
@@ -94,8 +95,13 @@ void benchmark(std::size_t count) {
   const StageTime gridBuild = medianTime([&] { grid.emplace(candidates.cloud, candidates.cellSize); });
   ParticleShapes shapes;
   const StageTime shape = medianTime([&] { shapes = shapeParticles(*grid, settings); });
+  const StageTime fullCount = medianTime([&] { fullNeighbourCount(particles, parameters.neighbour_radius); });
+  FrameNeighbourhood frame;
+  const StageTime rest = medianTime([&] { frame = frameNeighbourhood(particles, parameters); });
+  const float restDensity = frame.restDensity;
   LiquidPreparation packed;
-  const StageTime classify = medianTime([&] { classifyAndPack(*grid, shapes, parameters, nullptr, packed); });
+  const StageTime classify =
+      medianTime([&] { classifyAndPack(*grid, shapes, restDensity, parameters, nullptr, packed); });
   LiquidPreparation total;
   const StageTime all = medianTime([&] { total = prepareLiquid(particles, camera, parameters); });
 
@@ -106,6 +112,8 @@ void benchmark(std::size_t count) {
   print("select", select);
   print("grid", gridBuild);
   print("shape", shape);
+  print("N_full", fullCount);
+  print("+rho_0", rest);
   print("classify", classify);
   print("total", all);
   std::printf("%9s  aggregates %zu (interior %zu), splashes %zu, culled %zu\n", "", total.aggregates.size(),

@@ -1,10 +1,13 @@
-// Yu and Turk's N_epsilon relative to the frame's full neighbourhood (prep/FullNeighbourhood.h): a coarsely
-// sampled body (a lattice 1.33 r apart, as the light benchmark's and many particle systems' are) has 26
-// neighbours inside and 17 on a face, so an absolute N_epsilon of 25 draws its whole free surface as small
-// spheres. Counts against a brute-force CPU count; the faces' shapes with and without the relative rule.
+// What every view of a frame shapes its particles by (prep/FullNeighbourhood.h). Yu and Turk's N_epsilon
+// relative to the frame's full neighbourhood: a coarsely sampled body (a lattice 1.33 r apart, as the light
+// benchmark's and many particle systems' are) has 26 neighbours inside and 17 on a face, so an absolute
+// N_epsilon of 25 draws its whole free surface as small spheres. Counts against a brute-force CPU count; the
+// faces' shapes with and without the relative rule. The rest density rho_0 against the kernel sum of a
+// lattice's interior particle, and the same for views that see all or a corner of the body.
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cmath>
 #include <vector>
 
 #include <glm/geometric.hpp>
@@ -125,6 +128,61 @@ TEST(FullNeighbourhood, ALatticesFacesAreFlatEllipsoidsNotSmallSpheres) {
     spheres += std::abs(instance.centreAndBoundingRadius.w -
                         parameters.anisotropy_isotropic_scale * kRadius) < 1e-6f;
   EXPECT_GE(spheres, 6 * 64) << "every face particle is a sphere of k_n r";
+}
+
+// Every interior particle of a lattice has the same neighbours, so rho_0 is their density: Yu and Turk's
+// sigma / R^3 times the sum of (1 - |d / R|^2)^3 over the particle and its neighbours within R, times r^3.
+TEST(FullNeighbourhood, RestDensityIsALatticesInteriorDensity) {
+  const Particles particles = lattice(12);
+  const LiquidParameters parameters;
+  const float neighbourhood = parameters.neighbour_radius * kRadius;
+  const glm::vec3 middle = 6.0f * glm::vec3(kSpacing);
+  double sum = 0.0;
+  for (const glm::vec3& position : particles.positions) {
+    const float q = glm::length(position - middle) / neighbourhood;
+    if (q < 1.0f) sum += std::pow(1.0 - double(q) * double(q), 3.0);
+  }
+  const double sigma = 315.0 / (64.0 * 3.14159265358979);
+  const double expected = sigma * sum * std::pow(double(kRadius) / double(neighbourhood), 3.0);
+  const FrameNeighbourhood frame = frameNeighbourhood(particles, parameters);
+  EXPECT_NEAR(frame.restDensity, expected, 1e-4 * expected);
+  EXPECT_EQ(frame.fullNeighbours, 26.0f);
+  EXPECT_EQ(frame.minNeighbours, 8.0f);
+}
+
+// A view that sees a corner of the body splits its splashes at the density a view of the whole body does:
+// rho_0 comes from the frame, not from the interior particles a view happens to see.
+TEST(FullNeighbourhood, EveryViewOfAFrameSplitsAtTheSameRestDensity) {
+  Particles particles;
+  unsigned state = 2024;
+  const auto next = [&state] {
+    return float((state = state * 1664525u + 1013904223u) >> 8) / float(1 << 24);
+  };
+  for (int n = 0; n < 20000; ++n)  // a jittered slab, sparser towards its top, about half a radius apart
+    particles.append(glm::vec3(next(), next(), 0.2f * next() * (1.0f + next())) * glm::vec3(0.6f, 0.6f, 1.0f),
+                     kRadius, ParticleKind::Liquid, 0.0f, {});
+  const LiquidParameters parameters;
+  const Camera whole = Camera::lookAt(64, 64, 60.0f, {0.3f, 0.3f, 1.5f}, {0.3f, 0.3f, 0.1f}, {0, 1, 0});
+  const Camera corner = Camera::lookAt(64, 64, 10.0f, {0.05f, 0.05f, 0.6f}, {0.05f, 0.05f, 0.1f}, {0, 1, 0});
+  const LiquidPreparation all = prepareLiquid(particles, whole, parameters);
+  const LiquidPreparation some = prepareLiquid(particles, corner, parameters);
+  ASSERT_GT(some.culled, particles.size() / 2) << "the corner's view must leave most of the body out";
+  EXPECT_GT(all.restDensity, 1.0f);
+  EXPECT_EQ(some.restDensity, all.restDensity);
+  EXPECT_EQ(frameNeighbourhood(particles, parameters).restDensity, all.restDensity);
+}
+
+TEST(FullNeighbourhood, RestDensityOfABodyWithoutInteriorIsOneAndOfMergedLayersZero) {
+  // A sheet one particle thick has no interior particle: rho_0 is that of particles one radius apart.
+  Particles sheet;
+  for (int i = 0; i < 40; ++i)
+    for (int j = 0; j < 40; ++j)
+      sheet.append(glm::vec3(float(i), float(j), 0.0f) * kSpacing, kRadius, ParticleKind::Liquid, 0.0f, {});
+  LiquidParameters parameters;
+  EXPECT_EQ(frameNeighbourhood(sheet, parameters).restDensity, 1.0f);
+  EXPECT_EQ(frameNeighbourhood(Particles{}, parameters).restDensity, 1.0f) << "no liquid";
+  parameters.layers = "merged";
+  EXPECT_EQ(frameNeighbourhood(lattice(12), parameters).restDensity, 0.0f) << "merged layers need no density";
 }
 
 }  // namespace spindrift

@@ -413,8 +413,9 @@ TEST(GLHiddenInterior, EveryLayerIsBitIdenticalBehindAWallInTheBackgroundsDepth)
   // from the side (its edge slanted, so that a picture flipped either way would hide other particles): the
   // passes hide every fragment whose entry lies behind it, so the particles there are left out: before they
   // are shaped where the wall hides their whole reach (prep/LiquidPreparation.cpp), else from both layers
-  // where it hides them at every pixel (prep/OccludedAggregates.cpp). The frame stays the same to the bit
-  // here; elsewhere the median density that sets the splashes apart is taken over fewer particles.
+  // where it hides them at every pixel (prep/OccludedAggregates.cpp). The frame stays the same to the bit: a
+  // particle left out is still its neighbours' neighbour, and the density that sets the splashes apart is
+  // the frame's (prep/FullNeighbourhood.h), not that of the particles a view shapes.
   const Scene scene = blockScene();
   const Camera& camera = scene.camera;
   const float nearestParticle = 4.0f;  // the block's nearest particles lie about 4.1 from the eye

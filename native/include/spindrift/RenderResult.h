@@ -45,6 +45,9 @@ struct LiquidFrameStats {
   /// Yu and Turk's N_epsilon as applied to the frame (liquid.anisotropy_min_neighbours, lowered by
   /// liquid.anisotropy_min_neighbour_fraction for a coarsely sampled body).
   float minNeighboursApplied = 0.0f;
+  /// The density of an interior particle, rho_0, from a sample of the whole frame's liquid: a particle is a
+  /// splash below liquid.splash_density_threshold times it. 0 with liquid.layers = merged.
+  float restDensity = 0.0f;
   std::size_t culled = 0;  ///< Outside the view frustum.
   /// In the frustum, but the background's solids hide them wholly (liquid.drop_hidden_interior): not shaped,
   /// not drawn.

@@ -3,6 +3,7 @@
 #include <optional>
 
 #include "prep/Anisotropy.h"
+#include "prep/FullNeighbourhood.h"
 #include "prep/MantaflowSurface.h"
 
 namespace spindrift {
@@ -17,8 +18,8 @@ struct FrameLiquidCache {
   std::optional<MantaflowSurfaceSearch> search;
   float cellSize = 0.0f;  ///< The neighbour grid's cell size the shared cloud was sorted with; 0 before.
   ShapeMemory shapes;     ///< Each particle's shape from its neighbours, indexed like the shared cloud.
-  /// fullNeighbourCount of the frame's particles, which depends on them alone.
-  std::optional<float> fullNeighbours;
+  /// frameNeighbourhood of the frame's particles, which depends on them alone.
+  std::optional<FrameNeighbourhood> neighbourhood;
 };
 
 }  // namespace spindrift

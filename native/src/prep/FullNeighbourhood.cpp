@@ -4,10 +4,14 @@
 #include <cmath>
 #include <cstdint>
 #include <unordered_map>
+#include <unordered_set>
 #include <vector>
 
 #include <glm/common.hpp>
 #include <glm/geometric.hpp>
+
+#include "prep/Anisotropy.h"
+#include "prep/NeighbourGrid.h"
 
 namespace spindrift {
 namespace {
@@ -30,14 +34,30 @@ struct Cell {
 
 std::uint64_t cellKey(std::int64_t x, std::int64_t y, std::int64_t z) {
   // 21 bits per axis (offset to be non-negative): a frame spanning two million neighbourhoods per axis wraps,
-  // which only merges far cells into one bucket; distances are still checked exactly.
+  // which only merges far cells into one bucket; distances are still checked exactly (and the rest density's
+  // sample may take a far cell's particles too).
   const auto part = [](std::int64_t v) { return std::uint64_t(v + (1 << 20)) & 0x1FFFFF; };
   return (part(x) << 42) | (part(y) << 21) | part(z);
 }
 
-}  // namespace
+// The frame's sample (every k-th liquid particle) and every liquid particle filed into the cells around it:
+// all the neighbours a sampled particle has.
+struct SampledNeighbourhoods {
+  float cellSize = 0.0f;
+  std::vector<std::uint32_t> samples;
+  std::unordered_map<std::uint64_t, std::vector<std::uint32_t>> cells;
 
-float fullNeighbourCount(const Particles& particles, float neighbourRadius) {
+  Cell cellOf(const Particles& particles, std::uint32_t i) const {
+    const glm::vec3 c = glm::floor(particles.positions[i] / cellSize);
+    return Cell{std::int64_t(c.x), std::int64_t(c.y), std::int64_t(c.z)};
+  }
+  const std::vector<std::uint32_t>& members(const Cell& c, int dx, int dy, int dz) const {
+    return cells.at(cellKey(c.x + dx, c.y + dy, c.z + dz));
+  }
+};
+
+SampledNeighbourhoods sampleNeighbourhoods(const Particles& particles, float neighbourRadius) {
+  SampledNeighbourhoods sampled;
   std::vector<std::uint32_t> liquid;
   float largestRadius = 0.0f;
   for (std::size_t i = 0; i < particles.size(); ++i)
@@ -45,43 +65,42 @@ float fullNeighbourCount(const Particles& particles, float neighbourRadius) {
       liquid.push_back(std::uint32_t(i));
       largestRadius = std::max(largestRadius, particles.radii[i]);
     }
-  if (liquid.empty()) return 0.0f;
-  const float cellSize = neighbourRadius * largestRadius;
-  const auto cellOf = [&](std::uint32_t i) {
-    const glm::vec3 c = glm::floor(particles.positions[i] / cellSize);
-    return Cell{std::int64_t(c.x), std::int64_t(c.y), std::int64_t(c.z)};
-  };
+  if (liquid.empty()) return sampled;
+  sampled.cellSize = neighbourRadius * largestRadius;
   const std::size_t stride = std::max<std::size_t>(1, liquid.size() / kSamples);
-  std::vector<std::uint32_t> samples;
   for (std::size_t k = 0; k < liquid.size(); k += stride)
-    samples.push_back(liquid[k]);
+    sampled.samples.push_back(liquid[k]);
 
   // The cells around the samples, then one pass that files every liquid particle lying in one of them.
-  std::unordered_map<std::uint64_t, std::vector<std::uint32_t>> cells;
-  for (const std::uint32_t s : samples) {
-    const Cell c = cellOf(s);
+  for (const std::uint32_t s : sampled.samples) {
+    const Cell c = sampled.cellOf(particles, s);
     for (int dx = -1; dx <= 1; ++dx)
       for (int dy = -1; dy <= 1; ++dy)
         for (int dz = -1; dz <= 1; ++dz)
-          cells[cellKey(c.x + dx, c.y + dy, c.z + dz)];
+          sampled.cells[cellKey(c.x + dx, c.y + dy, c.z + dz)];
   }
   for (const std::uint32_t i : liquid) {
-    const Cell c = cellOf(i);
-    const auto found = cells.find(cellKey(c.x, c.y, c.z));
-    if (found != cells.end()) found->second.push_back(i);
+    const Cell c = sampled.cellOf(particles, i);
+    const auto found = sampled.cells.find(cellKey(c.x, c.y, c.z));
+    if (found != sampled.cells.end()) found->second.push_back(i);
   }
+  return sampled;
+}
 
+float countPercentile(const SampledNeighbourhoods& sampled, const Particles& particles,
+                      float neighbourRadius) {
+  if (sampled.samples.empty()) return 0.0f;
   std::vector<float> counts;
-  counts.reserve(samples.size());
-  for (const std::uint32_t s : samples) {
+  counts.reserve(sampled.samples.size());
+  for (const std::uint32_t s : sampled.samples) {
     const glm::vec3& p = particles.positions[s];
     const float reach = neighbourRadius * particles.radii[s];
-    const Cell c = cellOf(s);
+    const Cell c = sampled.cellOf(particles, s);
     int count = 0;
     for (int dx = -1; dx <= 1; ++dx)
       for (int dy = -1; dy <= 1; ++dy)
         for (int dz = -1; dz <= 1; ++dz)
-          for (const std::uint32_t j : cells.at(cellKey(c.x + dx, c.y + dy, c.z + dz))) {
+          for (const std::uint32_t j : sampled.members(c, dx, dy, dz)) {
             const glm::vec3 d = particles.positions[j] - p;
             count += j != s && glm::dot(d, d) < reach * reach;
           }
@@ -90,6 +109,81 @@ float fullNeighbourCount(const Particles& particles, float neighbourRadius) {
   const std::size_t rank = std::min(counts.size() - 1, std::size_t(kFullPercentile * double(counts.size())));
   std::nth_element(counts.begin(), counts.begin() + std::ptrdiff_t(rank), counts.end());
   return counts[rank];
+}
+
+// The interior densities of the particles in `centres` (cells of the sample), each shaped from its
+// neighbours in the cells around, as a view shapes it without what only its drawing needs (Mantaflow's
+// surface, the eye).
+std::vector<float> interiorDensities(const SampledNeighbourhoods& sampled, const Particles& particles,
+                                     const std::vector<Cell>& centres, const AnisotropySettings& settings) {
+  std::unordered_set<std::uint64_t> centreKeys, taken;
+  for (const Cell& c : centres)
+    centreKeys.insert(cellKey(c.x, c.y, c.z));
+  ParticleCloud cloud;
+  for (const Cell& c : centres)
+    for (int dx = -1; dx <= 1; ++dx)
+      for (int dy = -1; dy <= 1; ++dy)
+        for (int dz = -1; dz <= 1; ++dz) {
+          const std::uint64_t key = cellKey(c.x + dx, c.y + dy, c.z + dz);
+          if (!taken.insert(key).second) continue;
+          const bool centre = centreKeys.count(key) > 0;
+          for (const std::uint32_t i : sampled.cells.at(key)) {
+            const glm::vec3& p = particles.positions[i];
+            cloud.x.push_back(p.x);
+            cloud.y.push_back(p.y);
+            cloud.z.push_back(p.z);
+            cloud.radius.push_back(particles.radii[i]);
+            cloud.visible.push_back(centre);
+          }
+        }
+  const NeighbourGrid grid(std::move(cloud), sampled.cellSize);
+  const ParticleShapes shapes = shapeParticles(grid, settings);
+  std::vector<float> interior;
+  for (std::size_t i = 0; i < shapes.kinds.size(); ++i)
+    if (shapes.kinds[i] == ShapeKind::Interior) interior.push_back(shapes.densities[i]);
+  return interior;
+}
+
+float restDensityOf(const SampledNeighbourhoods& sampled, const Particles& particles,
+                    const LiquidParameters& parameters, float minNeighbours) {
+  AnisotropySettings settings = AnisotropySettings::fromParameters(parameters);
+  settings.minNeighbours = minNeighbours;
+  std::vector<Cell> order;
+  std::unordered_set<std::uint64_t> seen;
+  for (const std::uint32_t s : sampled.samples) {
+    const Cell c = sampled.cellOf(particles, s);
+    if (seen.insert(cellKey(c.x, c.y, c.z)).second) order.push_back(c);
+  }
+  std::vector<float> interior;
+  for (std::size_t first = 0; first < order.size() && interior.size() < kRestDensityInterior;
+       first += kRestDensityCellBatch) {
+    const std::vector<Cell> batch(
+        order.begin() + std::ptrdiff_t(first),
+        order.begin() + std::ptrdiff_t(std::min(order.size(), first + kRestDensityCellBatch)));
+    const std::vector<float> found = interiorDensities(sampled, particles, batch, settings);
+    interior.insert(interior.end(), found.begin(), found.end());
+  }
+  if (interior.size() < kMinInteriorForRestDensity) return 1.0f;
+  const auto middle = interior.begin() + std::ptrdiff_t(interior.size() / 2);
+  std::nth_element(interior.begin(), middle, interior.end());
+  return *middle;
+}
+
+}  // namespace
+
+float fullNeighbourCount(const Particles& particles, float neighbourRadius) {
+  return countPercentile(sampleNeighbourhoods(particles, neighbourRadius), particles, neighbourRadius);
+}
+
+FrameNeighbourhood frameNeighbourhood(const Particles& particles, const LiquidParameters& parameters) {
+  const SampledNeighbourhoods sampled = sampleNeighbourhoods(particles, parameters.neighbour_radius);
+  FrameNeighbourhood frame;
+  frame.fullNeighbours = countPercentile(sampled, particles, parameters.neighbour_radius);
+  frame.minNeighbours = appliedMinNeighbours(parameters, frame.fullNeighbours);
+  if (parameters.layers != "merged")
+    frame.restDensity =
+        sampled.samples.empty() ? 1.0f : restDensityOf(sampled, particles, parameters, frame.minNeighbours);
+  return frame;
 }
 
 float appliedMinNeighbours(const LiquidParameters& parameters, float fullNeighbours) {

@@ -1,5 +1,7 @@
 #pragma once
 
+#include <cstddef>
+
 #include "spindrift/Parameters.h"
 #include "spindrift/Particles.h"
 
@@ -17,5 +19,23 @@ float fullNeighbourCount(const Particles& particles, float neighbourRadius);
 /// corner has seven). A particle with fewer neighbours is drawn as a sphere of k_n r (docs/liquid.md,
 /// "Particle preparation").
 float appliedMinNeighbours(const LiquidParameters& parameters, float fullNeighbours);
+
+/// What every view of a frame shapes its particles by, from the frame's particles alone (so no view's
+/// culling changes it).
+struct FrameNeighbourhood {
+  float fullNeighbours = 0.0f;  ///< fullNeighbourCount.
+  float minNeighbours = 0.0f;   ///< appliedMinNeighbours.
+  /// rho_0, the density an interior particle has (docs/liquid.md, "Classify"): the median density of the
+  /// interior particles in the grid cells of fullNeighbourCount's sample, each shaped from all its neighbours
+  /// as a view shapes it; cells are taken in the sample's order, kRestDensityCellBatch at a time, until
+  /// kRestDensityInterior are found. 1 (particles one radius apart) when fewer than
+  /// kMinInteriorForRestDensity are; 0 with liquid.layers = merged, which needs no densities.
+  float restDensity = 0.0f;
+};
+FrameNeighbourhood frameNeighbourhood(const Particles& particles, const LiquidParameters& parameters);
+
+constexpr std::size_t kRestDensityInterior = 256;
+constexpr std::size_t kRestDensityCellBatch = 32;
+constexpr std::size_t kMinInteriorForRestDensity = 64;
 
 }  // namespace spindrift

@@ -106,22 +106,12 @@ LiquidCandidates selectLiquidCandidates(const Particles& particles, const Camera
   return candidates;
 }
 
-float restDensity(const ParticleShapes& shapes) {
-  std::vector<float> interior;
-  for (std::size_t i = 0; i < shapes.kinds.size(); ++i)
-    if (shapes.kinds[i] == ShapeKind::Interior) interior.push_back(shapes.densities[i]);
-  if (interior.size() < kMinInteriorForRestDensity) return 1.0f;
-  const auto middle = interior.begin() + std::ptrdiff_t(interior.size() / 2);
-  std::nth_element(interior.begin(), middle, interior.end());
-  return *middle;
-}
-
-void classifyAndPack(const NeighbourGrid& grid, const ParticleShapes& shapes,
+void classifyAndPack(const NeighbourGrid& grid, const ParticleShapes& shapes, float restDensity,
                      const LiquidParameters& parameters, MantaflowSurfaceSearch* meshSurface,
                      LiquidPreparation& preparation) {
   const ParticleCloud& cloud = grid.particles();
   const bool split = parameters.layers != "merged";
-  const float splashBelow = split ? parameters.splash_density_threshold * restDensity(shapes) : 0.0f;
+  const float splashBelow = split ? parameters.splash_density_threshold * restDensity : 0.0f;
   const auto isSplash = [&](std::size_t i) {
     return split && shapes.kinds[i] != ShapeKind::Interior && shapes.densities[i] < splashBelow;
   };
@@ -267,12 +257,15 @@ LiquidPreparation prepareLiquid(const Particles& particles, const Camera& camera
     }
   }
   AnisotropySettings settings = AnisotropySettings::fromParameters(parameters);
-  // N_epsilon from the whole frame's particles, not the view's, so every view shapes a particle alike.
-  if (frameCache && !frameCache->fullNeighbours)
-    frameCache->fullNeighbours = fullNeighbourCount(particles, parameters.neighbour_radius);
-  preparation.fullNeighbours =
-      frameCache ? *frameCache->fullNeighbours : fullNeighbourCount(particles, parameters.neighbour_radius);
-  settings.minNeighbours = appliedMinNeighbours(parameters, preparation.fullNeighbours);
+  // N_epsilon and rho_0 from the whole frame's particles, not the view's, so every view shapes and splits a
+  // particle alike.
+  if (frameCache && !frameCache->neighbourhood)
+    frameCache->neighbourhood = frameNeighbourhood(particles, parameters);
+  const FrameNeighbourhood frame =
+      frameCache ? *frameCache->neighbourhood : frameNeighbourhood(particles, parameters);
+  preparation.fullNeighbours = frame.fullNeighbours;
+  preparation.restDensity = frame.restDensity;
+  settings.minNeighbours = frame.minNeighbours;
   // A lattice of spacing s holds (4 pi / 3) R^3 / s^3 particles within R of each one, itself included.
   if (cloud.size() > 0)
     preparation.particleSpacing =
@@ -282,7 +275,7 @@ LiquidPreparation prepareLiquid(const Particles& particles, const Camera& camera
   settings.meshSurface = meshSurface;
   settings.memory = shared ? &shared->shapes : nullptr;
   const ParticleShapes shapes = shapeParticles(grid, settings);
-  classifyAndPack(grid, shapes, parameters, settings.meshSurface, preparation);
+  classifyAndPack(grid, shapes, preparation.restDensity, parameters, settings.meshSurface, preparation);
   const Clock::time_point end = Clock::now();
 
   preparation.neighbourMilliseconds = millisecondsBetween(start, gridBuilt);

@@ -40,6 +40,8 @@ struct LiquidPreparation {
   std::size_t isotropicInterior = 0;  ///< Aggregates deep inside the body, drawn as spheres without PCA.
   float fullNeighbours = 0.0f;        ///< A particle inside the body has this many neighbours within R.
   float minNeighboursApplied = 0.0f;  ///< N_epsilon as applied: fewer neighbours make a sphere of k_n r.
+  /// The frame's rho_0 (frameRestDensity) the splashes were split at; 0 with liquid.layers = merged.
+  float restDensity = 0.0f;
   /// The body's typical particle spacing (world units): that of a lattice with fullNeighbours within R of
   /// each particle. 0 without liquid.
   float particleSpacing = 0.0f;

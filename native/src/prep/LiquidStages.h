@@ -27,17 +27,13 @@ LiquidCandidates selectLiquidCandidates(const Particles& particles, const Camera
                                         const LiquidParameters& parameters,
                                         const SolidDepthTiles* solids = nullptr);
 
-/// The density an interior particle has in this frame: the median over the visible interior particles, or,
-/// when fewer than kMinInteriorForRestDensity are visible, the density of particles one radius apart (1).
-float restDensity(const ParticleShapes& shapes);
-constexpr std::size_t kMinInteriorForRestDensity = 64;
-
-/// Splits the shaped particles into splashes (density below liquid.splash_density_threshold times the rest
-/// density; spheres of radius r at the particle) and aggregates, filling those fields of `preparation`.
+/// Splits the shaped particles into splashes (density below liquid.splash_density_threshold times
+/// `restDensity`, the frame's rho_0 (frameRestDensity); spheres of radius r at the particle) and aggregates,
+/// filling those fields of `preparation`.
 /// With `meshSurface` (Mantaflow's surface, or null), each splash is a sphere as large as that surface
 /// reaches around it, and splashes it passes below are not drawn (LiquidPreparation::splashesAbsorbed); the
 /// searches are remembered in it.
-void classifyAndPack(const NeighbourGrid& grid, const ParticleShapes& shapes,
+void classifyAndPack(const NeighbourGrid& grid, const ParticleShapes& shapes, float restDensity,
                      const LiquidParameters& parameters, MantaflowSurfaceSearch* meshSurface,
                      LiquidPreparation& preparation);
 

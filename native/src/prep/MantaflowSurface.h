@@ -98,8 +98,8 @@ class MantaflowSurfaceSearch {
                         glm::vec3& out);
 
   /// MantaflowLevelSet::inscribedRadius for particle `index` at `particle`, remembered: a splash's size
-  /// (classifyAndPack). Kept apart from the offsets, as a particle may be a splash in one view and not in
-  /// another.
+  /// (classifyAndPack). Kept apart from the offsets: a splash's search (its inscribed blob) is not a surface
+  /// particle's.
   float inscribedRadius(std::size_t index, const glm::vec3& particle, float maxRadius, int refinements);
 
  private:
