@@ -7,6 +7,8 @@
 #include <unordered_set>
 #include <vector>
 
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
 #include <glm/common.hpp>
 #include <glm/geometric.hpp>
 
@@ -79,11 +81,18 @@ SampledNeighbourhoods sampleNeighbourhoods(const Particles& particles, float nei
         for (int dz = -1; dz <= 1; ++dz)
           sampled.cells[cellKey(c.x + dx, c.y + dy, c.z + dz)];
   }
-  for (const std::uint32_t i : liquid) {
-    const Cell c = sampled.cellOf(particles, i);
-    const auto found = sampled.cells.find(cellKey(c.x, c.y, c.z));
-    if (found != sampled.cells.end()) found->second.push_back(i);
-  }
+  // Each particle's cell looked up in parallel (the map is only read), then filed in index order.
+  std::vector<std::vector<std::uint32_t>*> cellOfParticle(liquid.size(), nullptr);
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, liquid.size(), 4096),
+                    [&](const tbb::blocked_range<std::size_t>& block) {
+                      for (std::size_t k = block.begin(); k != block.end(); ++k) {
+                        const Cell c = sampled.cellOf(particles, liquid[k]);
+                        const auto found = sampled.cells.find(cellKey(c.x, c.y, c.z));
+                        if (found != sampled.cells.end()) cellOfParticle[k] = &found->second;
+                      }
+                    });
+  for (std::size_t k = 0; k < liquid.size(); ++k)
+    if (cellOfParticle[k]) cellOfParticle[k]->push_back(liquid[k]);
   return sampled;
 }
 
