@@ -32,6 +32,7 @@ void recordLighting(std::size_t sceneLights, const LightingPreparation& lighting
   const auto count = [&](const LightPreparation& view) {
     stats.viewParticles += view.liquid.aggregates.size() + view.leftOut;
     stats.viewParticlesLeftOut += view.leftOut;
+    stats.viewParticlesColumnThinned += view.columnThinned;
   };
   for (const LightPreparation& light : lighting.lights)
     count(light);

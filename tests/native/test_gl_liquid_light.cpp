@@ -18,6 +18,48 @@ using namespace spindrift;
 using namespace liquid_test;
 using namespace floor_light;
 
+namespace {
+
+// What the floor under a floating slab keeps of a sun at `incidence` (radians, towards +x): the direct
+// multiplier averaged where the light that entered the top around x = -0.75 lands (shifted by its refracted
+// path through the slab and the path below it), and what exp(-sigma t / cos theta_t) (1 - F)^2 leaves, t the
+// drawn slab's thickness about its middle plane at `middle`.
+struct SlabShadow {
+  double kept[3] = {0, 0, 0}, expected[3] = {0, 0, 0};
+  double thickness = 0.0;
+  int pixels = 0;
+};
+
+SlabShadow slabShadow(const RenderResult& result, const Scene& scene, double incidence, double middle) {
+  SlabShadow shadow;
+  const auto [top, bottom] = slabTopAndBottom(result, kCameraHeight, middle);
+  shadow.thickness = top - bottom;
+  const double ior = scene.parameters.liquid.ior;
+  const double transmittedCosine = std::sqrt(1.0 - std::pow(std::sin(incidence) / ior, 2.0));
+  const double fresnel = optics::schlick(std::cos(incidence), ior);
+  const double shift =
+      -0.75 + bottom * std::tan(incidence) + shadow.thickness * std::sin(incidence) / ior / transmittedCosine;
+  for (int channel = 0; channel < 3; ++channel) {
+    shadow.expected[channel] =
+        std::exp(-scene.parameters.liquid.absorption_rgb[channel] * shadow.thickness / transmittedCosine) *
+        (1.0 - fresnel) * (1.0 - fresnel);
+    double sum = 0.0;
+    int count = 0;
+    for (int row = 0; row < kHeight; ++row)
+      for (int column = 0; column < kWidth; ++column) {
+        const glm::dvec2 floor = floorPoint(column, row);
+        if (std::abs(floor.x - shift) > 0.45 || std::abs(floor.y) > 0.6) continue;
+        sum += directMultiplier(result, column, row, channel);
+        ++count;
+      }
+    shadow.kept[channel] = count > 0 ? sum / count : 0.0;
+    shadow.pixels = count;
+  }
+  return shadow;
+}
+
+}  // namespace
+
 // A sun at 40 degrees through a floating slab: the floor under the slab's middle keeps
 // exp(-sigma t / cos theta_t) (1 - F)^2 of the light, within 1 %. (At 40 degrees the light that enters the
 // slab's sunward wall meets its bottom 6 degrees beyond the critical angle, so none of it lands there; nearer
@@ -35,35 +77,63 @@ TEST(GLLiquidLight, SlabShadowFollowsBeerLambertAndFresnel) {
   expectAllChannelsFinite(result);
   ASSERT_NE(result.layer("liquid_shadow"), nullptr);
   ASSERT_NE(result.layer("caustics"), nullptr);
-  const auto [top, bottom] = slabTopAndBottom(result, kCameraHeight, 1.25);
-  const double thickness = top - bottom, ior = scene.parameters.liquid.ior;
-  ASSERT_GT(thickness, 0.4);
-  const double transmittedCosine = std::sqrt(1.0 - std::pow(std::sin(incidence) / ior, 2.0));
-  const double fresnel = optics::schlick(std::cos(incidence), ior);
-  // The floor lit by the light that enters the top around x = -0.75, far from the slab's edges: shifted by
-  // the refracted path through the slab and the path below it.
-  const double shift =
-      -0.75 + bottom * std::tan(incidence) + thickness * std::sin(incidence) / ior / transmittedCosine;
+  EXPECT_EQ(result.stats.light.viewParticlesColumnThinned, 0u) << "a body this deep keeps the exact test";
+  const SlabShadow shadow = slabShadow(result, scene, incidence, 1.25);
+  ASSERT_GT(shadow.thickness, 0.4);
+  ASSERT_GT(shadow.pixels, 500);
   for (int channel = 0; channel < 3; ++channel) {
-    const double expected =
-        std::exp(-scene.parameters.liquid.absorption_rgb[channel] * thickness / transmittedCosine) *
-        (1.0 - fresnel) * (1.0 - fresnel);
-    double sum = 0.0;
-    int count = 0;
-    for (int row = 0; row < kHeight; ++row)
-      for (int column = 0; column < kWidth; ++column) {
-        const glm::dvec2 floor = floorPoint(column, row);
-        if (std::abs(floor.x - shift) > 0.45 || std::abs(floor.y) > 0.6) continue;
-        sum += directMultiplier(result, column, row, channel);
-        ++count;
-      }
-    ASSERT_GT(count, 500);
-    std::printf("slab, channel %d: floor keeps %.4f, expected %.4f (thickness %.3f)\n", channel, sum / count,
-                expected, thickness);
-    EXPECT_NEAR(sum / count, expected, 0.01 * expected) << "channel " << channel;
+    std::printf("slab, channel %d: floor keeps %.4f, expected %.4f (thickness %.3f)\n", channel,
+                shadow.kept[channel], shadow.expected[channel], shadow.thickness);
+    EXPECT_NEAR(shadow.kept[channel], shadow.expected[channel], 0.01 * shadow.expected[channel])
+        << "channel " << channel;
   }
   // Outside the slab's shadow the floor keeps all of the light and gets no caustic.
   EXPECT_NEAR(directMultiplier(result, 2, 2, 0), 1.0, 1e-4);
+}
+
+// A slab three particles deep has no interior particle, so its light views keep only the two particles
+// nearest and the two farthest in each texel column (light.column_particles). Its particles are as fine
+// against the view's 128 texels as a Mantaflow liquid's are (0.02 apart, a texel about 1.4 of them): each
+// column holds about six centres. The floor under it keeps the light a view of every particle leaves it, and
+// exp(-sigma t / cos theta_t) (1 - F)^2 as closely as that view does.
+TEST(GLLiquidLight, AThinSlabsThinnedLightViewsKeepItsShadow) {
+  TempDirectory directory;
+  Scene scene = floorScene(directory);
+  scene.parameters.liquid.absorption_rgb = {2.0f, 4.0f, 8.0f};
+  const double incidence = glm::radians(30.0);
+  scene.lights.push_back(sunAlong({float(std::sin(incidence)), 0.0f, -float(std::cos(incidence))}));
+  const Particles slab =
+      liquid_test::particlesOf(liquid_test::block({-2.0f, -1.0f, 1.0f}, {0.8f, 1.0f, 1.04f}, 0.02f), 0.02f);
+  const RenderResult thinned = renderer().renderParticles(scene, slab, 1);
+  scene.parameters.light.column_particles = 0;
+  const RenderResult whole = renderer().renderParticles(scene, slab, 1);
+  expectAllChannelsFinite(thinned);
+  const LightFrameStats& views = thinned.stats.light;
+  std::printf("thin slab: %zu of %zu view particles thinned out\n", views.viewParticlesColumnThinned,
+              views.viewParticles);
+  EXPECT_GT(views.viewParticlesColumnThinned, views.viewParticles / 4);
+  EXPECT_EQ(whole.stats.light.viewParticlesColumnThinned, 0u);
+  const SlabShadow thin = slabShadow(thinned, scene, incidence, 1.02);
+  const SlabShadow full = slabShadow(whole, scene, incidence, 1.02);
+  ASSERT_GT(thin.pixels, 500);
+  for (int channel = 0; channel < 3; ++channel) {
+    std::printf(
+        "thin slab, channel %d: floor keeps %.4f thinned, %.4f whole, expected %.4f (thickness %.3f)\n",
+        channel, thin.kept[channel], full.kept[channel], thin.expected[channel], thin.thickness);
+    EXPECT_NEAR(thin.kept[channel], full.kept[channel], 0.005 * full.kept[channel]) << "channel " << channel;
+    EXPECT_LE(std::abs(thin.kept[channel] - thin.expected[channel]),
+              std::abs(full.kept[channel] - full.expected[channel]) + 0.005 * thin.expected[channel])
+        << "channel " << channel;
+  }
+  double difference = 0.0;
+  for (int row = 0; row < kHeight; ++row)
+    for (int column = 0; column < kWidth; ++column)
+      difference +=
+          std::abs(directMultiplier(thinned, column, row, 0) - directMultiplier(whole, column, row, 0));
+  difference /= double(kWidth * kHeight);
+  std::printf("thin slab: floor's direct light differs by %.5f on average from every particle drawn\n",
+              difference);
+  EXPECT_LT(difference, 0.01);
 }
 
 // A sun at 45 degrees through a floating slab. The light that enters the slab's sunward wall is reflected

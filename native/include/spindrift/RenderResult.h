@@ -129,6 +129,9 @@ struct LightFrameStats {
   int viewSize = 0;                    ///< Side in texels of the lights' views (light.texels_per_radius).
   std::size_t viewParticles = 0;  ///< Liquid particles shaped for the lights' and the sky's views, summed.
   std::size_t viewParticlesLeftOut = 0;  ///< Of those, hidden from both layers of their view: not drawn.
+  /// Of those left out, the ones a view of a body few particles deep did not keep in any texel column
+  /// (light.column_particles).
+  std::size_t viewParticlesColumnThinned = 0;
 };
 
 /// The cost a Renderer pays once: the GL context, made while it is constructed, and the shader programs,

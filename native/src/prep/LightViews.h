@@ -59,7 +59,8 @@ LightView skyView(const LiquidBounds& bounds, int size);
 struct LightPreparation {
   LightView view;
   LiquidPreparation liquid;
-  std::size_t leftOut = 0;  ///< Particles hidden from both of the view's layers, not drawn.
+  std::size_t leftOut = 0;        ///< Particles hidden from both of the view's layers, not drawn.
+  std::size_t columnThinned = 0;  ///< Of those, left out by light.column_particles (keepColumnEnds).
 };
 
 /// The views and ellipsoids of every light that sees the liquid, and of the sky; lights that do not are
