@@ -160,8 +160,8 @@ LightingPreparation prepareLighting(const Particles& particles, const Camera& ca
     // occlusion test finds little of a body hidden where few of its particles are deep (a sheet, a spray):
     // the dam break's sun hides 4,070 of 56,031 from both layers, for 28 ms of CPU a view (sessions 29 and
     // 39). Such a body is thinned instead to the particles nearest and farthest in each texel column
-    // (light.column_particles): on the examples' suns and skies 77 % are left out and their layers take 16 to
-    // 22 ms instead of 84 to 104, the error against the user's render unchanged (docs/liquid.md).
+    // (light.column_particles): on the examples' suns and skies 77 % are left out and their layers take 13 to
+    // 22 ms instead of 84 to 105, the error against the user's render unchanged (docs/liquid.md).
     if (!manyDeepAggregates(light.liquid)) {
       light.columnThinned = keepColumnEnds(light.liquid.aggregates, light.liquid.aggregateLayers, view.camera,
                                            parameters.light.column_particles);
