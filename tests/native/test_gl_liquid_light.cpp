@@ -30,6 +30,15 @@ struct SlabShadow {
   int pixels = 0;
 };
 
+// The floor scene lit by a sun `incidence` radians from straight down, towards +x, through water that
+// absorbs `absorption` per unit length.
+Scene sunlitFloorScene(const TempDirectory& directory, double incidence, const glm::vec3& absorption) {
+  Scene scene = floorScene(directory);
+  scene.parameters.liquid.absorption_rgb = absorption;
+  scene.lights.push_back(sunAlong({float(std::sin(incidence)), 0.0f, -float(std::cos(incidence))}));
+  return scene;
+}
+
 SlabShadow slabShadow(const RenderResult& result, const Scene& scene, double incidence, double middle) {
   SlabShadow shadow;
   const auto [top, bottom] = slabTopAndBottom(result, kCameraHeight, middle);
@@ -66,10 +75,8 @@ SlabShadow slabShadow(const RenderResult& result, const Scene& scene, double inc
 // the critical angle the drawn bottom's small bumps let some of it out at grazing angles.)
 TEST(GLLiquidLight, SlabShadowFollowsBeerLambertAndFresnel) {
   TempDirectory directory;
-  Scene scene = floorScene(directory);
-  scene.parameters.liquid.absorption_rgb = {0.4f, 0.8f, 1.6f};
   const double incidence = glm::radians(40.0);
-  scene.lights.push_back(sunAlong({float(std::sin(incidence)), 0.0f, -float(std::cos(incidence))}));
+  const Scene scene = sunlitFloorScene(directory, incidence, {0.4f, 0.8f, 1.6f});
   // Wide towards the sun: light that enters the sunward wall and escapes the drawn bottom's rounded edge at
   // grazing angles lands far from the window measured here.
   const RenderResult result =
@@ -98,10 +105,8 @@ TEST(GLLiquidLight, SlabShadowFollowsBeerLambertAndFresnel) {
 // exp(-sigma t / cos theta_t) (1 - F)^2 as closely as that view does.
 TEST(GLLiquidLight, AThinSlabsThinnedLightViewsKeepItsShadow) {
   TempDirectory directory;
-  Scene scene = floorScene(directory);
-  scene.parameters.liquid.absorption_rgb = {2.0f, 4.0f, 8.0f};
   const double incidence = glm::radians(30.0);
-  scene.lights.push_back(sunAlong({float(std::sin(incidence)), 0.0f, -float(std::cos(incidence))}));
+  Scene scene = sunlitFloorScene(directory, incidence, {2.0f, 4.0f, 8.0f});
   const Particles slab =
       liquid_test::particlesOf(liquid_test::block({-2.0f, -1.0f, 1.0f}, {0.8f, 1.0f, 1.04f}, 0.02f), 0.02f);
   const RenderResult thinned = renderer().renderParticles(scene, slab, 1);
