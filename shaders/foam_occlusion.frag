@@ -44,6 +44,12 @@ float occlusionRange(float fragmentDepth, float occluderDepth) {
   return falloff * falloff;
 }
 
+// How many Halton samples a pass takes within a search radius of `screenRadius` pixels.
+int samplesWithin(float screenRadius) {
+  return int(clamp(0.75 * kPi * screenRadius * screenRadius * screenRadius * sampleDensity, float(minSamples),
+                   float(maxSamples)));
+}
+
 void main() {
   outShadow = vec2(0.0, kNoSurfaceDepth);
   outIrradiance = vec4(0.0);
@@ -89,23 +95,30 @@ void main() {
   vec3 irradiance = vec3(0.0);
   int irradianceSamples = 0;
   uint samplesTaken = 0u;
+  // The irradiance from the first pass's samples: a loop of its own, because on llvmpipe code inside an `if`
+  // runs for every pixel whether or not the condition holds, so inside the passes' loop its environment
+  // lookups cost every pass (docs/frame-cost.md, session 40).
+  if (!useIrradianceMap) {
+    int count = samplesWithin(searchRadius * initialRadiusFactor * pixelsPerSearchRadius);
+    for (int i = 0; i < count; ++i) {
+      vec4 unit = haltonSamples[i];
+      if (unit.w > 1.0 || unit.w == 0.0) continue;  // outside the unit sphere
+      // The sample's direction, turned into the normal's hemisphere, weighted by its cosine.
+      vec3 direction = unit.xyz / unit.w;
+      if (dot(direction, cameraNormal) < 0.0) direction = -direction;
+      irradiance += environmentRadiance(mat3(frame.worldFromCamera) * direction) * dot(direction, cameraNormal);
+      ++irradianceSamples;
+    }
+  }
   for (int pass = 0; pass < passes; ++pass) {
     float passRadius = searchRadius * (initialRadiusFactor + radiusIncrementFactor * float(pass));
     float screenRadius = passRadius * pixelsPerSearchRadius;
-    int count = int(clamp(0.75 * kPi * screenRadius * screenRadius * screenRadius * sampleDensity,
-                          float(minSamples), float(maxSamples)));
+    int count = samplesWithin(screenRadius);
     samplesTaken += uint(count);
     float worldRadius = passRadius * worldPerSearchRadius;
     for (int i = 0; i < count; ++i) {
       vec4 unit = haltonSamples[i];
       if (unit.w > 1.0 || unit.w == 0.0) continue;  // outside the unit sphere
-      if (pass == 0 && !useIrradianceMap) {
-        // The sample's direction, turned into the normal's hemisphere, weighted by its cosine.
-        vec3 direction = unit.xyz / unit.w;
-        if (dot(direction, cameraNormal) < 0.0) direction = -direction;
-        irradiance += environmentRadiance(mat3(frame.worldFromCamera) * direction) * dot(direction, cameraNormal);
-        ++irradianceSamples;
-      }
       vec3 samplePosition = position + worldRadius * unit.xyz;
       float sampleDepth = -samplePosition.z;
       if (sampleDepth <= getNearClip()) continue;

@@ -231,42 +231,53 @@ bool inStartTexel(vec3 origin, vec3 direction, float t, ivec2 startTexel) {
   return texelOf(origin + t * direction) == startTexel;
 }
 
+// The marches below only bracket a crossing inside their loop of samples and refine it after the loop: on
+// llvmpipe the body of an `if` runs for a group of eight pixels whether or not any of them takes it, and a loop
+// runs its body at least once, so a refinement written inside the loop cost a pass of its own loop and a
+// crossing's interpolated lookups at every sample (docs/frame-cost.md, session 40).
+
 // Marches from inside `body` to where the ray leaves it.
 Crossing findExit(vec3 origin, vec3 direction, int body) {
   ScreenRay ray = screenRay(origin, direction);
   float previousT = 0.0, previousF = 1e-6;
-  float t = 0.0;
-  Crossing none;
-  none.found = false;
-  none.hidden = false;
-  none.t = 0.0;
+  float t = 0.0, f = 1e-6;
+  bool crossed = false, hidden = false;
   ivec2 startTexel = texelOf(origin);
   for (int k = 1; k <= ray.samples; ++k) {
     t = screenRaySampleT(ray, k);
     if (cameraInLiquid && inStartTexel(origin, direction, t, startTexel)) continue;
-    float f = crossingFunction(kInsideBody, body, origin, direction, t, false);
+    f = crossingFunction(kInsideBody, body, origin, direction, t, false);
     ivec2 texel = texelOf(origin + t * direction);
     if (f < 0.0 && frontDepth(body, texel) >= kNoSurfaceDepth * 0.5 &&
         rayEyeDepth(origin, direction, t) > texelFetch(backgroundEyeDepth, texel, 0).r) {
       // Where the ray is, a solid stands in front of it and the body has no layers: the solid hides the
       // liquid there (a tank's near wall hides the water below its rim), so where the path ends is not seen.
       // (Where the body has no layers the crossing function is negative, so this is checked only there.)
-      none.hidden = true;
-      none.t = previousT;
-      none.fragCoord = vec2(texelOf(origin + previousT * direction)) + 0.5;
-      return none;
+      hidden = true;
+      break;
     }
-    if (f < 0.0) return crossingAt(body, origin, direction, refineCrossing(kInsideBody, body, origin, direction, previousT, previousF, t, f));
+    if (f < 0.0) {
+      crossed = true;
+      break;
+    }
     previousT = t;
     previousF = f;
   }
-  // The ray left the screen inside the liquid: the liquid ends where the view does.
-  none.t = t;
+  if (crossed)
+    return crossingAt(body, origin, direction, refineCrossing(kInsideBody, body, origin, direction, previousT, previousF, t, f));
+  Crossing none;
+  none.found = false;
+  none.hidden = hidden;
+  // Hidden: the path was last seen in the liquid at the previous sample. Otherwise the ray left the screen
+  // inside the liquid: the liquid ends where the view does.
+  none.t = hidden ? previousT : t;
+  none.fragCoord = hidden ? vec2(texelOf(origin + previousT * direction)) + 0.5 : vec2(0.0);
   return none;
 }
 
 // Marches from outside every body to where the ray passes behind a body's front surface while in front of its
-// back surface, or until a solid stops it.
+// back surface, or until a solid stops it. The inner loop runs to the next sample that passes behind a front;
+// the outer one checks that bracket and, where the ray passed behind the body instead, marches on.
 // `solid`: where the ray first passed behind a solid, as colourAlong's march would find it (its samples in the
 // start texel included).
 Crossing findEntry(vec3 origin, vec3 direction, out SolidHit solid) {
@@ -279,22 +290,35 @@ Crossing findEntry(vec3 origin, vec3 direction, out SolidHit solid) {
   vec2 previousF = vec2(-1e-6);
   float solidPreviousT = 0.0, solidPreviousF = -1.0;
   ivec2 startTexel = texelOf(origin);
-  for (int k = 1; k <= ray.samples; ++k) {
-    float t = screenRaySampleT(ray, k);
-    float behindSolid = crossingFunction(kBehindSolid, 0, origin, direction, t, false);
-    if (behindSolid >= 0.0 && !solid.found) solid = SolidHit(true, solidPreviousT, solidPreviousF, t, behindSolid);
-    solidPreviousT = t;
-    solidPreviousF = behindSolid;
-    if (inStartTexel(origin, direction, t, startTexel)) continue;
-    if (behindSolid >= 0.0) break;
-    vec2 f = vec2(hasSplash ? crossingFunction(kBehindFront, kSplash, origin, direction, t, false) : -1.0,
-                  // Under water the aggregate's front is the near plane, so passing behind it says nothing:
-                  // a ray that has left the water is followed into splashes only.
-                  hasAggregate && !cameraInLiquid
-                      ? crossingFunction(kBehindFront, kAggregate, origin, direction, t, false)
-                      : -1.0);
+  int k = 1;
+  for (int bracketsChecked = 0; bracketsChecked <= maxSteps; ++bracketsChecked) {
+    float t = 0.0;
+    vec2 f = vec2(-1.0);
+    bvec2 bracketed = bvec2(false);
+    for (; k <= ray.samples; ++k) {
+      t = screenRaySampleT(ray, k);
+      float behindSolid = crossingFunction(kBehindSolid, 0, origin, direction, t, false);
+      if (behindSolid >= 0.0 && !solid.found) solid = SolidHit(true, solidPreviousT, solidPreviousF, t, behindSolid);
+      solidPreviousT = t;
+      solidPreviousF = behindSolid;
+      if (inStartTexel(origin, direction, t, startTexel)) continue;
+      if (behindSolid >= 0.0) {
+        k = ray.samples + 1;  // a solid ends the search
+        break;
+      }
+      f = vec2(hasSplash ? crossingFunction(kBehindFront, kSplash, origin, direction, t, false) : -1.0,
+               // Under water the aggregate's front is the near plane, so passing behind it says nothing:
+               // a ray that has left the water is followed into splashes only.
+               hasAggregate && !cameraInLiquid ? crossingFunction(kBehindFront, kAggregate, origin, direction, t, false)
+                                               : -1.0);
+      bracketed = bvec2(f.x >= 0.0 && previousF.x < 0.0, f.y >= 0.0 && previousF.y < 0.0);
+      if (any(bracketed)) break;
+      previousT = t;
+      previousF = f;
+    }
+    if (!any(bracketed)) break;
     for (int body = 0; body < 2; ++body) {
-      if (f[body] >= 0.0 && previousF[body] < 0.0) {
+      if (bracketed[body]) {
         float tEntry = refineCrossing(kBehindFront, body, origin, direction, previousT, previousF[body], t, f[body]);
         vec3 position = origin + tEntry * direction;
         vec2 fragCoord = clamp(fragCoordFromCamera(position), vec2(0.0), frame.viewportSize.xy - 1.0);
@@ -304,6 +328,7 @@ Crossing findEntry(vec3 origin, vec3 direction, out SolidHit solid) {
     }
     previousT = t;
     previousF = f;
+    ++k;
   }
   return none;
 }
