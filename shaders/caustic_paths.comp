@@ -53,20 +53,25 @@ float behindSolid(vec3 cameraPoint) {
 float solidAlong(vec3 origin, vec3 direction) {
   if (-origin.z <= getNearClip() || !onScreen(fragCoordFromCamera(origin))) return -1.0;
   ScreenRay ray = screenRay(origin, direction);
-  float previousT = 0.0;
+  // The loop brackets the crossing and the bisection runs after it: llvmpipe runs an `if`'s body, and a loop's
+  // at least once, for a whole group of invocations, so a bisection inside would cost every sample.
+  float previousT = 0.0, t = 0.0;
+  bool crossed = false;
   for (int k = 1; k <= ray.samples; ++k) {
-    float t = screenRaySampleT(ray, k);
+    t = screenRaySampleT(ray, k);
     if (behindSolid(origin + t * direction) >= 0.0) {
-      float low = previousT, high = t;
-      for (int i = 0; i < 12; ++i) {
-        float middle = 0.5 * (low + high);
-        if (behindSolid(origin + middle * direction) >= 0.0) high = middle; else low = middle;
-      }
-      return high;
+      crossed = true;
+      break;
     }
     previousT = t;
   }
-  return -1.0;
+  if (!crossed) return -1.0;
+  float low = previousT, high = t;
+  for (int i = 0; i < 12; ++i) {
+    float middle = 0.5 * (low + high);
+    if (behindSolid(origin + middle * direction) >= 0.0) high = middle; else low = middle;
+  }
+  return high;
 }
 
 void main() {
@@ -107,20 +112,24 @@ void main() {
   // the background's visible surface along the path, by less than the path's length behind it.
   vec3 entryCamera = cameraFromWorldPoint(entry), exitCamera = cameraFromWorldPoint(exitPoint);
   float tolerance = max(pathLength, 1e-4);
-  float blockedAt = -1.0;
   const int kSolidSamples = 16;
-  for (int k = 1; k <= kSolidSamples && blockedAt < 0.0; ++k) {
-    float s = float(k) / float(kSolidSamples);
-    float behind = behindSolid(mix(entryCamera, exitCamera, s));
+  int blockedSample = 0;  // the first sample behind such a solid; 0: none (bisected after the loop, as above)
+  for (int k = 1; k <= kSolidSamples; ++k) {
+    float behind = behindSolid(mix(entryCamera, exitCamera, float(k) / float(kSolidSamples)));
     if (behind >= 0.0 && behind < tolerance) {
-      float low = float(k - 1) / float(kSolidSamples), high = s;
-      for (int i = 0; i < 10; ++i) {
-        float middle = 0.5 * (low + high);
-        float b = behindSolid(mix(entryCamera, exitCamera, middle));
-        if (b >= 0.0 && b < tolerance) high = middle; else low = middle;
-      }
-      blockedAt = high;
+      blockedSample = k;
+      break;
     }
+  }
+  float blockedAt = -1.0;
+  if (blockedSample > 0) {
+    float low = float(blockedSample - 1) / float(kSolidSamples), high = float(blockedSample) / float(kSolidSamples);
+    for (int i = 0; i < 10; ++i) {
+      float middle = 0.5 * (low + high);
+      float b = behindSolid(mix(entryCamera, exitCamera, middle));
+      if (b >= 0.0 && b < tolerance) high = middle; else low = middle;
+    }
+    blockedAt = high;
   }
 
   vec3 receiverCamera;
