@@ -28,7 +28,14 @@ layout(binding = 2, r32f) uniform writeonly image2D sampleSteps;
 // rays, steps, densities, hits, refinement densities, particles visited by the densities (low, high word)
 layout(std430, binding = 8) buffer MarchCounters { uint marchCounters[7]; };
 
-uniform bool adaptive;
+// Compiled with and without ADAPTIVE_STEPS (RaymarchPass), not switched by a uniform: llvmpipe runs both sides
+// of a branch, so every adaptive sample paid for the uniform march's density as well (142 against 136 ms on the
+// dam break; docs/frame-cost.md, session 40).
+#ifdef ADAPTIVE_STEPS
+const bool adaptive = true;
+#else
+const bool adaptive = false;
+#endif
 uniform float iso;
 uniform float stepLength;
 uniform int maxSteps;

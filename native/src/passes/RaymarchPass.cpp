@@ -6,7 +6,9 @@
 namespace spindrift {
 
 RaymarchPass::RaymarchPass(const ShaderLibrary& shaders)
-    : program_(shaders.program({"raymarch_march.comp"})), counters_(createBuffer()) {
+    : adaptiveProgram_(shaders.program({"raymarch_march.comp"}, {"ADAPTIVE_STEPS"})),
+      uniformProgram_(shaders.program({"raymarch_march.comp"})),
+      counters_(createBuffer()) {
   glNamedBufferStorage(counters_.id(), sizeof(RaymarchCounters), nullptr, GL_DYNAMIC_STORAGE_BIT);
 }
 
@@ -17,7 +19,8 @@ RaymarchSamples RaymarchPass::run(const RaymarchInputs& in, float particleRadius
   ensureTexture(steps_, GL_R32F, width, height);
   const RaymarchCounters zeros;
   glNamedBufferSubData(counters_.id(), 0, sizeof zeros, &zeros);
-  const GLuint program = program_.id();
+  const GLuint program =
+      (parameters.raymarch_stepping == "adaptive" ? adaptiveProgram_ : uniformProgram_).id();
   glUseProgram(program);
   bindRaymarchGrid(program, in.grid);
   glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 8, counters_.id());
@@ -32,7 +35,6 @@ RaymarchSamples RaymarchPass::run(const RaymarchInputs& in, float particleRadius
   glBindImageTexture(2, steps_.id(), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_R32F);
 
   const float smoothingRadius = in.grid.smoothingRadius;
-  glUniform1i(uniformLocation(program, "adaptive"), parameters.raymarch_stepping == "adaptive" ? 1 : 0);
   glUniform1f(uniformLocation(program, "iso"), parameters.raymarch_iso);
   glUniform1f(uniformLocation(program, "stepLength"), parameters.raymarch_step * particleRadius);
   glUniform1i(uniformLocation(program, "maxSteps"), parameters.raymarch_max_steps);

@@ -38,7 +38,9 @@ class RaymarchPass {
   RaymarchCounters counters() const;  ///< Of the last run (waits for the GPU).
 
  private:
-  ProgramObject program_;
+  // liquid.raymarch_stepping's two marches, compiled apart (ADAPTIVE_STEPS): on llvmpipe a switch by uniform
+  // made every adaptive sample pay for the uniform march's density too.
+  ProgramObject adaptiveProgram_, uniformProgram_;
   BufferObject counters_;
   Texture2D depth_, normal_, steps_;
 };
