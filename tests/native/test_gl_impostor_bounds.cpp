@@ -14,6 +14,7 @@
 #include "EllipsoidRayCast.h"
 #include "LiquidTestScenes.h"
 #include "prep/LiquidPreparation.h"
+#include "prep/WindowRectangle.h"
 #include "spindrift/Renderer.h"
 
 using namespace spindrift;
@@ -190,4 +191,43 @@ TEST(GLImpostorBounds, EachPixelHasTheNormalOfTheEllipsoidThatHoldsIt) {
   EXPECT_GT(compared, 4000u) << "both layers of the sheet fill much of the view";
   EXPECT_EQ(missing, 0u) << "pixels with a surface but no normal";
   EXPECT_LE(wrong, compared / 500) << wrong << " of " << compared << " normals off by more than 1 degree";
+}
+
+// The normal resolve shades only the rectangle that holds the drawn ellipsoids (prep/WindowRectangle.h) and
+// clears the rest: a renderer that drew a sheet filling the view and then a small block in one corner gives
+// the block's frame exactly the normals a fresh renderer gives it, so nothing of the sheet's is left
+// outside the block's rectangle.
+TEST(GLImpostorBounds, NormalsOutsideTheResolvedRectangleAreClearedBetweenFrames) {
+  const Scene scene = grazingView();
+  const Particles block =
+      liquid_test::particlesOf(liquid_test::block({0.6f, 0.1f, 0.0f}, {0.9f, 0.3f, 0.15f}, 0.05f), 0.04f);
+  const std::vector<EllipsoidInstance> blockEllipsoids =
+      prepareLiquid(block, scene.camera, scene.parameters.liquid).aggregates;
+  const WindowRectangle rectangle = windowRectangleOfSpheres(blockEllipsoids, scene.camera);
+  ASSERT_GT(rectangle.pixels(), 0);
+  ASSERT_LT(rectangle.pixels(), (long long)scene.camera.width * scene.camera.height / 4)
+      << "the block's rectangle must leave most of the view out for this test to say anything";
+
+  Renderer reused;
+  reused.setIntermediateLayers(true);
+  reused.setLayers({"depth"});
+  const RenderResult sheet = reused.renderParticles(scene, wavySheet(), 1);
+  const RenderResult afterSheet = reused.renderParticles(scene, block, 2);
+  const RenderResult fresh = renderIntermediateLayers(scene, block);
+  std::size_t sheetNormals = 0;
+  for (const char* name : {"aggregate_front_normal", "aggregate_back_normal"}) {
+    const ImageLayer* drawnSheet = sheet.layer(name);
+    const ImageLayer* reusedLayer = afterSheet.layer(name);
+    const ImageLayer* freshLayer = fresh.layer(name);
+    ASSERT_NE(drawnSheet, nullptr);
+    ASSERT_NE(reusedLayer, nullptr);
+    ASSERT_NE(freshLayer, nullptr);
+    for (std::size_t i = 0; i < drawnSheet->pixels.size(); ++i)
+      sheetNormals += drawnSheet->pixels[i] != 0.0f;
+    std::size_t differing = 0;
+    for (std::size_t i = 0; i < freshLayer->pixels.size(); ++i)
+      differing += reusedLayer->pixels[i] != freshLayer->pixels[i];
+    EXPECT_EQ(differing, 0u) << name;
+  }
+  EXPECT_GT(sheetNormals, 10000u) << "the sheet left normals all over the view";
 }

@@ -36,6 +36,7 @@ SurfaceLayers EllipsoidImpostorPass::run(const std::vector<EllipsoidInstance>& i
     list = &ordered_;
   }
   upload(*list);
+  resolveRectangle_ = windowRectangleOfSpheres(*list, view);
   drawLayer(front_, false, draws.front, background, view, domain);
   drawLayer(back_, true, draws.back, background, view, domain);
   return {{front_.eyeDepth, front_.normal}, {back_.eyeDepth, back_.normal}};
@@ -180,13 +181,18 @@ void EllipsoidImpostorPass::drawLayer(Target& target, bool backFaces, const std:
   checkGlError(backFaces ? "drawing back faces of liquid particles"
                          : "drawing front faces of liquid particles");
 
-  // The normals of the winning ellipsoids only.
+  // The normals of the winning ellipsoids only, within the rectangle that holds them all: on llvmpipe the
+  // resolve's pixels without a winner cost as much as the others (an `if` runs for every pixel), and the
+  // dam break's liquid covers a fifth of its frame (docs/frame-cost.md, session 40).
   const GLuint normalsProgram = anyClipped ? clipNormalsProgram_.id() : normalsProgram_.id();
   glUseProgram(normalsProgram);
   setRayUniforms(normalsProgram, backFaces, view, domain);
-  bindColorTargets(resolveFramebuffer_.id(), {&target.normal});
+  clearColorTargets(resolveFramebuffer_.id(), {&target.normal}, noNormal);
   glBindTextureUnit(0, target.winner.id());
+  glEnable(GL_SCISSOR_TEST);
+  glScissor(resolveRectangle_.x, resolveRectangle_.y, resolveRectangle_.width, resolveRectangle_.height);
   drawFullscreenTriangle(emptyVertexArray_.id());
+  glDisable(GL_SCISSOR_TEST);
   checkGlError("resolving the liquid particles' normals");
 }
 

@@ -8,6 +8,7 @@
 #include "gl/ShaderLibrary.h"
 #include "prep/DomainClipOrder.h"
 #include "prep/LiquidPreparation.h"
+#include "prep/WindowRectangle.h"
 #include "spindrift/Scene.h"
 
 namespace spindrift {
@@ -57,6 +58,7 @@ class EllipsoidImpostorPass {
   Texture2D farthestExit_;                  // runDepthRange's GL_MAX target, cleared to 0
   std::vector<EllipsoidInstance> ordered_;  // the list in draw order, when a domain reorders it
   FramebufferObject resolveFramebuffer_;
+  WindowRectangle resolveRectangle_;  // the normal resolve's scissor: where the drawn ellipsoids can lie
   VertexArrayObject emptyVertexArray_;
   BufferObject ellipsoidBuffer_;
   std::size_t ellipsoidBufferBytes_ = 0;
