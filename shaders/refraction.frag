@@ -355,13 +355,9 @@ vec3 colourBehind(vec3 origin, vec3 direction, SolidHit solid, out vec2 backgrou
   return hasEnvironment ? texture(environmentMap, equirectangularUvFromDirection(worldDirection)).rgb : fallbackColor;
 }
 
-// b(.) of equation 6: the colour seen from `origin` along `direction` outside the liquid: the background image
-// where the ray meets a solid of its depth; a ray towards the sky sees the background image at the direction's
-// vanishing point when that pixel is infinitely far; a ray that leaves the screen sees the environment (or the
-// background colour). `backgroundTexel` is the window position of the background texel looked up (its
-// centre), or negative when the colour came from the environment or the flat colour; `travelled` is how far
-// the ray went: to the solid it met, or as far as the screen let it be followed.
-vec3 colourAlong(vec3 origin, vec3 direction, float pixelsPerStep, out vec2 backgroundTexel, out float travelled) {
+// colourAlong's march: where the ray first passes behind the background's solids, if it does on screen;
+// `travelled` becomes the last sample's distance.
+SolidHit solidAlong(vec3 origin, vec3 direction, float pixelsPerStep, out float travelled) {
   ScreenRay ray = screenRaySampledEvery(origin, direction, pixelsPerStep);
   SolidHit solid;
   solid.found = false;
@@ -375,6 +371,17 @@ vec3 colourAlong(vec3 origin, vec3 direction, float pixelsPerStep, out vec2 back
     previousT = t;
     previousF = f;
   }
+  return solid;
+}
+
+// b(.) of equation 6: the colour seen from `origin` along `direction` outside the liquid: the background image
+// where the ray meets a solid of its depth; a ray towards the sky sees the background image at the direction's
+// vanishing point when that pixel is infinitely far; a ray that leaves the screen sees the environment (or the
+// background colour). `backgroundTexel` is the window position of the background texel looked up (its
+// centre), or negative when the colour came from the environment or the flat colour; `travelled` is how far
+// the ray went: to the solid it met, or as far as the screen let it be followed.
+vec3 colourAlong(vec3 origin, vec3 direction, float pixelsPerStep, out vec2 backgroundTexel, out float travelled) {
+  SolidHit solid = solidAlong(origin, direction, pixelsPerStep, travelled);
   return colourBehind(origin, direction, solid, backgroundTexel, travelled);
 }
 
@@ -413,6 +420,8 @@ void main() {
   float ignoredDistance = 0.0;
   // Where the last search for a second body passed behind the solids, when it found no body.
   SolidHit solidBehind;
+  solidBehind.found = false;
+  solidBehind.found = false;
   bool searchedBehind = false;
   int body, firstBody;
   vec3 position, normal;
@@ -437,23 +446,25 @@ void main() {
       return;
     }
     position = viewDirection * (surfaceDepth / -viewDirection.z);
-    normal = surfaceNormal(kAggregate, true, gl_FragCoord.xy);
-    if (dot(normal, normal) == 0.0) normal = viewDirection;
     inside = true;
     outFrontDepth = surfaceDepth;
-    // The normal pass shows the side that faces the camera, as Cycles' does for a surface seen from behind.
-    outFrontNormal = vec4(mat3(frame.worldFromCamera) * (dot(normal, viewDirection) > 0.0 ? -normal : normal), 1.0);
   } else {
     body = firstBody = splashDepth <= aggregateDepth ? kSplash : kAggregate;
     position = viewDirection * (firstDepth / -viewDirection.z);
-    normal = surfaceNormal(body, false, gl_FragCoord.xy);
-    if (dot(normal, normal) == 0.0) normal = -viewDirection;
     outFrontDepth = firstDepth;
-    outFrontNormal = vec4(mat3(frame.worldFromCamera) * normal, 1.0);
   }
+  // The first surface's normal, one lookup for both cases (as in the loop below): under water the body's back
+  // layer, the surface seen from below.
+  normal = surfaceNormal(body, underLiquid, gl_FragCoord.xy);
+  if (dot(normal, normal) == 0.0) normal = underLiquid ? viewDirection : -viewDirection;
+  // The normal pass shows the side that faces the camera, as Cycles' does for a surface seen from behind.
+  outFrontNormal =
+      vec4(mat3(frame.worldFromCamera) * (underLiquid && dot(normal, viewDirection) > 0.0 ? -normal : normal), 1.0);
   // Every meeting with a surface is a crossing: up to four refractions (into a body, out, into a second, out)
   // and the total internal reflections between them. A path whose crossings are spent inside the liquid sees
   // straight on from the surface it last met.
+  bool metBack;  // the side and place of the surface each crossing meets, for its normal
+  vec2 metAt;
   for (int crossing = 0; crossing < 4 + maxInternalReflections; ++crossing) {
     // The normal faces the side the ray comes from.
     vec3 facing = dot(normal, direction) < 0.0 ? normal : -normal;
@@ -520,8 +531,8 @@ void main() {
         break;
       }
       position += exit.t * direction;
-      normal = surfaceNormal(body, exit.back, exit.fragCoord);
-      if (dot(normal, normal) == 0.0) normal = direction;
+      metBack = exit.back;
+      metAt = exit.fragCoord;
     } else {
       if (refractions >= maxRefractions) break;
       Crossing entry = findEntry(position, direction, solidBehind);
@@ -534,19 +545,27 @@ void main() {
       position += entry.t * direction;
       body = entry.body;
       entryPixel = ivec2(entry.fragCoord);
-      normal = surfaceNormal(body, entry.back, entry.fragCoord);
-      if (dot(normal, normal) == 0.0) normal = -direction;
+      metBack = entry.back;
+      metAt = entry.fragCoord;
     }
+    // The surface met, looked up once for both branches: llvmpipe would run both lookups (20 texel fetches
+    // each) for every pixel of the group. Where the layer has no normal the ray goes on as it was, out of the
+    // body it was in (direction) or into the one it met (-direction) once the normal is turned to face it.
+    normal = surfaceNormal(body, metBack, metAt);
+    if (dot(normal, normal) == 0.0) normal = inside ? direction : -direction;
   }
   // The last lookup is the background the compositor refracts, when it is one; all else is reflected light.
   vec2 finalTexel = hiddenEndTexel;
   vec3 finalColour = vec3(0.0);
   if (hiddenEndTexel.x >= 0.0)
     finalColour = texelFetch(backgroundColor, ivec2(hiddenEndTexel), 0).rgb;
-  else if (dot(throughput, throughput) > 0.0)
-    // A path whose search for a second body found none has marched this very ray already.
-    finalColour = searchedBehind ? colourBehind(position, direction, solidBehind, finalTexel, ignoredDistance)
-                                 : colourAlong(position, direction, stepPixels, finalTexel, ignoredDistance);
+  else if (dot(throughput, throughput) > 0.0) {
+    // A path whose search for a second body found none has marched this very ray already. One colourBehind
+    // for both: llvmpipe would run a ternary's two calls, and so two secant refinements, for every pixel.
+    SolidHit solid = solidBehind;
+    if (!searchedBehind) solid = solidAlong(position, direction, stepPixels, ignoredDistance);
+    finalColour = colourBehind(position, direction, solid, finalTexel, ignoredDistance);
+  }
   bool seesBackground = finalTexel.x >= 0.0;
   imageStore(refractionUvImage, pixel,
              seesBackground ? vec4(finalTexel * frame.viewportSize.zw, 1.0, 0.0) : vec4(0.0));
