@@ -7,10 +7,9 @@
 #include "lib/optics.glsl"
 #include "lib/screen_trace.glsl"
 
-layout(binding = 4) uniform sampler2D splashFrontNormal;
-layout(binding = 5) uniform sampler2D splashBackNormal;
-layout(binding = 6) uniform sampler2D aggregateFrontNormal;
-layout(binding = 7) uniform sampler2D aggregateBackNormal;
+// The four layers' normals, layer = body * 2 + back (splash front, splash back, aggregate front, aggregate
+// back; refraction_layers.frag copies them): one fetch where a choice among four textures fetched all four.
+layout(binding = 4) uniform sampler2DArray layerNormals;
 layout(binding = 8) uniform sampler2D backgroundColor;
 layout(binding = 9) uniform sampler2D backgroundEyeDepth;
 layout(binding = 10) uniform sampler2D environmentMap;
@@ -75,8 +74,7 @@ float backDepth(int body, ivec2 pixel) {
   return body == kSplash ? depths.y : depths.w;
 }
 vec4 normalTexel(int body, bool back, ivec2 pixel) {
-  return body == kSplash ? (back ? texelFetch(splashBackNormal, pixel, 0) : texelFetch(splashFrontNormal, pixel, 0))
-                         : (back ? texelFetch(aggregateBackNormal, pixel, 0) : texelFetch(aggregateFrontNormal, pixel, 0));
+  return texelFetch(layerNormals, ivec3(pixel, body * 2 + (back ? 1 : 0)), 0);
 }
 
 // Bilinear weights of the four texels around a window position, and the first of them.

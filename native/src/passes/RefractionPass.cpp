@@ -45,18 +45,37 @@ LiquidData RefractionPass::run(const std::optional<SurfaceLayers>& splashes,
     const DepthLayer& layer = back ? layers->back : layers->front;
     return normal ? layer.normal.id() : layer.eyeDepth.id();
   };
-  // The marches' four depth reads per sample become one: the layers packed into one texel per pixel.
+  // The marches' four depth reads per sample become one: the layers packed into one texel per pixel; and
+  // the normals into one array texture.
   ensureTexture(layerDepths_, GL_RGBA32F, width, height);
+  ensureLayerNormals(width, height);
   if (tiles) clearToNoLiquid();  // the tiles not drawn keep these values
   bindColorTargets(packFramebuffer_.id(), {&layerDepths_});
+  const GLuint pack = packFramebuffer_.id();
+  GLenum packAttachments[5] = {GL_COLOR_ATTACHMENT0};
+  for (int layer = 0; layer < 4; ++layer) {
+    packAttachments[layer + 1] = GL_COLOR_ATTACHMENT1 + GLenum(layer);
+    glNamedFramebufferTextureLayer(pack, packAttachments[layer + 1], layerNormals_.id(), 0, layer);
+  }
+  glNamedFramebufferDrawBuffers(pack, 5, packAttachments);
+  if (tiles) {
+    const float noNormal[4] = {0.0f, 0.0f, 0.0f, 0.0f};
+    for (GLint drawBuffer = 1; drawBuffer < 5; ++drawBuffer)
+      glClearNamedFramebufferfv(pack, GL_COLOR, drawBuffer, noNormal);
+  }
   glDisable(GL_DEPTH_TEST);
   glDisable(GL_BLEND);
   glUseProgram(packProgram_.id());
-  glBindTextureUnit(0, layerTexture(splashes, false, false));
-  glBindTextureUnit(1, layerTexture(splashes, true, false));
-  glBindTextureUnit(2, layerTexture(aggregates, false, false));
-  glBindTextureUnit(3, layerTexture(aggregates, true, false));
+  for (GLuint body = 0; body < 2; ++body)
+    for (GLuint back = 0; back < 2; ++back) {
+      const std::optional<SurfaceLayers>& layers = body == 0 ? splashes : aggregates;
+      glBindTextureUnit(body * 2 + back, layerTexture(layers, back == 1, false));
+      glBindTextureUnit(4 + body * 2 + back, layerTexture(layers, back == 1, true));
+    }
   drawFullscreen(emptyVertexArray_.id(), tiles);
+  // The next pass to bind this framebuffer names its own attachments: leave none of the array's behind.
+  for (int layer = 0; layer < 4; ++layer)
+    glNamedFramebufferTexture(pack, GL_COLOR_ATTACHMENT1 + GLenum(layer), 0, 0);
   checkGlError("packing the depth layers for the refraction");
 
   const GLuint framebuffer = framebuffer_.id();
@@ -79,10 +98,7 @@ LiquidData RefractionPass::run(const std::optional<SurfaceLayers>& splashes,
   glDisable(GL_BLEND);
   const GLuint program = program_.id();
   glUseProgram(program);
-  glBindTextureUnit(4, layerTexture(splashes, false, true));
-  glBindTextureUnit(5, layerTexture(splashes, true, true));
-  glBindTextureUnit(6, layerTexture(aggregates, false, true));
-  glBindTextureUnit(7, layerTexture(aggregates, true, true));
+  glBindTextureUnit(4, layerNormals_.id());
   glBindTextureUnit(8, background.color.id());
   glBindTextureUnit(9, background.eyeDepth.id());
   glBindTextureUnit(10, background.environment ? background.environment->id() : 0);
@@ -116,6 +132,20 @@ LiquidData RefractionPass::run(const std::optional<SurfaceLayers>& splashes,
   checkGlError("refracting through the liquid");
   return {color_,       splashColor_,  surfaceClass_,  thickness_, frontDepth_,
           frontNormal_, refractionUv_, transmittance_, reflection_};
+}
+
+void RefractionPass::ensureLayerNormals(int width, int height) {
+  if (layerNormals_.matches(width, height, GL_RGBA16F)) return;
+  GLuint id = 0;
+  glCreateTextures(GL_TEXTURE_2D_ARRAY, 1, &id);
+  layerNormals_.object = TextureObject(id);
+  layerNormals_.width = width;
+  layerNormals_.height = height;
+  layerNormals_.internalFormat = GL_RGBA16F;
+  glTextureStorage3D(id, 1, GL_RGBA16F, width, height, 4);
+  glTextureParameteri(id, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+  glTextureParameteri(id, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+  checkGlError("allocating the refraction's normal layers");
 }
 
 void RefractionPass::clearToNoLiquid() {

@@ -34,11 +34,15 @@ class RefractionPass {
 
  private:
   void clearToNoLiquid();
+  void ensureLayerNormals(int width, int height);
 
   ProgramObject program_;
   ProgramObject packProgram_;  ///< refraction_layers.frag
   FramebufferObject packFramebuffer_;
   Texture2D layerDepths_;  ///< the four depth layers in one RGBA32F texture
+  /// The four layers' normals (RGBA16F) as the layers of one array texture, layer = body × 2 + back, so that
+  /// refraction.frag reads one texel where it chose among four textures (and llvmpipe fetched all four).
+  Texture2D layerNormals_;
   VertexArrayObject emptyVertexArray_;
   FramebufferObject framebuffer_;
   BufferObject counters_;
