@@ -46,20 +46,37 @@ long liveGlObjectCount(GlObjectType type) {
   return gl_detail::liveCounter(type).load();
 }
 
-void ensureTexture(Texture2D& texture, GLenum internalFormat, int width, int height) {
-  if (texture.matches(width, height, internalFormat)) return;
+namespace {
+
+void allocateTexture(Texture2D& texture, GLenum internalFormat, int width, int height, int layers) {
   GLuint id = 0;
-  glCreateTextures(GL_TEXTURE_2D, 1, &id);
+  glCreateTextures(layers > 0 ? GL_TEXTURE_2D_ARRAY : GL_TEXTURE_2D, 1, &id);
   texture.object = TextureObject(id);
   texture.width = width;
   texture.height = height;
   texture.internalFormat = internalFormat;
-  glTextureStorage2D(id, 1, internalFormat, width, height);
+  texture.layers = layers;
+  if (layers > 0)
+    glTextureStorage3D(id, 1, internalFormat, width, height, layers);
+  else
+    glTextureStorage2D(id, 1, internalFormat, width, height);
   glTextureParameteri(id, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
   glTextureParameteri(id, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
   glTextureParameteri(id, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
   glTextureParameteri(id, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
   checkGlError("allocating a texture");
+}
+
+}  // namespace
+
+void ensureTexture(Texture2D& texture, GLenum internalFormat, int width, int height) {
+  if (!texture.matches(width, height, internalFormat))
+    allocateTexture(texture, internalFormat, width, height, 0);
+}
+
+void ensureTextureArray(Texture2D& texture, GLenum internalFormat, int width, int height, int layers) {
+  if (!texture.matches(width, height, internalFormat, layers))
+    allocateTexture(texture, internalFormat, width, height, layers);
 }
 
 void uploadTexture(Texture2D& texture, GLenum internalFormat, int width, int height, int channels,

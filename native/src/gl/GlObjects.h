@@ -82,17 +82,20 @@ struct Texture2D {
   int width = 0;
   int height = 0;
   GLenum internalFormat = 0;
+  int layers = 0;  ///< 0 for a GL_TEXTURE_2D; the layer count of a GL_TEXTURE_2D_ARRAY (ensureTextureArray)
 
   GLuint id() const { return object.id(); }
   explicit operator bool() const { return bool(object); }
-  bool matches(int w, int h, GLenum format) const {
-    return object && width == w && height == h && internalFormat == format;
+  bool matches(int w, int h, GLenum format, int layerCount = 0) const {
+    return object && width == w && height == h && internalFormat == format && layers == layerCount;
   }
 };
 
 /// Makes `texture` a w×h texture of `internalFormat` unless it already is one (render targets are reused
 /// across frames and reallocated only when the frame size changes).
 void ensureTexture(Texture2D& texture, GLenum internalFormat, int width, int height);
+/// The same for a 2D array texture of `layers` layers.
+void ensureTextureArray(Texture2D& texture, GLenum internalFormat, int width, int height, int layers);
 /// Uploads top-row-first float pixels (1, 3 or 4 channels) into a new texture, flipped so texel row 0 is the
 /// image's bottom row, as GL's window coordinates expect. `linear` selects bilinear filtering.
 void uploadTexture(Texture2D& texture, GLenum internalFormat, int width, int height, int channels,

@@ -48,7 +48,7 @@ LiquidData RefractionPass::run(const std::optional<SurfaceLayers>& splashes,
   // The marches' four depth reads per sample become one: the layers packed into one texel per pixel; and
   // the normals into one array texture.
   ensureTexture(layerDepths_, GL_RGBA32F, width, height);
-  ensureLayerNormals(width, height);
+  ensureTextureArray(layerNormals_, GL_RGBA16F, width, height, 4);
   if (tiles) clearToNoLiquid();  // the tiles not drawn keep these values
   bindColorTargets(packFramebuffer_.id(), {&layerDepths_});
   const GLuint pack = packFramebuffer_.id();
@@ -132,20 +132,6 @@ LiquidData RefractionPass::run(const std::optional<SurfaceLayers>& splashes,
   checkGlError("refracting through the liquid");
   return {color_,       splashColor_,  surfaceClass_,  thickness_, frontDepth_,
           frontNormal_, refractionUv_, transmittance_, reflection_};
-}
-
-void RefractionPass::ensureLayerNormals(int width, int height) {
-  if (layerNormals_.matches(width, height, GL_RGBA16F)) return;
-  GLuint id = 0;
-  glCreateTextures(GL_TEXTURE_2D_ARRAY, 1, &id);
-  layerNormals_.object = TextureObject(id);
-  layerNormals_.width = width;
-  layerNormals_.height = height;
-  layerNormals_.internalFormat = GL_RGBA16F;
-  glTextureStorage3D(id, 1, GL_RGBA16F, width, height, 4);
-  glTextureParameteri(id, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
-  glTextureParameteri(id, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
-  checkGlError("allocating the refraction's normal layers");
 }
 
 void RefractionPass::clearToNoLiquid() {

@@ -34,7 +34,6 @@ class RefractionPass {
 
  private:
   void clearToNoLiquid();
-  void ensureLayerNormals(int width, int height);
 
   ProgramObject program_;
   ProgramObject packProgram_;  ///< refraction_layers.frag
