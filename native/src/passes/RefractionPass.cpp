@@ -40,43 +40,10 @@ LiquidData RefractionPass::run(const std::optional<SurfaceLayers>& splashes,
   glBindImageTexture(0, refractionUv_.id(), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA32F);
   glBindImageTexture(1, transmittance_.id(), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA32F);
   glBindImageTexture(2, reflection_.id(), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA32F);
-  auto layerTexture = [&](const std::optional<SurfaceLayers>& layers, bool back, bool normal) {
-    if (!layers) return emptyLayer_.id();
-    const DepthLayer& layer = back ? layers->back : layers->front;
-    return normal ? layer.normal.id() : layer.eyeDepth.id();
-  };
-  // The marches' four depth reads per sample become one: the layers packed into one texel per pixel; and
-  // the normals into one array texture.
   ensureTexture(layerDepths_, GL_RGBA32F, width, height);
   ensureTextureArray(layerNormals_, GL_RGBA16F, width, height, 4);
   if (tiles) clearToNoLiquid();  // the tiles not drawn keep these values
-  bindColorTargets(packFramebuffer_.id(), {&layerDepths_});
-  const GLuint pack = packFramebuffer_.id();
-  GLenum packAttachments[5] = {GL_COLOR_ATTACHMENT0};
-  for (int layer = 0; layer < 4; ++layer) {
-    packAttachments[layer + 1] = GL_COLOR_ATTACHMENT1 + GLenum(layer);
-    glNamedFramebufferTextureLayer(pack, packAttachments[layer + 1], layerNormals_.id(), 0, layer);
-  }
-  glNamedFramebufferDrawBuffers(pack, 5, packAttachments);
-  if (tiles) {
-    const float noNormal[4] = {0.0f, 0.0f, 0.0f, 0.0f};
-    for (GLint drawBuffer = 1; drawBuffer < 5; ++drawBuffer)
-      glClearNamedFramebufferfv(pack, GL_COLOR, drawBuffer, noNormal);
-  }
-  glDisable(GL_DEPTH_TEST);
-  glDisable(GL_BLEND);
-  glUseProgram(packProgram_.id());
-  for (GLuint body = 0; body < 2; ++body)
-    for (GLuint back = 0; back < 2; ++back) {
-      const std::optional<SurfaceLayers>& layers = body == 0 ? splashes : aggregates;
-      glBindTextureUnit(body * 2 + back, layerTexture(layers, back == 1, false));
-      glBindTextureUnit(4 + body * 2 + back, layerTexture(layers, back == 1, true));
-    }
-  drawFullscreen(emptyVertexArray_.id(), tiles);
-  // The next pass to bind this framebuffer names its own attachments: leave none of the array's behind.
-  for (int layer = 0; layer < 4; ++layer)
-    glNamedFramebufferTexture(pack, GL_COLOR_ATTACHMENT1 + GLenum(layer), 0, 0);
-  checkGlError("packing the depth layers for the refraction");
+  packLayers(splashes, aggregates, tiles);
 
   const GLuint framebuffer = framebuffer_.id();
   const Texture2D* outputs[] = {&color_,     &splashColor_, &surfaceClass_,
@@ -132,6 +99,44 @@ LiquidData RefractionPass::run(const std::optional<SurfaceLayers>& splashes,
   checkGlError("refracting through the liquid");
   return {color_,       splashColor_,  surfaceClass_,  thickness_, frontDepth_,
           frontNormal_, refractionUv_, transmittance_, reflection_};
+}
+
+void RefractionPass::packLayers(const std::optional<SurfaceLayers>& splashes,
+                                const std::optional<SurfaceLayers>& aggregates, const PixelTiles* tiles) {
+  auto layerTexture = [&](const std::optional<SurfaceLayers>& layers, bool back, bool normal) {
+    if (!layers) return emptyLayer_.id();
+    const DepthLayer& layer = back ? layers->back : layers->front;
+    return normal ? layer.normal.id() : layer.eyeDepth.id();
+  };
+  // The marches' four depth reads per sample become one: the layers packed into one texel per pixel; and
+  // the normals into one array texture.
+  bindColorTargets(packFramebuffer_.id(), {&layerDepths_});
+  const GLuint pack = packFramebuffer_.id();
+  GLenum packAttachments[5] = {GL_COLOR_ATTACHMENT0};
+  for (int layer = 0; layer < 4; ++layer) {
+    packAttachments[layer + 1] = GL_COLOR_ATTACHMENT1 + GLenum(layer);
+    glNamedFramebufferTextureLayer(pack, packAttachments[layer + 1], layerNormals_.id(), 0, layer);
+  }
+  glNamedFramebufferDrawBuffers(pack, 5, packAttachments);
+  if (tiles) {  // the tiles not drawn keep no normal (clearToNoLiquid clears layerDepths_)
+    const float noNormal[4] = {0.0f, 0.0f, 0.0f, 0.0f};
+    for (GLint drawBuffer = 1; drawBuffer < 5; ++drawBuffer)
+      glClearNamedFramebufferfv(pack, GL_COLOR, drawBuffer, noNormal);
+  }
+  glDisable(GL_DEPTH_TEST);
+  glDisable(GL_BLEND);
+  glUseProgram(packProgram_.id());
+  for (GLuint body = 0; body < 2; ++body)
+    for (GLuint back = 0; back < 2; ++back) {
+      const std::optional<SurfaceLayers>& layers = body == 0 ? splashes : aggregates;
+      glBindTextureUnit(body * 2 + back, layerTexture(layers, back == 1, false));
+      glBindTextureUnit(4 + body * 2 + back, layerTexture(layers, back == 1, true));
+    }
+  drawFullscreen(emptyVertexArray_.id(), tiles);
+  // The next pass to bind this framebuffer names its own attachments: leave none of the array's behind.
+  for (int layer = 0; layer < 4; ++layer)
+    glNamedFramebufferTexture(pack, GL_COLOR_ATTACHMENT1 + GLenum(layer), 0, 0);
+  checkGlError("packing the depth layers for the refraction");
 }
 
 void RefractionPass::clearToNoLiquid() {

@@ -33,6 +33,10 @@ class RefractionPass {
   RefractionStatistics statistics() const;
 
  private:
+  /// refraction_layers.frag: the four layers' depths into layerDepths_ and their normals into layerNormals_
+  /// (both allocated, and with `tiles` the former cleared, by run).
+  void packLayers(const std::optional<SurfaceLayers>& splashes,
+                  const std::optional<SurfaceLayers>& aggregates, const PixelTiles* tiles);
   void clearToNoLiquid();
 
   ProgramObject program_;
