@@ -31,26 +31,25 @@ LitBackgroundData LiquidLighting::run(const LightingPreparation& lights, const C
       caustics_.addLight(light.view.light, *layers, background, parameters.liquid, parameters.light);
     }
   }
-  if (lights.sky) {
-    std::optional<SurfaceLayers> layers;
-    {
-      ScopedPassTimer timed(timer, "sky_depth_layers");
-      // Depth below the surface and the liquid a point's hemisphere holds need no normals, so the sky's
-      // layers are neither smoothed nor given normals.
-      layers.emplace(layers_.runDepthOnly(*lights.sky, camera));
-    }
-    std::optional<SkyOcclusionData> occlusion;
-    if (occludeSky) {
-      ScopedPassTimer timed(timer, "sky_occlusion");
-      occlusion.emplace(
-          skyOcclusion_.run(*layers, lights.sky->view, lights.bounds, background, parameters, width, height));
-    }
-    ScopedPassTimer timed(timer, "submerged_sky");
-    shadow_.setSky(*layers, background, parameters.liquid, particleRadius, occlusion ? &*occlusion : nullptr);
+  // prepareLights gives the sky's view with every set of lights: the sky light a submerged point loses.
+  const LightPreparation& sky = lights.sky.value();
+  std::optional<SurfaceLayers> layers;
+  {
+    ScopedPassTimer timed(timer, "sky_depth_layers");
+    // Depth below the surface and the liquid a point's hemisphere holds need no normals, so the sky's layers
+    // are neither smoothed nor given normals.
+    layers.emplace(layers_.runDepthOnly(sky, camera));
+  }
+  std::optional<SkyOcclusionData> occlusion;
+  if (occludeSky) {
+    ScopedPassTimer timed(timer, "sky_occlusion");
+    occlusion.emplace(
+        skyOcclusion_.run(*layers, sky.view, lights.bounds, background, parameters, width, height));
   }
   ScopedPassTimer timed(timer, "lit_background");
-  return litBackground_.run(background, shadow_.result(), caustics_.result(), parameters.light, width,
-                            height);
+  return litBackground_.run(background, shadow_.result(), caustics_.result(),
+                            SkyView{*layers, occlusion ? &*occlusion : nullptr, particleRadius}, parameters,
+                            width, height);
 }
 
 }  // namespace spindrift

@@ -8,7 +8,6 @@ namespace spindrift {
 /// The sums over the lights that the lit background is resolved from (the liquid shadow pass's output).
 struct LiquidShadowData {
   const Texture2D& shadowSum;  ///< RGBA32F: (sum of weight x shadow, sum of weight), weight = irradiance.
-  const Texture2D& skyKept;    ///< RGBA32F: the sky and bounced light a point keeps.
   /// RGBA32F: the diffuse direct light the lamps give each point without the liquid (irradiance x cos / pi x
   /// colour, the units of Cycles' DiffDir), summed over the lights.
   const Texture2D& lampDiffuse;

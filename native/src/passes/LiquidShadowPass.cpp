@@ -9,18 +9,15 @@ LiquidShadowPass::LiquidShadowPass(const ShaderLibrary& shaders)
     : lightProgram_(shaders.program({"fullscreen.vert", "liquid_shadow.frag"})),
       straightLightProgram_(
           shaders.program({"fullscreen.vert", "liquid_shadow.frag"}, {"TRANSMIT_STRAIGHT"})),
-      skyProgram_(shaders.program({"fullscreen.vert", "liquid_shadow.frag"}, {"SKY_MODE"})),
       emptyVertexArray_(createVertexArray()),
       framebuffer_(createFramebuffer()) {}
 
 void LiquidShadowPass::begin(int width, int height) {
   ensureTexture(shadowSum_, GL_RGBA32F, width, height);
-  ensureTexture(skyKept_, GL_RGBA32F, width, height);
   ensureTexture(lampDiffuse_, GL_RGBA32F, width, height);
-  const float nothing[4] = {0.0f, 0.0f, 0.0f, 0.0f}, everything[4] = {1.0f, 1.0f, 1.0f, 1.0f};
+  const float nothing[4] = {0.0f, 0.0f, 0.0f, 0.0f};
   glClearTexImage(shadowSum_.id(), 0, GL_RGBA, GL_FLOAT, nothing);
   glClearTexImage(lampDiffuse_.id(), 0, GL_RGBA, GL_FLOAT, nothing);
-  glClearTexImage(skyKept_.id(), 0, GL_RGBA, GL_FLOAT, everything);
 }
 
 void LiquidShadowPass::addLight(const Light& light, const SurfaceLayers& layers,
@@ -38,27 +35,6 @@ void LiquidShadowPass::addLight(const Light& light, const SurfaceLayers& layers,
   glBlendFunc(GL_ONE, GL_ONE);
   glBlendEquation(GL_FUNC_ADD);
   bindColorTargets(framebuffer_.id(), {&shadowSum_, &lampDiffuse_});
-  draw(program, layers, background);
-  glDisable(GL_BLEND);
-  checkGlError("shadowing the background");
-}
-
-void LiquidShadowPass::setSky(const SurfaceLayers& layers, const BackgroundData& background,
-                              const LiquidParameters& parameters, float particleRadius,
-                              const SkyOcclusionData* occlusion) {
-  const GLuint program = skyProgram_.id();
-  glProgramUniform1f(program, uniformLocation(program, "submergedTolerance"), 2.0f * particleRadius);
-  glProgramUniform1i(program, uniformLocation(program, "skyOcclusionScale"),
-                     occlusion ? occlusion->scale : 0);
-  const glm::vec3 absorption = parameters.absorption * parameters.absorption_rgb;
-  glProgramUniform3fv(program, uniformLocation(program, "absorptionPerUnitLength"), 1, &absorption.x);
-  glBindTextureUnit(4, occlusion ? occlusion->kept.id() : 0);
-  bindColorTargets(framebuffer_.id(), {&skyKept_});
-  draw(program, layers, background);
-  checkGlError("finding submerged points");
-}
-
-void LiquidShadowPass::draw(GLuint program, const SurfaceLayers& layers, const BackgroundData& background) {
   glDisable(GL_DEPTH_TEST);
   glUseProgram(program);
   glBindTextureUnit(0, background.eyeDepth.id());
@@ -66,6 +42,8 @@ void LiquidShadowPass::draw(GLuint program, const SurfaceLayers& layers, const B
   glBindTextureUnit(2, layers.back.eyeDepth.id());
   glBindTextureUnit(3, layers.front.normal.id());
   drawFullscreenTriangle(emptyVertexArray_.id());
+  glDisable(GL_BLEND);
+  checkGlError("shadowing the background");
 }
 
 }  // namespace spindrift

@@ -10,8 +10,8 @@ LitBackgroundPass::LitBackgroundPass(const ShaderLibrary& shaders)
       framebuffer_(createFramebuffer()) {}
 
 LitBackgroundData LitBackgroundPass::run(const BackgroundData& background, const LiquidShadowData& shadows,
-                                         const CausticData& caustics, const LightParameters& parameters,
-                                         int width, int height) {
+                                         const CausticData& caustics, const SkyView& sky,
+                                         const Parameters& parameters, int width, int height) {
   for (Texture2D* target : {&color_, &liquidShadow_, &caustics_, &skyKept_})
     ensureTexture(*target, GL_RGBA32F, width, height);
   bindColorTargets(framebuffer_.id(), {&color_, &liquidShadow_, &caustics_, &skyKept_});
@@ -21,14 +21,21 @@ LitBackgroundData LitBackgroundPass::run(const BackgroundData& background, const
   glUseProgram(program);
   const bool hasLightPasses = background.lightPasses != nullptr;
   glUniform1i(uniformLocation(program, "hasLightPasses"), hasLightPasses ? 1 : 0);
-  glUniform1f(uniformLocation(program, "directFraction"), parameters.direct_fraction);
+  glUniform1f(uniformLocation(program, "directFraction"), parameters.light.direct_fraction);
+  const glm::vec3 absorption = parameters.liquid.absorption * parameters.liquid.absorption_rgb;
+  glUniform3fv(uniformLocation(program, "absorptionPerUnitLength"), 1, &absorption.x);
+  glUniform1f(uniformLocation(program, "submergedTolerance"), 2.0f * sky.particleRadius);
+  glUniform1i(uniformLocation(program, "skyOcclusionScale"), sky.occlusion ? sky.occlusion->scale : 0);
   glBindTextureUnit(0, background.color.id());
   glBindTextureUnit(1, shadows.shadowSum.id());
   glBindTextureUnit(2, caustics.causticSum.id());
-  glBindTextureUnit(3, shadows.skyKept.id());
+  glBindTextureUnit(3, background.eyeDepth.id());
   for (int i = 0; i < 3; ++i)
     glBindTextureUnit(GLuint(4 + i), hasLightPasses ? background.lightPasses[i].id() : 0);
   glBindTextureUnit(7, shadows.lampDiffuse.id());
+  glBindTextureUnit(8, sky.layers.front.eyeDepth.id());
+  glBindTextureUnit(9, sky.layers.back.eyeDepth.id());
+  glBindTextureUnit(10, sky.occlusion ? sky.occlusion->kept.id() : 0);
   drawFullscreenTriangle(emptyVertexArray_.id());
   checkGlError("lighting the background");
   return {BackgroundData{color_, background.eyeDepth, background.environment, background.fallbackColor,

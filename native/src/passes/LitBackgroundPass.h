@@ -1,6 +1,7 @@
 #pragma once
 
 #include "framedata/BackgroundData.h"
+#include "framedata/DepthLayers.h"
 #include "framedata/LightData.h"
 #include "gl/GlObjects.h"
 #include "gl/ShaderLibrary.h"
@@ -8,14 +9,23 @@
 
 namespace spindrift {
 
-/// Applies the shadow, caustic and sky sums to the background (shaders/lit_background.frag): exactly through
-/// Cycles' light passes when the background has them, else with light.direct_fraction.
+/// The sky's view of the liquid, which the lit background finds the sky light each point keeps from.
+struct SkyView {
+  const SurfaceLayers& layers;        ///< The liquid seen from straight above (LightDepthLayers).
+  const SkyOcclusionData* occlusion;  ///< The sky occlusion's samples, or null when it did not run.
+  float particleRadius;               ///< Points two radii below the drawn bottom still lie in it.
+};
+
+/// Applies the shadow and caustic sums and the sky light each point keeps (below the liquid's surface, and
+/// past other liquid) to the background (shaders/lit_background.frag): exactly through Cycles' light passes
+/// when the background has them, else with light.direct_fraction. The sky's view must be bound at binding 2
+/// (LightDepthLayers) when `run` runs.
 class LitBackgroundPass {
  public:
   explicit LitBackgroundPass(const ShaderLibrary& shaders);
   LitBackgroundData run(const BackgroundData& background, const LiquidShadowData& shadows,
-                        const CausticData& caustics, const LightParameters& parameters, int width,
-                        int height);
+                        const CausticData& caustics, const SkyView& sky, const Parameters& parameters,
+                        int width, int height);
 
  private:
   ProgramObject program_;
