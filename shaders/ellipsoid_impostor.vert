@@ -23,6 +23,33 @@ flat out vec3 vUnitRayPerPixelY;
 flat out uint vEllipsoid;  // its index in the list
 
 const float kSilhouetteMarginPixels = 0.1;
+const uint kShownEverywhere = 0xffffffffu;
+
+// Widens [low, high] by one layer's shown rectangle (EllipsoidInstance::shownRectangles); false where that
+// layer's rectangle does not limit the ellipsoid. A rectangle whose low exceeds its high is empty.
+bool widenByShown(uvec2 bits, inout vec2 low, inout vec2 high) {
+  if (bits.x == kShownEverywhere) return false;
+  vec2 layerLow = vec2(bits & 0xffffu), layerHigh = vec2(bits >> 16);
+  if (all(lessThanEqual(layerLow, layerHigh))) {
+    low = min(low, layerLow);
+    high = max(high, layerHigh);
+  }
+  return true;
+}
+
+// The window rectangle of pixels (inclusive) this draw must shade of the ellipsoid: where it may hold the
+// layer's surface (the occlusion test's, prep/OccludedAggregates.cpp), both layers' with DEPTH_RANGE; false
+// where nothing limits it.
+bool shownRectangle(Ellipsoid ellipsoid, out vec2 low, out vec2 high) {
+  low = vec2(1e9);
+  high = vec2(-1e9);
+#ifdef DEPTH_RANGE
+  return widenByShown(ellipsoid.shownRectangles.xy, low, high) &&
+         widenByShown(ellipsoid.shownRectangles.zw, low, high);
+#else
+  return widenByShown(backFaces ? ellipsoid.shownRectangles.zw : ellipsoid.shownRectangles.xy, low, high);
+#endif
+}
 
 void main() {
   vEllipsoid = uint(firstEllipsoid + gl_VertexID / 3);
@@ -72,7 +99,19 @@ void main() {
     // The rectangle's depth is irrelevant (the fragment shader writes gl_FragDepth); mid-range keeps it
     // inside the clip volume.
     float bound = backFaces ? -centre.z + radius : -centre.z - radius;
-    gl_Position = vec4(middle + offset / pixelsPerUnit, depthBufferFromEyeDepth(bound) * 2.0 - 1.0, 1.0);
+    float depth = depthBufferFromEyeDepth(bound) * 2.0 - 1.0;
+    gl_Position = vec4(middle + offset / pixelsPerUnit, depth, 1.0);
+    // Where the occlusion test limits it to a smaller rectangle, the right triangle whose legs are twice the
+    // rectangle's sides (its hypotenuse through the far corner; pixel centres lie half a pixel inside) instead:
+    // llvmpipe pays for every fragment the triangle covers, and the fragments outside the ellipse discard.
+    vec2 low, high;
+    if (shownRectangle(ellipsoid, low, high)) {
+      vec2 size = max(high + 1.0 - low, vec2(0.0));
+      if (2.0 * size.x * size.y < 5.196152 * halfAxes.x * halfAxes.y) {  // the ellipse's triangle: 3 sqrt 3 ab
+        vec2 window = low + 2.0 * size * vec2(gl_VertexID % 3 == 1, gl_VertexID % 3 == 2);
+        gl_Position = vec4(window / pixelsPerUnit - 1.0, depth, 1.0);
+      }
+    }
     return;
   }
 

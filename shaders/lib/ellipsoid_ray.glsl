@@ -5,6 +5,9 @@
 struct Ellipsoid {
   vec4 centreAndBoundingRadius;  // world centre, radius of a containing sphere
   vec4 inverseAxesRows[3];       // rows of the world-space inverse axes matrix
+  // The window rectangles outside which it cannot hold the front layer (x, y) and the back layer (z, w), each
+  // axis (low | high << 16); all bits set where nothing limits it (EllipsoidInstance::shownRectangles).
+  uvec4 shownRectangles;
 };
 
 layout(std430, binding = 0) readonly buffer Ellipsoids {

@@ -2,6 +2,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstddef>
+#include <cstring>
 #include <utility>
 #include <vector>
 
@@ -51,6 +53,31 @@ inline std::pair<double, double> nearestEntryAndFarthestExit(
     farthest = std::max(farthest, chord.exit);
   }
   return {nearest, farthest};
+}
+
+// Whether two instances are the same ellipsoid (centre, bound and axes), whatever shown rectangles the
+// occlusion test gave either.
+inline bool sameShape(const spindrift::EllipsoidInstance& a, const spindrift::EllipsoidInstance& b) {
+  return std::memcmp(&a, &b, offsetof(spindrift::EllipsoidInstance, shownRectangles)) == 0;
+}
+
+// Whether the impostor pass draws the ellipsoid's fragment at a window pixel (x right, y up) in the front or
+// the back layer: inside that layer's shown rectangle, or anywhere where it has none.
+inline bool shownAt(const spindrift::EllipsoidInstance& ellipsoid, bool back, int x, int y) {
+  const std::uint32_t columns = back ? ellipsoid.shownRectangles.z : ellipsoid.shownRectangles.x;
+  const std::uint32_t rows = back ? ellipsoid.shownRectangles.w : ellipsoid.shownRectangles.y;
+  if (columns == spindrift::EllipsoidInstance::kShownEverywhere) return true;
+  return int(columns & 0xffffu) <= x && x <= int(columns >> 16) && int(rows & 0xffffu) <= y &&
+         y <= int(rows >> 16);
+}
+
+// The ellipsoids of a layer's list that the impostor pass draws at a window pixel (x right, y up).
+inline std::vector<spindrift::EllipsoidInstance> shownAtPixel(
+    const std::vector<spindrift::EllipsoidInstance>& layer, bool back, int x, int y) {
+  std::vector<spindrift::EllipsoidInstance> shown;
+  for (const spindrift::EllipsoidInstance& ellipsoid : layer)
+    if (shownAt(ellipsoid, back, x, y)) shown.push_back(ellipsoid);
+  return shown;
 }
 
 }  // namespace ellipsoid_test

@@ -84,7 +84,7 @@ using ellipsoid_test::nearestEntryAndFarthestExit;
 
 bool contains(const std::vector<EllipsoidInstance>& ellipsoids, const EllipsoidInstance& ellipsoid) {
   for (const EllipsoidInstance& other : ellipsoids)
-    if (std::memcmp(&other, &ellipsoid, sizeof(EllipsoidInstance)) == 0) return true;
+    if (ellipsoid_test::sameShape(other, ellipsoid)) return true;
   return false;
 }
 
@@ -127,8 +127,7 @@ TEST(HiddenInterior, EveryEllipsoidLeftOutLiesInsideTheOthers) {
       ++checked;
       bool inside = false;
       for (const EllipsoidInstance& other : all)
-        if (std::memcmp(&other, &dropped[d], sizeof(EllipsoidInstance)) != 0 &&
-            ellipsoidValue(other, point) < 1.0f) {
+        if (!ellipsoid_test::sameShape(other, dropped[d]) && ellipsoidValue(other, point) < 1.0f) {
           inside = true;
           break;
         }

@@ -27,6 +27,7 @@ namespace spindrift {
 namespace {
 
 using ellipsoid_test::nearestEntryAndFarthestExit;
+using ellipsoid_test::shownAtPixel;
 
 // The ray through a pixel's centre (x right, y down), in double precision: a point a metre before the eye in
 // float world coordinates would be off by a float's rounding of the eye's position, 300 m away too much.
@@ -107,8 +108,10 @@ PixelCheck everyPixel(const std::vector<EllipsoidInstance>& all, const std::vect
       const auto [allFront, allBack] = layers(all);
       if (allFront > 1e9) continue;
       ++check.hits;
-      check.differing += layers(front).first != allFront;
-      check.differing += layers(back).second != allBack;
+      // Each layer as the impostor pass draws it there: the ellipsoids whose shown rectangle holds the pixel.
+      const int windowY = camera.height - 1 - y;
+      check.differing += layers(shownAtPixel(front, false, x, windowY)).first != allFront;
+      check.differing += layers(shownAtPixel(back, true, x, windowY)).second != allBack;
     }
   return check;
 }
@@ -131,8 +134,13 @@ PixelCheck everyPixelBeforeSolids(const std::vector<EllipsoidInstance>& all,
       const auto [allFront, allBack] = entryAndExitBeforeSolid(all, eye, direction, cosine, solid);
       if (allFront > 1e9) continue;
       ++check.hits;
-      check.differing += entryAndExitBeforeSolid(front, eye, direction, cosine, solid).first != allFront;
-      check.differing += entryAndExitBeforeSolid(back, eye, direction, cosine, solid).second != allBack;
+      const int windowY = camera.height - 1 - y;
+      check.differing +=
+          entryAndExitBeforeSolid(shownAtPixel(front, false, x, windowY), eye, direction, cosine, solid)
+              .first != allFront;
+      check.differing +=
+          entryAndExitBeforeSolid(shownAtPixel(back, true, x, windowY), eye, direction, cosine, solid)
+              .second != allBack;
     }
   return check;
 }
@@ -226,7 +234,7 @@ TEST(OccludedAggregates, WhatTheSolidsHideAtEveryPixelGoesFromBothLayers) {
     if (!seen || !hidden) continue;
     ++whollyHidden;
     keptThough += std::any_of(walled.begin(), walled.end(), [&](const EllipsoidInstance& kept) {
-      return std::memcmp(&kept, &ellipsoid, sizeof(EllipsoidInstance)) == 0;
+      return ellipsoid_test::sameShape(kept, ellipsoid);
     });
   }
   EXPECT_GT(whollyHidden, 500u) << "of " << all.size();
@@ -322,7 +330,7 @@ TEST(OccludedAggregates, WhatReachesTheNearPlaneIsKeptInBothLayers) {
   const std::vector<EllipsoidInstance> back(kept.begin() + std::ptrdiff_t(split.frontOnly), kept.end());
   const auto holds = [](const std::vector<EllipsoidInstance>& list, const EllipsoidInstance& ellipsoid) {
     for (const EllipsoidInstance& other : list)
-      if (std::memcmp(&other, &ellipsoid, sizeof(EllipsoidInstance)) == 0) return true;
+      if (ellipsoid_test::sameShape(other, ellipsoid)) return true;
     return false;
   };
   const glm::mat4 cameraFromWorld = camera.cameraFromWorld();

@@ -197,6 +197,69 @@ TEST(OcclusionRows, AvxAndPortableHidingWalksEndWithTheSameFlags) {
   }
 }
 
+TEST(OcclusionRows, ShownSpansHoldWhereTheHidingWalkLetsAFlagFallAndAgreeBetweenWalks) {
+  // Bounds that hide the ellipsoid at every pixel but a few, each layer its own: the span of the pixels
+  // where each layer shows it is exactly those pixels' (a lone one is the hiding walk's flag falling there),
+  // in both walks.
+  const std::vector<double> u = rayColumns();
+  std::mt19937 random(17);
+  std::uniform_real_distribution<double> unit(0.0, 1.0);
+  const occlusion_rows::Cover cover = tiltedCover();
+  std::size_t walks = 0, shownFront = 0, shownBack = 0;
+  forEveryRow(
+      tiltedEllipsoidChords(), 1.02,
+      [&](const view_chords::RowChords& row, bool domain, bool solids, int first, int last) {
+        // Two pixels of the walked span per layer (it may reach past the row's ends, which never show).
+        const auto pick = [&] { return first + int(unit(random) * (last - first + 1)); };
+        const int shown[2][2] = {{pick(), pick()}, {pick(), pick()}};
+        const auto isShown = [&](int layer, int x) { return x == shown[layer][0] || x == shown[layer][1]; };
+        RowArrays arrays;
+        for (int x = 0; x < kWidth; ++x) {
+          double entry = 3.0, exit = 3.2;
+          row.at(u[std::size_t(x)], entry, exit);
+          arrays.front.push_back(isShown(0, x) ? entry : entry - 0.011 - 0.2 * unit(random));
+          arrays.back.push_back(isShown(1, x) ? exit : exit + 0.011 + 0.2 * unit(random));
+          arrays.enter.push_back(unit(random) < 0.5 ? entry + 0.05 * (unit(random) - 0.5) : entry - 1.0);
+          arrays.leave.push_back(unit(random) < 0.5 ? exit + 0.05 * (unit(random) - 0.5) : exit + 1.0);
+          arrays.solid.push_back(unit(random) < 0.05 ? cover.nearest - 0.01 : INFINITY);
+          const double owner = unit(random);
+          arrays.frontOwner.push_back(owner < 0.03 ? 3u : owner < 0.06 ? 7u : kNoOwner);
+          arrays.backOwner.push_back(owner > 0.97 ? 4u : owner > 0.94 ? 7u : kNoOwner);
+        }
+        const occlusion_rows::RowBounds bounds = arrays.bounds(domain, solids);
+        const bool inFront = unit(random) < 0.8, inBack = unit(random) < 0.8;
+        occlusion_rows::ShownSpan front[2], back[2];
+        occlusion_rows::shownRow(row, u.data(), first, last, cover, bounds, inFront, inBack, front[0],
+                                 back[0], occlusion_rows::Walk::Portable);
+        occlusion_rows::shownRow(row, u.data(), first, last, cover, bounds, inFront, inBack, front[1],
+                                 back[1], occlusion_rows::Walk::Fastest);
+        EXPECT_EQ(front[0].first, front[1].first) << first << " " << last;
+        EXPECT_EQ(front[0].last, front[1].last) << first << " " << last;
+        EXPECT_EQ(back[0].first, back[1].first) << first << " " << last;
+        EXPECT_EQ(back[0].last, back[1].last) << first << " " << last;
+        // Pixel by pixel, the hiding walk's flags fall exactly where a span holds the pixel.
+        for (int x = std::max(first, 0); x <= std::min(last, kWidth - 1); ++x) {
+          bool hiddenFront = inFront, hiddenBack = inBack;
+          occlusion_rows::hideRow(row, u.data(), x, x, cover, bounds, hiddenFront, hiddenBack,
+                                  occlusion_rows::Walk::Portable);
+          const bool frontAt = inFront && !hiddenFront, backAt = inBack && !hiddenBack;
+          if (frontAt) EXPECT_TRUE(front[0].first <= x && x <= front[0].last) << x;
+          if (backAt) EXPECT_TRUE(back[0].first <= x && x <= back[0].last) << x;
+          if (x == front[0].first || x == front[0].last) EXPECT_TRUE(frontAt) << x;
+          if (x == back[0].first || x == back[0].last) EXPECT_TRUE(backAt) << x;
+        }
+        ++walks;
+        shownFront += !front[0].empty();
+        shownBack += !back[0].empty();
+      });
+  // Each layer shown in some walks and not in others (most spans miss the ellipse or its clipped chord).
+  EXPECT_GT(walks, 2000u);
+  EXPECT_GT(shownFront, 100u);
+  EXPECT_GT(shownBack, 100u);
+  EXPECT_LT(shownFront, walks - 1000u);
+  EXPECT_LT(shownBack, walks - 1000u);
+}
+
 TEST(OcclusionRows, AnEmptySpanChangesNothing) {
   const view_chords::ChordPolynomials chords = [] {
     EllipsoidInstance sphere{};

@@ -1,6 +1,7 @@
 #pragma once
 
 #include <cstddef>
+#include <cstdint>
 #include <vector>
 
 #include <glm/vec4.hpp>
@@ -13,12 +14,22 @@
 namespace spindrift {
 
 /// One liquid particle as the impostor passes draw it: the ellipsoid {x : |inverseAxes * (x - centre)| = 1}.
-/// A sphere of radius r has inverseAxes = I / r. Laid out for a std430 shader storage buffer (64 bytes).
+/// A sphere of radius r has inverseAxes = I / r. Laid out for a std430 shader storage buffer (80 bytes).
 struct EllipsoidInstance {
   glm::vec4 centreAndBoundingRadius;  ///< World centre; w: radius of a sphere that contains the ellipsoid.
   glm::vec4 inverseAxesRows[3];       ///< Rows of the world-space inverse of the axes matrix; w unused (0).
+  /// The window rectangles (x right, y up, inclusive pixels) outside which the ellipsoid cannot hold the
+  /// front layer's surface (x, y) and the back layer's (z, w), each as (low | high << 16) per axis:
+  /// dropOccludedAggregates finds them; kShownEverywhere where nothing limits it.
+  glm::uvec4 shownRectangles{kShownEverywhere};
+  static constexpr std::uint32_t kShownEverywhere = 0xffffffffu;
 };
-static_assert(sizeof(EllipsoidInstance) == 64, "EllipsoidInstance must match the shaders' std430 layout");
+static_assert(sizeof(EllipsoidInstance) == 80, "EllipsoidInstance must match the shaders' std430 layout");
+
+/// One axis of a shown rectangle packed as EllipsoidInstance::shownRectangles holds it.
+inline std::uint32_t packPixelRange(int low, int high) {
+  return std::uint32_t(low) | std::uint32_t(high) << 16;
+}
 
 /// How an ellipsoid list is split between the front and the back depth layer: the first `frontOnly` are drawn
 /// into the front layer only, the last `backOnly` into the back layer only, the others into both

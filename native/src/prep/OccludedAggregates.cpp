@@ -189,27 +189,54 @@ OccludedAggregatesResult dropOccludedAggregates(std::vector<EllipsoidInstance>& 
   // An ellipsoid is hidden from a layer when at every pixel where it may be drawn, another ellipsoid's
   // surface is certainly nearer than its grown self's entry (front) or farther than its exit (back), or
   // another one holds the box's face there. Its own shrunk self never hides it: that chord lies inside the
-  // grown one's, and the margins only widen that; a face's owner is never hidden where it owns it.
+  // grown one's, and the margins only widen that; a face's owner is never hidden where it owns it. Where it
+  // is shown, the rectangle of those pixels is all the impostor pass needs to draw of it in that layer: at
+  // every other pixel a surface it cannot beat is drawn (the pixel's winner is shown there). Those rectangles
+  // are a few hundredths of the ellipsoids' own on the dam break (docs/frame-cost.md, session 41).
   std::vector<char> inFront(count), inBack(count);
+  const bool packable = grid.width < 0xffff && grid.height < 0xffff;
   tbb::parallel_for(tbb::blocked_range<std::size_t>(0, count), [&](const tbb::blocked_range<std::size_t>& r) {
     for (std::size_t i = r.begin(); i != r.end(); ++i) {
       inFront[i] = i < backFrom;
       inBack[i] = i >= split.frontOnly;
+      ellipsoids[i].shownRectangles = glm::uvec4(EllipsoidInstance::kShownEverywhere);
       const ViewedEllipsoid& view = viewed[i];
       if (!view.valid) continue;
-      bool hiddenFront = inFront[i], hiddenBack = inBack[i];
       // No ray meets the grown ellipsoid nearer than its bounding sphere's near side or farther than its far
       // side: where those alone settle a pixel (deep inside a body, most pixels), no chord is needed.
       const occlusion_rows::Cover cover{std::uint32_t(i), view.nearest, view.farthest, view.chordMargin};
-      for (int y = view.reachLow.y; y <= view.reachHigh.y && (hiddenFront || hiddenBack); ++y) {
+      occlusion_rows::ShownSpan frontColumns, backColumns, frontRows, backRows;
+      for (int y = view.reachLow.y; y <= view.reachHigh.y; ++y) {
         int firstX, lastX;
         const RowChords row(view.chords, view.grown, grid.v(y));
         grid.rowSpan(row.cone, view.reachLow.x, view.reachHigh.x, firstX, lastX);
-        occlusion_rows::hideRow(row, grid.columnsU(), firstX, lastX, cover, rowBounds(y), hiddenFront,
-                                hiddenBack);
+        occlusion_rows::ShownSpan front, back;
+        occlusion_rows::shownRow(row, grid.columnsU(), firstX, lastX, cover, rowBounds(y), inFront[i],
+                                 inBack[i], front, back);
+        if (!front.empty()) {
+          frontColumns.add(front.first);
+          frontColumns.add(front.last);
+          frontRows.add(y);
+        }
+        if (!back.empty()) {
+          backColumns.add(back.first);
+          backColumns.add(back.last);
+          backRows.add(y);
+        }
       }
-      if (hiddenFront) inFront[i] = 0;
-      if (hiddenBack) inBack[i] = 0;
+      inFront[i] = inFront[i] && !frontRows.empty();
+      inBack[i] = inBack[i] && !backRows.empty();
+      // In the window's rows (y up), where a pixel index fits a rectangle's 16 bits.
+      glm::uvec4& shown = ellipsoids[i].shownRectangles;
+      if (!packable) continue;
+      if (inFront[i]) {
+        shown.x = packPixelRange(frontColumns.first, frontColumns.last);
+        shown.y = packPixelRange(grid.height - 1 - frontRows.last, grid.height - 1 - frontRows.first);
+      }
+      if (inBack[i]) {
+        shown.z = packPixelRange(backColumns.first, backColumns.last);
+        shown.w = packPixelRange(grid.height - 1 - backRows.last, grid.height - 1 - backRows.first);
+      }
     }
   });
 

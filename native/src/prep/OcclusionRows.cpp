@@ -253,6 +253,96 @@ __attribute__((target("avx512f"))) void hideRowAvx512(const view_chords::RowChor
   }
 }
 
+// Every pixel of the row, the chord computed where the bounds do not settle both layers: a layer is shown at
+// a pixel where hideRowPortable would let its flag fall there.
+void shownRowPortable(const view_chords::RowChords& row, const double* u, int firstX, int lastX,
+                      const Cover& cover, const RowBounds& bounds, bool inFront, bool inBack,
+                      ShownSpan& front, ShownSpan& back) {
+  const bool domain = bounds.boxEnter != nullptr;
+  for (int x = firstX; x <= lastX; ++x) {
+    if (bounds.solidFarthest && cover.nearest >= bounds.solidFarthest[x]) continue;
+    const bool frontTie =
+        domain && bounds.frontFaceOwner[x] != kNoOwner && bounds.frontFaceOwner[x] != cover.index;
+    const bool backTie =
+        domain && bounds.backFaceOwner[x] != kNoOwner && bounds.backFaceOwner[x] != cover.index;
+    const bool frontSettled = !inFront || frontTie || bounds.frontAtMost[x] < cover.nearest;
+    const bool backSettled = !inBack || backTie || bounds.backAtLeast[x] > cover.farthest;
+    if (frontSettled && backSettled) continue;
+    double entry, exit;
+    if (!row.at(u[x], entry, exit)) continue;
+    if (domain) {
+      entry = std::max(entry, bounds.boxEnter[x]);
+      exit = std::min(exit, bounds.boxLeave[x]);
+    }
+    if (entry > exit + 2.0 * cover.chordMargin) continue;
+    if (inFront && !frontTie && !(bounds.frontAtMost[x] < entry - cover.chordMargin)) front.add(x);
+    if (inBack && !backTie && !(bounds.backAtLeast[x] > exit + cover.chordMargin)) back.add(x);
+  }
+}
+
+// Eight pixels at a time, each lane computed as the portable walk computes it.
+__attribute__((target("avx512f"))) void shownRowAvx512(const view_chords::RowChords& row, const double* u,
+                                                       int firstX, int lastX, const Cover& cover,
+                                                       const RowBounds& bounds, bool inFront, bool inBack,
+                                                       ShownSpan& front, ShownSpan& back) {
+  const bool domain = bounds.boxEnter != nullptr;
+  const VectorRowChords chords(row);
+  const __m512d margin = _mm512_set1_pd(cover.chordMargin),
+                twoMargins = _mm512_set1_pd(2.0 * cover.chordMargin);
+  const __m512d nearest = _mm512_set1_pd(cover.nearest), farthest = _mm512_set1_pd(cover.farthest);
+  const __m512i noOwner = _mm512_set1_epi32(int(kNoOwner)), index = _mm512_set1_epi32(int(cover.index));
+  const __mmask8 frontLayer = inFront ? __mmask8(0xff) : __mmask8(0),
+                 backLayer = inBack ? __mmask8(0xff) : __mmask8(0);
+  // Widens a span by the lanes of `shown`, lane k being pixel x + k.
+  const auto widen = [](ShownSpan& span, int x, __mmask8 shown) {
+    if (!shown) return;
+    span.add(x + __builtin_ctz(unsigned(shown)));
+    span.add(x + 31 - __builtin_clz(unsigned(shown)));
+  };
+  for (int x = firstX; x <= lastX; x += 8) {
+    const int left = lastX - x + 1;
+    const __mmask8 lanes = left >= 8 ? __mmask8(0xff) : __mmask8((1u << left) - 1u);
+    __mmask8 active = lanes;
+    if (bounds.solidFarthest)
+      active &=
+          ~_mm512_cmp_pd_mask(nearest, _mm512_maskz_loadu_pd(lanes, bounds.solidFarthest + x), _CMP_GE_OQ);
+    __mmask8 frontTie = 0, backTie = 0;
+    if (domain) {
+      const __mmask16 lanes16 = lanes;
+      const __m512i frontOwner = _mm512_maskz_loadu_epi32(lanes16, bounds.frontFaceOwner + x);
+      const __m512i backOwner = _mm512_maskz_loadu_epi32(lanes16, bounds.backFaceOwner + x);
+      frontTie = __mmask8(_mm512_mask_cmpneq_epi32_mask(lanes16, frontOwner, noOwner) &
+                          _mm512_mask_cmpneq_epi32_mask(lanes16, frontOwner, index));
+      backTie = __mmask8(_mm512_mask_cmpneq_epi32_mask(lanes16, backOwner, noOwner) &
+                         _mm512_mask_cmpneq_epi32_mask(lanes16, backOwner, index));
+    }
+    const __m512d frontBound = _mm512_maskz_loadu_pd(lanes, bounds.frontAtMost + x);
+    const __m512d backBound = _mm512_maskz_loadu_pd(lanes, bounds.backAtLeast + x);
+    const __mmask8 frontSettled =
+        __mmask8(~frontLayer) | frontTie | _mm512_cmp_pd_mask(frontBound, nearest, _CMP_LT_OQ);
+    const __mmask8 backSettled =
+        __mmask8(~backLayer) | backTie | _mm512_cmp_pd_mask(backBound, farthest, _CMP_GT_OQ);
+    active &= ~(frontSettled & backSettled);
+    if (!active) continue;
+    __m512d entry, exit;
+    active = chords.at(_mm512_maskz_loadu_pd(lanes, u + x), active, entry, exit);
+    if (!active) continue;
+    if (domain) {
+      const __m512d boxEnter = _mm512_maskz_loadu_pd(lanes, bounds.boxEnter + x);
+      const __m512d boxLeave = _mm512_maskz_loadu_pd(lanes, bounds.boxLeave + x);
+      entry = _mm512_mask_blend_pd(_mm512_cmp_pd_mask(entry, boxEnter, _CMP_LT_OQ), entry, boxEnter);
+      exit = _mm512_mask_blend_pd(_mm512_cmp_pd_mask(boxLeave, exit, _CMP_LT_OQ), exit, boxLeave);
+    }
+    active &= ~_mm512_cmp_pd_mask(entry, _mm512_add_pd(exit, twoMargins), _CMP_GT_OQ);
+    widen(front, x,
+          active & frontLayer & ~frontTie &
+              ~_mm512_cmp_pd_mask(frontBound, _mm512_sub_pd(entry, margin), _CMP_LT_OQ));
+    widen(back, x,
+          active & backLayer & ~backTie &
+              ~_mm512_cmp_pd_mask(backBound, _mm512_add_pd(exit, margin), _CMP_GT_OQ));
+  }
+}
+
 // A row of one pixel costs the vector walk its set-up for one lane: the benchmark's bigger bake (150,000
 // particles, an ellipsoid or two pixels each) took its hide pass from 11.7 to 12.5 ms with every row
 // vectorised.
@@ -274,6 +364,15 @@ void hideRow(const view_chords::RowChords& row, const double* u, int firstX, int
     hideRowAvx512(row, u, firstX, lastX, cover, bounds, hiddenFront, hiddenBack);
   else
     hideRowPortable(row, u, firstX, lastX, cover, bounds, hiddenFront, hiddenBack);
+}
+
+void shownRow(const view_chords::RowChords& row, const double* u, int firstX, int lastX, const Cover& cover,
+              const RowBounds& bounds, bool inFront, bool inBack, ShownSpan& front, ShownSpan& back,
+              Walk walk) {
+  if (walk == Walk::Fastest && cpuHasAvx512() && lastX - firstX + 1 >= kShortestVectorRow)
+    shownRowAvx512(row, u, firstX, lastX, cover, bounds, inFront, inBack, front, back);
+  else
+    shownRowPortable(row, u, firstX, lastX, cover, bounds, inFront, inBack, front, back);
 }
 
 }  // namespace spindrift::occlusion_rows

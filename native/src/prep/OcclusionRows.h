@@ -1,5 +1,6 @@
 #pragma once
 
+#include <algorithm>
 #include <cstdint>
 #include <limits>
 
@@ -54,5 +55,23 @@ void coverRow(const view_chords::RowChords& row, const double* u, int firstX, in
 /// the bounds are read, not written.
 void hideRow(const view_chords::RowChords& row, const double* u, int firstX, int lastX, const Cover& cover,
              const RowBounds& bounds, bool& hiddenFront, bool& hiddenBack, Walk walk = Walk::Fastest);
+
+/// The pixels of a row where an ellipsoid is shown in a layer: the first and last (first > last while none).
+struct ShownSpan {
+  int first = std::numeric_limits<int>::max();
+  int last = std::numeric_limits<int>::min();
+  void add(int x) {
+    first = std::min(first, x);
+    last = std::max(last, x);
+  }
+  bool empty() const { return first > last; }
+};
+
+/// Widens `front` (`back`) by the pixels of [firstX, lastX] where an ellipsoid in the front (back) layer is
+/// shown: where hideRow would let that layer's flag fall. The pixels outside them are those where another
+/// surface certainly wins the layer (or a solid hides the ellipsoid), so it need not be drawn there.
+void shownRow(const view_chords::RowChords& row, const double* u, int firstX, int lastX, const Cover& cover,
+              const RowBounds& bounds, bool inFront, bool inBack, ShownSpan& front, ShownSpan& back,
+              Walk walk = Walk::Fastest);
 
 }  // namespace spindrift::occlusion_rows
