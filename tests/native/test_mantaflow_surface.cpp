@@ -428,6 +428,40 @@ TEST(MantaflowSurface, SampledSumsFollowTheExactOnesAndDoNotDependOnWhichThreadM
   EXPECT_LT(largest, 0.05f * kKernelCells);
 }
 
+TEST(MantaflowSurface, LatticeNodesSumTheSameCellsAsAnyPoint) {
+  // A node of the sampled lattice sums a fixed stencil of cells about its own (prep/MantaflowSurface.cpp), in
+  // another order than offsetToMean's chords: at a node the two agree to float rounding, inside the body, at
+  // its surface, outside it and at the lattice's edge, where some of the stencil lies outside the cells. The
+  // cells start at the cloud's lowest point, so a lone drop below it moves where in its cell every node lies:
+  // four such places are tried.
+  const float spacing = 0.5f * kKernelCells;  // the lattice's nodes lie at multiples of r_m / 2
+  for (const float shift : {0.0f, 0.25f, 0.5f, 0.75f}) {
+    ParticleCloud cloud = block(10, 5, 31u);
+    for (const glm::vec3& drop : {glm::vec3(0.3f, 0.2f, 1.2f), glm::vec3(-2.0f, 1.0f, 0.6f)})
+      addParticle(cloud, drop);
+    addParticle(cloud, glm::vec3(-6.0f - shift * spacing));
+    const MantaflowLevelSet levelSet(cloud, kKernelCells);
+    int compared = 0, near = 0;
+    float largest = 0.0f;
+    for (int i = -8; i <= 14; ++i)
+      for (int j = -8; j <= 14; ++j)
+        for (int k = -8; k <= 10; k += 2) {
+          const glm::vec3 node = spacing * glm::vec3(i, j, k);
+          glm::vec3 sampled, exact;
+          const bool sampledNear = levelSet.sampledOffsetToMean(node, sampled);
+          const bool exactNear = levelSet.offsetToMean(node, exact);
+          ASSERT_EQ(sampledNear, exactNear) << i << " " << j << " " << k << " shift " << shift;
+          ++compared;
+          if (!exactNear) continue;
+          ++near;
+          largest = std::max(largest, glm::length(sampled - exact));
+        }
+    EXPECT_GT(near, 500) << "shift " << shift;
+    EXPECT_GT(compared - near, 500) << "shift " << shift;
+    EXPECT_LT(largest, 1e-5f * kKernelCells) << "shift " << shift;
+  }
+}
+
 TEST(MantaflowSurface, AFrameSurfaceSharedByItsViewsChangesNoViewsResult) {
   // A body with a ridge and drops over it, seen by an oblique camera and from above (both see every particle:
   // they share the frame's surface and each other's searches) and from close by (it culls, so it builds its

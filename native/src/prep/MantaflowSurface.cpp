@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 #include <utility>
 
 #include <glm/common.hpp>
@@ -16,6 +17,86 @@ namespace {
 // The dense grid's size limit (4 floats a cell: 256 MiB); a wider scene gets coarser cells, which only lumps
 // more particles together.
 constexpr double kMaxCells = double(1 << 24);
+
+// A node of the sampled lattice lies at the same place in its cell as every other (lattice and cells share
+// their spacing), so the cells that may hold a centroid within 2 r_m = 4 cells of it are those within 4 cells
+// of its own along each axis: a fixed stencil of 9 x 9 columns (less the four corners, at least 3 cells
+// off along both axes) of 9 cells each, summed as one vector of 16 lanes per column.
+constexpr int kStencilReach = 4;
+constexpr int kRunLanes = 16;
+using Float16 = float __attribute__((vector_size(4 * kRunLanes)));
+
+// The cells as the stencil's sums read them (MantaflowLevelSet's members).
+struct CellColumns {
+  const float *x, *y, *z, *count;
+  const std::int32_t *occupiedLow, *occupiedHigh;
+  int counts[3];
+};
+
+// runMasks[n]: 1 in the first n + 1 lanes, 0 past them.
+const struct RunMasks {
+  Float16 masks[kRunLanes];
+  RunMasks() {
+    for (int n = 0; n < kRunLanes; ++n)
+      for (int lane = 0; lane < kRunLanes; ++lane)
+        masks[n][lane] = lane <= n ? 1.0f : 0.0f;
+  }
+} runMasks;
+
+// A run of cells from `first` (into a reference: a 64-byte vector returned by value would take AVX-512's
+// ABI).
+void loadRun(const float* first, Float16& run) {
+  std::memcpy(&run, first, sizeof run);
+}
+
+// Σ count·max(0, 1 − d²/support²)·(c − at) and Σ count·max(0, 1 − d²/support²) over the cells of the stencil
+// about `cell` (`at`'s own), c each cell's centroid: `sums` = (x, y, z, weight). A cell past the support adds
+// exactly 0, so these are offsetToMean's sums but for their order: each lane sums its cells in the columns'
+// order and the lanes are added in order, the same in both clones (the file has no fused multiply-adds).
+__attribute__((target_clones("avx512f", "default"))) void sumOverStencil(const CellColumns& cells,
+                                                                         const glm::ivec3& cell,
+                                                                         const glm::vec3& at,
+                                                                         float inverseSupportSquared,
+                                                                         float sums[4]) {
+  const Float16 zero = {};
+  Float16 sumX = zero, sumY = zero, sumZ = zero, sumWeight = zero;
+  for (int dx = -kStencilReach; dx <= kStencilReach; ++dx) {
+    const int ix = cell.x + dx;
+    if (ix < 0 || ix >= cells.counts[0]) continue;
+    for (int dy = -kStencilReach; dy <= kStencilReach; ++dy) {
+      const int iy = cell.y + dy;
+      if (iy < 0 || iy >= cells.counts[1]) continue;
+      if (std::abs(dx) == kStencilReach && std::abs(dy) == kStencilReach) continue;
+      const std::size_t column = std::size_t(ix) * std::size_t(cells.counts[1]) + std::size_t(iy);
+      const int z0 = std::max(cell.z - kStencilReach, cells.occupiedLow[column]);
+      const int z1 = std::min(cell.z + kStencilReach, cells.occupiedHigh[column]);
+      if (z1 < z0) continue;
+      const std::size_t first = column * std::size_t(cells.counts[2]) + std::size_t(z0);
+      Float16 dX, dY, dZ, count;
+      loadRun(cells.x + first, dX);
+      loadRun(cells.y + first, dY);
+      loadRun(cells.z + first, dZ);
+      loadRun(cells.count + first, count);
+      dX -= at.x;
+      dY -= at.y;
+      dZ -= at.z;
+      const Float16 falloff = 1.0f - (dX * dX + dY * dY + dZ * dZ) * inverseSupportSquared;
+      // max(0, falloff) and 0 past the run as factors, which stay vector operations (a select on two masks
+      // took GCC to a branch per lane).
+      const Float16 weight = count * (falloff > zero ? falloff : zero) * runMasks.masks[z1 - z0];
+      sumX += weight * dX;
+      sumY += weight * dY;
+      sumZ += weight * dZ;
+      sumWeight += weight;
+    }
+  }
+  const Float16* lanes[4] = {&sumX, &sumY, &sumZ, &sumWeight};
+  for (int k = 0; k < 4; ++k) {
+    sums[k] = 0.0f;
+    for (int lane = 0; lane < kRunLanes; ++lane)
+      sums[k] += (*lanes[k])[lane];
+  }
+}
 
 // A search for φ = 0 has converged where |φ| is below this many kernel radii (a millionth of a particle
 // radius and less: float's rounding of the sums).
@@ -45,7 +126,10 @@ MantaflowLevelSet::MantaflowLevelSet(const ParticleCloud& cloud, float kernelRad
     cellSize_ *= 2.0f;
   }
   const std::size_t columns = std::size_t(cellCounts_[0]) * std::size_t(cellCounts_[1]);
-  cells_.assign(columns * std::size_t(cellCounts_[2]), Float4{0.0f, 0.0f, 0.0f, 0.0f});
+  const std::size_t cells = columns * std::size_t(cellCounts_[2]);
+  // Padded so that a stencil's run loads 16 lanes from any cell.
+  for (std::vector<float>* component : {&cellX_, &cellY_, &cellZ_, &cellCount_})
+    component->assign(cells + kRunLanes, 0.0f);
   occupiedLow_.assign(columns, cellCounts_[2]);
   occupiedHigh_.assign(columns, -1);
   for (std::size_t i = 0; i < cloud.size(); ++i) {
@@ -54,15 +138,20 @@ MantaflowLevelSet::MantaflowLevelSet(const ParticleCloud& cloud, float kernelRad
     for (int axis = 0; axis < 3; ++axis)
       index[axis] = std::clamp(int((position[axis] - origin_[axis]) / cellSize_), 0, cellCounts_[axis] - 1);
     const std::size_t column = std::size_t(index[0]) * std::size_t(cellCounts_[1]) + std::size_t(index[1]);
-    cells_[column * std::size_t(cellCounts_[2]) + std::size_t(index[2])] +=
-        Float4{position[0], position[1], position[2], 1.0f};
+    const std::size_t cell = column * std::size_t(cellCounts_[2]) + std::size_t(index[2]);
+    cellX_[cell] += position[0];
+    cellY_[cell] += position[1];
+    cellZ_[cell] += position[2];
+    cellCount_[cell] += 1.0f;
     occupiedLow_[column] = std::min(occupiedLow_[column], index[2]);
     occupiedHigh_[column] = std::max(occupiedHigh_[column], index[2]);
   }
-  for (Float4& cell : cells_) {
-    const float count = cell[3];
+  for (std::size_t cell = 0; cell < cells; ++cell) {
+    const float count = cellCount_[cell];
     if (count == 0.0f) continue;
-    cell /= Float4{count, count, count, 1.0f};
+    cellX_[cell] /= count;
+    cellY_[cell] /= count;
+    cellZ_[cell] /= count;
   }
 
   if (cellSize_ != 0.5f * kernelRadius_) return;
@@ -82,8 +171,21 @@ MantaflowLevelSet::Float4 MantaflowLevelSet::nodeOffset(const glm::ivec3& node) 
       std::size_t(node.z);
   std::atomic<std::uint8_t>& state = nodeStates_[index];
   if (state.load(std::memory_order_acquire) == 2) return nodes_[index];
-  glm::vec3 offset;
-  const bool near = offsetToMean(nodeSpacing_ * glm::vec3(nodeLow_ + node), offset);
+  const glm::vec3 at = nodeSpacing_ * glm::vec3(nodeLow_ + node);
+  const CellColumns cells{cellX_.data(),
+                          cellY_.data(),
+                          cellZ_.data(),
+                          cellCount_.data(),
+                          occupiedLow_.data(),
+                          occupiedHigh_.data(),
+                          {cellCounts_[0], cellCounts_[1], cellCounts_[2]}};
+  // The node's cell, unclamped: a node up to 2 r_m outside the cloud's box lies in no cell.
+  const glm::ivec3 cell(glm::floor((at - origin_) / cellSize_));
+  const float support = 2.0f * kernelRadius_;
+  float sums[4];
+  sumOverStencil(cells, cell, at, 1.0f / (support * support), sums);
+  const bool near = sums[3] > 0.0f;
+  const glm::vec3 offset = near ? glm::vec3(sums[0], sums[1], sums[2]) / sums[3] : glm::vec3(0.0f);
   const Float4 value{offset.x, offset.y, offset.z, near ? 1.0f : 0.0f};
   // Another thread summing the same node gets the same value and keeps it to itself.
   std::uint8_t unsummed = 0;
@@ -143,11 +245,8 @@ bool MantaflowLevelSet::offsetToMean(const glm::vec3& at, glm::vec3& offset) con
     const float gapY = gap(y0 + iy, 1);
     gapYSquared[iy] = gapY * gapY;
   }
-  // Each lane sums in the order of the cells, as four scalar sums would: (x, y, z) weight times offset, and
-  // the weight.
-  const Float4 centre{at.x, at.y, at.z, 0.0f};
-  const Float4 offsetLanes{1.0f, 1.0f, 1.0f, 0.0f}, weightLane{0.0f, 0.0f, 0.0f, 1.0f};
-  Float4 sums{0.0f, 0.0f, 0.0f, 0.0f};
+  // Summed in the order of the cells.
+  float sums[4] = {0.0f, 0.0f, 0.0f, 0.0f};
   for (int ix = x0; ix <= x1; ++ix) {
     const float gapX = gap(ix, 0);
     for (int iy = y0; iy <= y1; ++iy) {
@@ -159,16 +258,16 @@ bool MantaflowLevelSet::offsetToMean(const glm::vec3& at, glm::vec3& offset) con
       const float chord = std::sqrt(chordSquared);
       const int z0 = std::max(cellOf(at.z - chord, 2), occupiedLow_[column]);
       const int z1 = std::min(cellOf(at.z + chord, 2), occupiedHigh_[column]);
-      const Float4* run = cells_.data() + column * std::size_t(cellCounts_[2]);
+      const std::size_t run = column * std::size_t(cellCounts_[2]);
       for (int iz = z0; iz <= z1; ++iz) {
-        const Float4 difference = run[iz] - centre;
-        const float distanceSquared =
-            difference[0] * difference[0] + difference[1] * difference[1] + difference[2] * difference[2];
-        // max(0, falloff) as a vector select: the compiler branches on the scalar form.
-        const Float4 falloff =
-            Float4{0.0f, 0.0f, 0.0f, 0.0f} + (1.0f - distanceSquared * inverseSupportSquared);
-        const Float4 weight = run[iz][3] * (falloff > 0.0f ? falloff : Float4{0.0f, 0.0f, 0.0f, 0.0f});
-        sums += weight * (difference * offsetLanes + weightLane);
+        const std::size_t cell = run + std::size_t(iz);
+        const float dx = cellX_[cell] - at.x, dy = cellY_[cell] - at.y, dz = cellZ_[cell] - at.z;
+        const float falloff = 1.0f - (dx * dx + dy * dy + dz * dz) * inverseSupportSquared;
+        const float weight = cellCount_[cell] * (falloff > 0.0f ? falloff : 0.0f);
+        sums[0] += weight * dx;
+        sums[1] += weight * dy;
+        sums[2] += weight * dz;
+        sums[3] += weight;
       }
     }
   }

@@ -63,10 +63,9 @@ class MantaflowLevelSet {
   float cellSize_;
   glm::vec3 origin_{0.0f};
   int cellCounts_[3] = {0, 0, 0};
-  // Per cell, z fastest: the centroid and the particle count in one 16-byte vector (0 where empty), so that a
-  // cell's four weighted sums are one vector operation.
-  using Float4 = float __attribute__((vector_size(16)));
-  std::vector<Float4> cells_;
+  // Per cell, z fastest, one array per component: the centroid's x, y and z and the particle count (0 where
+  // empty), padded at the end so that a lattice node's stencil loads a run of 16 cells from any cell.
+  std::vector<float> cellX_, cellY_, cellZ_, cellCount_;
   // Per column (x, y), the first and last occupied cell along z (first > last where empty): a sum reads only
   // that part of the ball's chord, the empty cells adding nothing.
   std::vector<std::int32_t> occupiedLow_, occupiedHigh_;
@@ -74,6 +73,7 @@ class MantaflowLevelSet {
   // and covers the cloud's box grown by 2 r_m (outside it no particle is near). Per node x̄ − x and 1 where
   // some particle is near (else 0); its state is 0 (not summed), 1 (being summed) or 2 (summed). Written
   // through these pointers by the const searches. Empty where the cells were coarsened.
+  using Float4 = float __attribute__((vector_size(16)));
   float nodeSpacing_ = 0.0f;
   glm::ivec3 nodeLow_{0}, nodeCounts_{0};
   std::unique_ptr<Float4[]> nodes_;
