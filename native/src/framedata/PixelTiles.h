@@ -4,8 +4,9 @@
 
 namespace spindrift {
 
-/// The side of a pixel tile, in pixels: a quarter of llvmpipe's 64-pixel bin, so a tile's quad covers whole
-/// 16 × 16 rasterizer blocks and the tile list follows a silhouette within 16 pixels.
+/// The side of a pixel tile, in pixels: a quarter of llvmpipe's 64-pixel bin, so a tile's point covers one
+/// whole 16 × 16 rasterizer block and the tile list follows a silhouette within 16 pixels (tiles of 8 took
+/// the dam break's smoothing and refraction from 41 and 45 to 50 and 53 ms, drawn as two triangles each).
 constexpr int kPixelTileSize = 16;
 
 /// The texture unit of fullscreen.vert's drawnTiles, which no fragment shader uses.

@@ -40,11 +40,13 @@ void drawFullscreen(GLuint emptyVertexArray, const PixelTiles* tiles) {
     drawFullscreenTriangle(emptyVertexArray);
     return;
   }
-  // Vertices 3 to 8 of instance i are the two triangles of tile i (fullscreen.vert).
+  // Vertex 3 + i is tile i as a point (fullscreen.vert).
   const Texture2D& marked = tiles->marked;
   glBindTextureUnit(kPixelTilesTextureUnit, marked.id());
   glBindVertexArray(emptyVertexArray);
-  glDrawArraysInstanced(GL_TRIANGLES, 3, 6, marked.width * marked.height);
+  glEnable(GL_PROGRAM_POINT_SIZE);
+  glDrawArrays(GL_POINTS, 3, marked.width * marked.height);
+  glDisable(GL_PROGRAM_POINT_SIZE);
 }
 
 void bindColorTargets(GLuint framebuffer, std::initializer_list<const Texture2D*> targets) {

@@ -37,9 +37,9 @@ class FrameUniformBuffer {
 /// Draws the fullscreen triangle of shaders/fullscreen.vert into the bound framebuffer.
 void drawFullscreenTriangle(GLuint emptyVertexArray);
 
-/// Draws a quad over each tile `tiles` marks (shaders/fullscreen.vert), or the fullscreen triangle when
-/// `tiles` is null. A pass that draws tiles first clears its targets to what it writes where there is no
-/// liquid, so both ways leave the same values in every pixel.
+/// Draws a point the tile's size over each tile `tiles` marks (shaders/fullscreen.vert), or the fullscreen
+/// triangle when `tiles` is null. A pass that draws tiles first clears its targets to what it writes where
+/// there is no liquid, so both ways leave the same values in every pixel.
 void drawFullscreen(GLuint emptyVertexArray, const PixelTiles* tiles);
 
 /// Attaches `targets` as colour attachments 0, 1, ... (a null target leaves its draw buffer GL_NONE), makes
