@@ -169,92 +169,8 @@ __attribute__((target("avx512f"))) void coverRowAvx512(const view_chords::RowCho
   }
 }
 
-// Pixel by pixel, as long as the ellipsoid is hidden from a layer. A pixel a solid hides, or whose bounds
-// settle both layers, needs no chord.
-void hideRowPortable(const view_chords::RowChords& row, const double* u, int firstX, int lastX,
-                     const Cover& cover, const RowBounds& bounds, bool& hiddenFront, bool& hiddenBack) {
-  const bool domain = bounds.boxEnter != nullptr;
-  for (int x = firstX; x <= lastX && (hiddenFront || hiddenBack); ++x) {
-    // The impostor pass hides every fragment whose entry lies at or behind the solid there.
-    if (bounds.solidFarthest && cover.nearest >= bounds.solidFarthest[x]) continue;
-    const bool frontTie =
-        domain && bounds.frontFaceOwner[x] != kNoOwner && bounds.frontFaceOwner[x] != cover.index;
-    const bool backTie =
-        domain && bounds.backFaceOwner[x] != kNoOwner && bounds.backFaceOwner[x] != cover.index;
-    const bool frontSettled = !hiddenFront || frontTie || bounds.frontAtMost[x] < cover.nearest;
-    const bool backSettled = !hiddenBack || backTie || bounds.backAtLeast[x] > cover.farthest;
-    if (frontSettled && backSettled) continue;
-    double entry, exit;
-    if (!row.at(u[x], entry, exit)) continue;
-    if (domain) {
-      entry = std::max(entry, bounds.boxEnter[x]);
-      exit = std::min(exit, bounds.boxLeave[x]);
-    }
-    if (entry > exit + 2.0 * cover.chordMargin) continue;  // the box leaves nothing of it here
-    hiddenFront = hiddenFront && (frontTie || bounds.frontAtMost[x] < entry - cover.chordMargin);
-    hiddenBack = hiddenBack && (backTie || bounds.backAtLeast[x] > exit + cover.chordMargin);
-  }
-}
-
-// Eight pixels at a time, each lane computed as the portable walk computes it. A layer's flag falls at the
-// first lane that shows the ellipsoid there; the portable walk, which stops testing a layer once its flag
-// has fallen, ends with the same flags.
-__attribute__((target("avx512f"))) void hideRowAvx512(const view_chords::RowChords& row, const double* u,
-                                                      int firstX, int lastX, const Cover& cover,
-                                                      const RowBounds& bounds, bool& hiddenFront,
-                                                      bool& hiddenBack) {
-  const bool domain = bounds.boxEnter != nullptr;
-  const VectorRowChords chords(row);
-  const __m512d margin = _mm512_set1_pd(cover.chordMargin),
-                twoMargins = _mm512_set1_pd(2.0 * cover.chordMargin);
-  const __m512d nearest = _mm512_set1_pd(cover.nearest), farthest = _mm512_set1_pd(cover.farthest);
-  const __m512i noOwner = _mm512_set1_epi32(int(kNoOwner)), index = _mm512_set1_epi32(int(cover.index));
-  for (int x = firstX; x <= lastX && (hiddenFront || hiddenBack); x += 8) {
-    const int left = lastX - x + 1;
-    const __mmask8 lanes = left >= 8 ? __mmask8(0xff) : __mmask8((1u << left) - 1u);
-    __mmask8 active = lanes;
-    if (bounds.solidFarthest)
-      active &=
-          ~_mm512_cmp_pd_mask(nearest, _mm512_maskz_loadu_pd(lanes, bounds.solidFarthest + x), _CMP_GE_OQ);
-    __mmask8 frontTie = 0, backTie = 0;
-    if (domain) {
-      const __mmask16 lanes16 = lanes;
-      const __m512i frontOwner = _mm512_maskz_loadu_epi32(lanes16, bounds.frontFaceOwner + x);
-      const __m512i backOwner = _mm512_maskz_loadu_epi32(lanes16, bounds.backFaceOwner + x);
-      frontTie = __mmask8(_mm512_mask_cmpneq_epi32_mask(lanes16, frontOwner, noOwner) &
-                          _mm512_mask_cmpneq_epi32_mask(lanes16, frontOwner, index));
-      backTie = __mmask8(_mm512_mask_cmpneq_epi32_mask(lanes16, backOwner, noOwner) &
-                         _mm512_mask_cmpneq_epi32_mask(lanes16, backOwner, index));
-    }
-    const __m512d front = _mm512_maskz_loadu_pd(lanes, bounds.frontAtMost + x);
-    const __m512d back = _mm512_maskz_loadu_pd(lanes, bounds.backAtLeast + x);
-    const __mmask8 frontSettled = (hiddenFront ? __mmask8(0) : __mmask8(0xff)) | frontTie |
-                                  _mm512_cmp_pd_mask(front, nearest, _CMP_LT_OQ);
-    const __mmask8 backSettled = (hiddenBack ? __mmask8(0) : __mmask8(0xff)) | backTie |
-                                 _mm512_cmp_pd_mask(back, farthest, _CMP_GT_OQ);
-    active &= ~(frontSettled & backSettled);
-    if (!active) continue;
-    __m512d entry, exit;
-    active = chords.at(_mm512_maskz_loadu_pd(lanes, u + x), active, entry, exit);
-    if (!active) continue;
-    if (domain) {
-      const __m512d boxEnter = _mm512_maskz_loadu_pd(lanes, bounds.boxEnter + x);
-      const __m512d boxLeave = _mm512_maskz_loadu_pd(lanes, bounds.boxLeave + x);
-      entry = _mm512_mask_blend_pd(_mm512_cmp_pd_mask(entry, boxEnter, _CMP_LT_OQ), entry, boxEnter);
-      exit = _mm512_mask_blend_pd(_mm512_cmp_pd_mask(boxLeave, exit, _CMP_LT_OQ), exit, boxLeave);
-    }
-    active &= ~_mm512_cmp_pd_mask(entry, _mm512_add_pd(exit, twoMargins), _CMP_GT_OQ);
-    const __mmask8 frontShown =
-        active & ~frontTie & ~_mm512_cmp_pd_mask(front, _mm512_sub_pd(entry, margin), _CMP_LT_OQ);
-    const __mmask8 backShown =
-        active & ~backTie & ~_mm512_cmp_pd_mask(back, _mm512_add_pd(exit, margin), _CMP_GT_OQ);
-    hiddenFront = hiddenFront && frontShown == 0;
-    hiddenBack = hiddenBack && backShown == 0;
-  }
-}
-
-// Every pixel of the row, the chord computed where the bounds do not settle both layers: a layer is shown at
-// a pixel where hideRowPortable would let its flag fall there.
+// Pixel by pixel. A pixel a solid hides, or whose bounds settle both layers (the ellipsoid is in neither, or
+// another surface lies certainly nearer than its bounding sphere, or farther), needs no chord.
 void shownRowPortable(const view_chords::RowChords& row, const double* u, int firstX, int lastX,
                       const Cover& cover, const RowBounds& bounds, bool inFront, bool inBack,
                       ShownSpan& front, ShownSpan& back) {
@@ -356,14 +272,6 @@ void coverRow(const view_chords::RowChords& row, const double* u, int firstX, in
     coverRowAvx512(row, u, firstX, lastX, cover, bounds);
   else
     coverRowPortable(row, u, firstX, lastX, cover, bounds);
-}
-
-void hideRow(const view_chords::RowChords& row, const double* u, int firstX, int lastX, const Cover& cover,
-             const RowBounds& bounds, bool& hiddenFront, bool& hiddenBack, Walk walk) {
-  if (walk == Walk::Fastest && cpuHasAvx512() && lastX - firstX + 1 >= kShortestVectorRow)
-    hideRowAvx512(row, u, firstX, lastX, cover, bounds, hiddenFront, hiddenBack);
-  else
-    hideRowPortable(row, u, firstX, lastX, cover, bounds, hiddenFront, hiddenBack);
 }
 
 void shownRow(const view_chords::RowChords& row, const double* u, int firstX, int lastX, const Cover& cover,

@@ -8,8 +8,8 @@
 
 // The occlusion test's work along one row of a view (prep/OccludedAggregates.cpp): what one covering
 // ellipsoid does to the layer bounds (its shrunk chord's entry bounds the front layer there, its exit the
-// back layer, and where it reaches past a domain box's face it may own that face), and whether the bounds
-// still hide one ellipsoid from each layer.
+// back layer, and where it reaches past a domain box's face it may own that face), and where the bounds
+// still show one ellipsoid in each layer.
 namespace spindrift::occlusion_rows {
 
 constexpr std::uint32_t kNoOwner = std::numeric_limits<std::uint32_t>::max();
@@ -40,7 +40,7 @@ struct Cover {
 
 // How the row is walked: AVX-512, eight pixels at a time and every unsettled pixel's chord computed, where
 // the CPU has it and the row is longer than a pixel; else pixel by pixel, skipping the chord where the bounds
-// already settle a pixel. Both give the same bounds, owners and flags to the bit.
+// already settle a pixel. Both give the same bounds, owners and shown spans to the bit.
 enum class Walk { Fastest, Portable };
 
 /// Lowers frontAtMost to the chord's entry and raises backAtLeast to its exit (each by the margin) over the
@@ -48,13 +48,6 @@ enum class Walk { Fastest, Portable };
 /// explains; `row` is the shrunk ellipsoid's chords along the row.
 void coverRow(const view_chords::RowChords& row, const double* u, int firstX, int lastX, const Cover& cover,
               const RowBounds& bounds, Walk walk = Walk::Fastest);
-
-/// Keeps `hiddenFront` (`hiddenBack`) only if at every pixel of [firstX, lastX] where the ellipsoid may be
-/// drawn (`row`: its grown chords) another surface is certainly nearer than its entry (farther than its
-/// exit), another ellipsoid holds the box's face, or a solid hides it. `cover.index` is the ellipsoid's;
-/// the bounds are read, not written.
-void hideRow(const view_chords::RowChords& row, const double* u, int firstX, int lastX, const Cover& cover,
-             const RowBounds& bounds, bool& hiddenFront, bool& hiddenBack, Walk walk = Walk::Fastest);
 
 /// The pixels of a row where an ellipsoid is shown in a layer: the first and last (first > last while none).
 struct ShownSpan {
@@ -67,9 +60,12 @@ struct ShownSpan {
   bool empty() const { return first > last; }
 };
 
-/// Widens `front` (`back`) by the pixels of [firstX, lastX] where an ellipsoid in the front (back) layer is
-/// shown: where hideRow would let that layer's flag fall. The pixels outside them are those where another
-/// surface certainly wins the layer (or a solid hides the ellipsoid), so it need not be drawn there.
+/// Widens `front` (`back`) by the pixels of [firstX, lastX] where an ellipsoid in the front (back) layer
+/// (`inFront`, `inBack`) is shown: where it may be drawn (`row`: its grown chords) and no other surface is
+/// certainly nearer than its entry (farther than its exit), no other ellipsoid holds the box's face and no
+/// solid hides it. At the pixels outside them another surface certainly wins the layer, so it need not be
+/// drawn there; where neither layer shows it at any pixel, it is hidden. `cover.index` is the ellipsoid's;
+/// the bounds are read, not written.
 void shownRow(const view_chords::RowChords& row, const double* u, int firstX, int lastX, const Cover& cover,
               const RowBounds& bounds, bool inFront, bool inBack, ShownSpan& front, ShownSpan& back,
               Walk walk = Walk::Fastest);
