@@ -20,7 +20,8 @@ struct EllipsoidInstance {
   glm::vec4 inverseAxesRows[3];       ///< Rows of the world-space inverse of the axes matrix; w unused (0).
   /// The window rectangles (x right, y up, inclusive pixels) outside which the ellipsoid cannot hold the
   /// front layer's surface (x, y) and the back layer's (z, w), each as (low | high << 16) per axis:
-  /// dropOccludedAggregates finds them; kShownEverywhere where nothing limits it.
+  /// dropOccludedAggregates finds them (low above high: a layer it is not in); kShownEverywhere where
+  /// nothing limits it.
   glm::uvec4 shownRectangles{kShownEverywhere};
   static constexpr std::uint32_t kShownEverywhere = 0xffffffffu;
 };

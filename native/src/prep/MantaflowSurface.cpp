@@ -20,8 +20,8 @@ constexpr double kMaxCells = double(1 << 24);
 
 // A node of the sampled lattice lies at the same place in its cell as every other (lattice and cells share
 // their spacing), so the cells that may hold a centroid within 2 r_m = 4 cells of it are those within 4 cells
-// of its own along each axis: a fixed stencil of 9 x 9 columns (less the four corners, at least 3 cells
-// off along both axes) of 9 cells each, summed as one vector of 16 lanes per column.
+// of its own along each axis: a fixed stencil of 9 x 9 columns of 9 cells each, less the four corner columns
+// (their cells lie at least 3 cells off along both axes, beyond 4), each column summed as one 16-lane vector.
 constexpr int kStencilReach = 4;
 constexpr int kRunLanes = 16;
 using Float16 = float __attribute__((vector_size(4 * kRunLanes)));

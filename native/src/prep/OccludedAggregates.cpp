@@ -229,14 +229,16 @@ OccludedAggregatesResult dropOccludedAggregates(std::vector<EllipsoidInstance>& 
       // In the window's rows (y up), where a pixel index fits a rectangle's 16 bits.
       glm::uvec4& shown = ellipsoids[i].shownRectangles;
       if (!packable) continue;
-      if (inFront[i]) {
-        shown.x = packPixelRange(frontColumns.first, frontColumns.last);
-        shown.y = packPixelRange(grid.height - 1 - frontRows.last, grid.height - 1 - frontRows.first);
-      }
-      if (inBack[i]) {
-        shown.z = packPixelRange(backColumns.first, backColumns.last);
-        shown.w = packPixelRange(grid.height - 1 - backRows.last, grid.height - 1 - backRows.first);
-      }
+      // A layer it is not in gets an empty rectangle: a draw of both layers at once (the sky's depth range)
+      // draws it over the other layer's alone.
+      const std::uint32_t nowhere = packPixelRange(1, 0);
+      shown.x = inFront[i] ? packPixelRange(frontColumns.first, frontColumns.last) : nowhere;
+      shown.y = inFront[i]
+                    ? packPixelRange(grid.height - 1 - frontRows.last, grid.height - 1 - frontRows.first)
+                    : nowhere;
+      shown.z = inBack[i] ? packPixelRange(backColumns.first, backColumns.last) : nowhere;
+      shown.w = inBack[i] ? packPixelRange(grid.height - 1 - backRows.last, grid.height - 1 - backRows.first)
+                          : nowhere;
     }
   });
 
