@@ -65,6 +65,8 @@ nlohmann::json FrameStats::toJson() const {
         {"occluded_from_front", liquid.occludedFromFront},
         {"occluded_from_back", liquid.occludedFromBack},
         {"occluded_dropped", liquid.occludedDropped},
+        {"occluded_reach_pixels", liquid.occludedReachPixels},
+        {"occluded_shown_pixels", liquid.occludedShownPixels},
         {"occlusion_ms", liquid.occlusionMilliseconds},
         {"liquid_pixels", liquid.liquidPixels},
         {"tiles_shaded", liquid.tilesShaded},

@@ -318,6 +318,8 @@ RenderResult Renderer::renderPrepared(const Scene& scene, const Particles& parti
     stats.liquid.occludedFromFront = hidden.occluded.hiddenFromFront;
     stats.liquid.occludedFromBack = hidden.occluded.hiddenFromBack;
     stats.liquid.occludedDropped = hidden.occluded.dropped;
+    stats.liquid.occludedReachPixels = hidden.occluded.reachPixels;
+    stats.liquid.occludedShownPixels = hidden.occluded.shownPixels;
     stats.liquid.occlusionMilliseconds = hidden.occluded.milliseconds;
   }
   if (backgroundImages.environment)

@@ -190,6 +190,9 @@ TEST(OccludedAggregates, EveryPixelSeesInEachLayerWhatAllEllipsoidsGive) {
   EXPECT_GT(result.hiddenFromFront, all.size() / 2) << "of " << all.size();
   EXPECT_GT(result.hiddenFromBack, all.size() / 2) << "of " << all.size();
   EXPECT_GT(result.dropped, all.size() / 4) << "of " << all.size();
+  // The kept ones are drawn over a small part of their rectangles: where they may hold a layer's surface.
+  EXPECT_GT(result.shownPixels, 0u);
+  EXPECT_LT(result.shownPixels, result.reachPixels / 4) << "of " << result.reachPixels;
   const PixelCheck check = everyPixel(all, kept, split, camera);
   EXPECT_GT(check.hits, 2500u);  // 3,000 or so: the block fills much of the view
   EXPECT_EQ(check.differing, 0u) << "of " << 2 * check.hits << " layer values";

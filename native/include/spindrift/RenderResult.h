@@ -62,6 +62,10 @@ struct LiquidFrameStats {
   std::size_t occludedFromFront = 0;  ///< Aggregates the view hides from the front layer (others cover them).
   std::size_t occludedFromBack = 0;   ///< Likewise from the back layer.
   std::size_t occludedDropped = 0;    ///< Hidden by the view from both layers: not drawn.
+  /// Pixels of the kept aggregates' rectangles (once per layer each is drawn into): where the impostor pass
+  /// could draw them, and where it does (their shown rectangles; docs/architecture.md).
+  std::uint64_t occludedReachPixels = 0;
+  std::uint64_t occludedShownPixels = 0;
   double occlusionMilliseconds = 0.0;
   std::size_t liquidPixels = 0;
   /// The 16 × 16 pixel tiles that smoothing, its normals and the refraction shaded, of `tiles` in the frame

@@ -194,6 +194,7 @@ OccludedAggregatesResult dropOccludedAggregates(std::vector<EllipsoidInstance>& 
   // every other pixel a surface it cannot beat is drawn (the pixel's winner is shown there). Those rectangles
   // are a few hundredths of the ellipsoids' own on the dam break (docs/frame-cost.md, session 41).
   std::vector<char> inFront(count), inBack(count);
+  std::vector<std::uint64_t> reachPixels(count, 0), shownPixels(count, 0);  // summed below, in order
   const bool packable = grid.width < 0xffff && grid.height < 0xffff;
   tbb::parallel_for(tbb::blocked_range<std::size_t>(0, count), [&](const tbb::blocked_range<std::size_t>& r) {
     for (std::size_t i = r.begin(); i != r.end(); ++i) {
@@ -226,6 +227,16 @@ OccludedAggregatesResult dropOccludedAggregates(std::vector<EllipsoidInstance>& 
       }
       inFront[i] = inFront[i] && !frontRows.empty();
       inBack[i] = inBack[i] && !backRows.empty();
+      const auto area = [](const glm::ivec2& low, const glm::ivec2& high) {
+        return std::uint64_t(std::max(high.x - low.x + 1, 0)) *
+               std::uint64_t(std::max(high.y - low.y + 1, 0));
+      };
+      const int layers = int(inFront[i]) + int(inBack[i]);
+      reachPixels[i] = std::uint64_t(layers) * area(view.reachLow, view.reachHigh);
+      shownPixels[i] =
+          (inFront[i] ? area({frontColumns.first, frontRows.first}, {frontColumns.last, frontRows.last})
+                      : 0) +
+          (inBack[i] ? area({backColumns.first, backRows.first}, {backColumns.last, backRows.last}) : 0);
       // In the window's rows (y up), where a pixel index fits a rectangle's 16 bits.
       glm::uvec4& shown = ellipsoids[i].shownRectangles;
       if (!packable) continue;
@@ -245,6 +256,8 @@ OccludedAggregatesResult dropOccludedAggregates(std::vector<EllipsoidInstance>& 
   for (std::size_t i = 0; i < count; ++i) {
     result.hiddenFromFront += i < backFrom && !inFront[i];
     result.hiddenFromBack += i >= split.frontOnly && !inBack[i];
+    result.reachPixels += reachPixels[i];
+    result.shownPixels += shownPixels[i];
   }
   split = orderByLayers(ellipsoids, inFront, inBack);
   result.dropped = count - ellipsoids.size();

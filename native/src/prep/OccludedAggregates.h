@@ -1,6 +1,7 @@
 #pragma once
 
 #include <cstddef>
+#include <cstdint>
 
 #include "prep/LiquidPreparation.h"
 #include "prep/SolidDepthTiles.h"
@@ -14,6 +15,11 @@ struct OccludedAggregatesResult {
   std::size_t hiddenFromFront = 0;  ///< Newly left out of the front layer (including those dropped).
   std::size_t hiddenFromBack = 0;   ///< Newly left out of the back layer (including those dropped).
   std::size_t dropped = 0;          ///< Now in neither layer: left out.
+  /// Over the ellipsoids left in each layer (once per layer): the pixels of their rectangles where the
+  /// impostor pass may draw them (the grown ellipsoid's, clamped to the view), and of their shown rectangles,
+  /// to which the impostor pass limits them.
+  std::uint64_t reachPixels = 0;
+  std::uint64_t shownPixels = 0;
   double milliseconds = 0.0;
 };
 
