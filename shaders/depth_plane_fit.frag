@@ -10,7 +10,9 @@
 layout(binding = 0) uniform sampler2D currentEyeDepth;  // this iteration's depth: z in eq. 2, p_j
 layout(binding = 1) uniform sampler2D originalNormal;   // world normals before smoothing: ñ_j in eq. 3
 
-uniform int halfWindow;  // (s - 1) / 2
+// (s - 1) / 2, a constant of each program (PlaneFitPass): llvmpipe unrolls the window's loops, which took the
+// dam break's smoothing from 33-34 to 31-32 ms (docs/frame-cost.md).
+const int halfWindow = HALF_WINDOW;
 uniform int tapSpacing;  // pixels between taps: the window's taps spread over a taller image (PlaneFitPass.h)
 uniform float sigma;     // world units: liquid.plane_fit_sigma × r
 

@@ -1,6 +1,8 @@
 #pragma once
 
+#include <map>
 #include "framedata/SmoothedDepth.h"
+
 #include "gl/GlObjects.h"
 #include "gl/ShaderLibrary.h"
 #include "passes/DepthPingPong.h"
@@ -26,7 +28,11 @@ class PlaneFitPass {
                     const LiquidParameters& parameters, DepthPingPong& targets);
 
  private:
-  ProgramObject program_;
+  /// The program of a window 2 halfWindow + 1 taps wide, built at its first use.
+  GLuint program(int halfWindow);
+
+  const ShaderLibrary& shaders_;
+  std::map<int, ProgramObject> programs_;  // by half window
 };
 
 }  // namespace spindrift
