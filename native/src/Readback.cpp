@@ -1,6 +1,9 @@
 #include "Readback.h"
 
+#include <sys/mman.h>
+
 #include <algorithm>
+#include <cstdint>
 
 #include "spindrift/Error.h"
 
@@ -14,6 +17,23 @@ const std::vector<std::string> kLiquidLayers = {"liquid",        "liquid_splash"
 const std::vector<std::string> kFoamLayers = {
     "foam", "foam_spray", "foam_surface", "foam_bubble", "foam_shadow", "foam_irradiance", "foam_thickness"};
 const std::vector<std::string> kLightLayers = {"liquid_shadow", "caustics", "liquid_sky"};
+
+// `count` floats whose pages are mapped before they are written: one madvise maps them all, where writing
+// fresh pages faults once per 4 KiB page (a frame's readback is its first touch of that memory: at 960×540
+// its 104 MB took 55 ms of faults and clearing against 37 populated; docs/frame-cost.md). Where the kernel
+// cannot (before Linux 5.14), the pages fault in as before.
+std::vector<float> prefaultedFloats(std::size_t count) {
+  std::vector<float> floats;
+  floats.reserve(count);
+  const std::size_t pageSize = 4096;
+  const auto first = (reinterpret_cast<std::uintptr_t>(floats.data()) + pageSize - 1) & ~(pageSize - 1);
+  const auto last = (reinterpret_cast<std::uintptr_t>(floats.data() + count)) & ~(pageSize - 1);
+#ifdef MADV_POPULATE_WRITE
+  if (last > first) madvise(reinterpret_cast<void*>(first), last - first, MADV_POPULATE_WRITE);
+#endif
+  floats.resize(count);
+  return floats;
+}
 
 bool contains(const std::vector<std::string>& names, const std::string& name) {
   return std::find(names.begin(), names.end(), name) != names.end();
@@ -72,7 +92,7 @@ ImageLayer readLayer(const Texture2D& texture, const std::string& name,
   // Read into the layer itself and turn it top row first in place: a second buffer of the layer's size cost
   // more than the read (its fresh pages are faulted in and cleared by the kernel: at 1920×1080 a 33 MB RGBA
   // buffer took 70–100 ms on the project's VM, glGetTextureImage 5 ms).
-  ImageLayer layer{name, channels, std::vector<float>(rowFloats * std::size_t(texture.height))};
+  ImageLayer layer{name, channels, prefaultedFloats(rowFloats * std::size_t(texture.height))};
   glPixelStorei(GL_PACK_ALIGNMENT, 4);
   glGetTextureImage(texture.id(), 0, format, GL_FLOAT, GLsizei(layer.pixels.size() * sizeof(float)),
                     layer.pixels.data());
@@ -87,8 +107,10 @@ ImageLayer readLayer(const Texture2D& texture, const std::string& name,
 
 ImageLayer filledLayer(int width, int height, const std::string& name,
                        const std::vector<std::string>& channels, float value) {
-  return {name, channels,
-          std::vector<float>(std::size_t(width) * std::size_t(height) * channels.size(), value)};
+  ImageLayer layer{name, channels,
+                   prefaultedFloats(std::size_t(width) * std::size_t(height) * channels.size())};
+  std::fill(layer.pixels.begin(), layer.pixels.end(), value);
+  return layer;
 }
 
 namespace {
