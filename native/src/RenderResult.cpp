@@ -81,6 +81,8 @@ nlohmann::json FrameStats::toJson() const {
           {"splash_aggregate", liquid.orders[1]},
           {"aggregate_splash", liquid.orders[2]},
           {"aggregate_aggregate", liquid.orders[3]}}},
+        {"shapes_kept", liquid.shapesNotKept.empty()},
+        {"shapes_not_kept", liquid.shapesNotKept},
         {"neighbour_ms", liquid.neighbourMilliseconds},
         {"anisotropy_ms", liquid.anisotropyMilliseconds}}},
       {"foam",

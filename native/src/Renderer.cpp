@@ -139,6 +139,7 @@ struct Renderer::Impl {
   GlThread glThread;
   std::unique_ptr<FramePipeline> pipeline;  // Lives on glThread; reset there before the thread ends.
   BackgroundCache backgroundCache;
+  LiquidCacheAcrossFrames liquidCache;
   GlLimits glLimits;
   bool intermediateLayers = false;
   LayerSelection layers;
@@ -274,8 +275,6 @@ RenderResult Renderer::renderPrepared(const Scene& scene, const Particles& parti
   const Clock::time_point prepareStart = Clock::now();
   // Under water is decided on every aggregate; dropHiddenAggregates below leaves a body that reaches the
   // camera's near plane whole, so the ellipsoids around the camera are still drawn.
-  // Each particle is shaped, and Mantaflow's surface built and searched, once for the camera's view and every
-  // light's; a frame without lights has no other view to share them with.
   BackgroundImages backgroundImages = impl_->backgroundCache.load(scene.background, frame, width, height);
   if (extras.backgroundColor) {
     requireCameraSize(*extras.backgroundColor, 4, "background colour", width, height);
@@ -298,10 +297,12 @@ RenderResult Renderer::renderPrepared(const Scene& scene, const Particles& parti
       solids->addTriangles(*mesh);
   }
   const SolidDepthTiles* frameSolids = solids ? &*solids : nullptr;
-  FrameLiquidCache frameCache;
-  FrameLiquidCache* sharedWithLights = scene.lights.empty() ? nullptr : &frameCache;
-  LiquidPreparation liquid =
-      prepareLiquid(particles, camera, liquidParameters, sharedWithLights, frameSolids);
+  // What the camera's and the lights' views share, kept for the next frame while the particles and the
+  // liquid parameters stay the same (liquid.reuse_shapes).
+  FrameLiquidCache& frameCache = impl_->liquidCache.forFrame(particles, liquidParameters);
+  stats.liquid.shapesNotKept = impl_->liquidCache.whyNotKept();
+  FrameLiquidCache* shared = liquidParameters.reuse_shapes || !scene.lights.empty() ? &frameCache : nullptr;
+  LiquidPreparation liquid = prepareLiquid(particles, camera, liquidParameters, shared, frameSolids);
   const bool cameraInLiquid = aggregatesContain(liquid.aggregates, camera.position(), domainBox);
   const float radius = typicalLiquidRadius(particles);
   const FoamPreparation foam = prepareFoam(particles, camera, foamParameters);
@@ -327,7 +328,7 @@ RenderResult Renderer::renderPrepared(const Scene& scene, const Particles& parti
                      backgroundImages.environment->height,
                      "background.environment " + pathForFrame(scene.background.environment, frame).string());
   const LightingPreparation lighting =
-      prepareLighting(particles, camera, scene.lights, scene.parameters, sharedWithLights);
+      prepareLighting(particles, camera, scene.lights, scene.parameters, shared);
   stats.prepareMilliseconds = millisecondsSince(prepareStart);
   recordPreparation(liquid, foam, stats);
   stats.liquid.cameraInLiquid = cameraInLiquid;

@@ -65,11 +65,40 @@ TEST(Determinism, SameProcessTwiceGivesIdenticalLayersAndFiles) {
         liquidPixels += value > 0.0f;
   }
   EXPECT_GT(liquidPixels, 2000u) << "the scene must exercise the liquid";
+  // The second frame kept the first's shapes (liquid.reuse_shapes), and gave the same bits.
+  EXPECT_EQ(first.stats.liquid.shapesNotKept, "no frame before it kept them");
+  EXPECT_EQ(second.stats.liquid.shapesNotKept, "");
   EXPECT_GT(first.stats.liquid.splashParticles, 0u);
   EXPECT_GT(first.stats.liquid.aggregateParticles, 16384u);
   spindrift::writeExr(first, directory.path() / "a.exr");
   spindrift::writeExr(second, directory.path() / "b.exr");
   EXPECT_EQ(readBytes(directory.path() / "a.exr"), readBytes(directory.path() / "b.exr"));
+}
+
+TEST(Determinism, ACameraMovedOverTheSameParticlesKeepsTheirShapesAndGetsWhatAFreshRendererGets) {
+  // A viewport orbiting a paused frame: the second camera's frame reuses the first's shapes and must match,
+  // bit for bit, that camera rendered by a renderer that never saw the first.
+  TempDirectory directory;
+  spindrift::Scene scene = spindrift::loadScene(writeDeterminismScene(directory));
+  spindrift::Renderer orbiting;
+  orbiting.renderFrame(scene, 1);
+  scene.camera = spindrift::Camera::lookAt(160, 120, 40.0f, {2.5f, -3, 1.5f}, {0, 0, 0.2f}, {0, 0, 1});
+  const spindrift::RenderResult moved = orbiting.renderFrame(scene, 1);
+  EXPECT_EQ(moved.stats.liquid.shapesNotKept, "");
+  EXPECT_EQ(moved.stats.liquid.culled, 0u) << "a view that culls shapes its own cloud: nothing kept to reuse";
+  spindrift::Renderer fresh;
+  const spindrift::RenderResult alone = fresh.renderFrame(scene, 1);
+  EXPECT_EQ(alone.stats.liquid.shapesNotKept, "no frame before it kept them");
+  ASSERT_EQ(moved.layers.size(), alone.layers.size());
+  for (std::size_t i = 0; i < moved.layers.size(); ++i) {
+    const auto& a = moved.layers[i].pixels;
+    const auto& b = alone.layers[i].pixels;
+    ASSERT_EQ(a.size(), b.size()) << moved.layers[i].name;
+    EXPECT_EQ(std::memcmp(a.data(), b.data(), a.size() * sizeof(float)), 0) << moved.layers[i].name;
+  }
+  // A changed parameter shapes them anew.
+  scene.parameters.liquid.surface_offset += 0.1f;
+  EXPECT_EQ(orbiting.renderFrame(scene, 1).stats.liquid.shapesNotKept, "the liquid parameters changed");
 }
 
 TEST(Determinism, TwoProcessesAndOneWorkerThreadGiveIdenticalExrs) {

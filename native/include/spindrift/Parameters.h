@@ -40,6 +40,16 @@ struct LightParameters {
 
 #undef SPINDRIFT_DECLARE_MEMBER
 
+#define SPINDRIFT_COMPARE_MEMBER(group, name, type, defaultValue, minimum, maximum, choices, doc) \
+  &&a.name == b.name
+
+/// Every parameter of the group equal.
+inline bool operator==(const LiquidParameters& a, const LiquidParameters& b) {
+  return true SPINDRIFT_LIQUID_PARAMETERS(SPINDRIFT_COMPARE_MEMBER);
+}
+
+#undef SPINDRIFT_COMPARE_MEMBER
+
 /// Every parameter, each with the default that parameters.def gives it.
 struct Parameters {
   LiquidParameters liquid;

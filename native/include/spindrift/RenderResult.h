@@ -85,6 +85,9 @@ struct LiquidFrameStats {
   /// Rays with a second body, by order: splash>splash, splash>aggregate, aggregate>splash,
   /// aggregate>aggregate.
   std::size_t orders[4] = {0, 0, 0, 0};
+  /// Empty where the particles' shapes from the frame before were kept (liquid.reuse_shapes: the same
+  /// particles and liquid parameters); else why they were not ("the particles changed", ...).
+  std::string shapesNotKept;
   double neighbourMilliseconds = 0.0;
   double anisotropyMilliseconds = 0.0;
 };

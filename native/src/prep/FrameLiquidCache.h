@@ -1,10 +1,16 @@
 #pragma once
 
 #include <optional>
+#include <string>
+#include <vector>
+
+#include <glm/vec3.hpp>
 
 #include "prep/Anisotropy.h"
 #include "prep/FullNeighbourhood.h"
 #include "prep/MantaflowSurface.h"
+#include "spindrift/Parameters.h"
+#include "spindrift/Particles.h"
 
 namespace spindrift {
 
@@ -20,6 +26,37 @@ struct FrameLiquidCache {
   ShapeMemory shapes;     ///< Each particle's shape from its neighbours, indexed like the shared cloud.
   /// frameNeighbourhood of the frame's particles, which depends on them alone.
   std::optional<FrameNeighbourhood> neighbourhood;
+
+  /// Forgets everything, as a new cache.
+  void clear() {
+    search.reset();
+    cellSize = 0.0f;
+    shapes.reset(0);
+    neighbourhood.reset();
+  }
+};
+
+/// A FrameLiquidCache kept from one frame to the next while everything it was computed from is unchanged: the
+/// same particles bit for bit (positions, radii, kinds) and the same liquid parameters. That is a camera
+/// moving over a paused frame, as the add-on's viewport redraws it, or the cameras of one frame rendered one
+/// after another: their particles are shaped once (liquid.reuse_shapes; docs/frame-cost.md). Any change
+/// forgets it, so a frame's result is the same with or without it.
+class LiquidCacheAcrossFrames {
+ public:
+  /// The cache for a frame of `particles` prepared with `parameters`: the previous frame's where both are
+  /// unchanged and parameters.reuse_shapes is set, else an empty one.
+  FrameLiquidCache& forFrame(const Particles& particles, const LiquidParameters& parameters);
+  /// Empty where forFrame kept the previous frame's cache; else why it did not, for the frame's stats.
+  const std::string& whyNotKept() const { return whyNotKept_; }
+
+ private:
+  FrameLiquidCache cache_;
+  bool filled_ = false;  // a frame has filled cache_ from the particles and parameters below
+  std::vector<glm::vec3> positions_;
+  std::vector<float> radii_;
+  std::vector<ParticleKind> kinds_;
+  LiquidParameters parameters_;
+  std::string whyNotKept_ = "no frame before it kept them";
 };
 
 }  // namespace spindrift
