@@ -21,11 +21,14 @@ import scaling
 DEFAULT_COUNT = 150_000
 
 
-def steady_frame_ms(scene, work_directory, frames=5):
-    """Median total_ms of frames 2..frames of one process rendering the same frame again (passes finished)."""
+def steady_frame_ms(scene, work_directory, frames=5, reuse_shapes=True):
+    """Median total_ms of frames 2..frames of one process rendering the same frame again (passes finished),
+    read back and written nowhere, as VTK's renders are timed. With reuse_shapes, each keeps the shapes of the
+    frame before (what a re-render of unchanged particles costs, as VTK's re-renders do); without, each frame
+    shapes them anew (what a sequence's new particles cost)."""
     stats = os.path.join(work_directory, "steady_####.json")
-    command = [runs.SPINDRIFT, "render", scene, "-o", os.path.join(work_directory, "steady_####.exr"),
-               "--stats", stats, "--frames", f"1-{frames}", "-q"]
+    command = [runs.SPINDRIFT, "render", scene, "--stats", stats, "--frames", f"1-{frames}", "-q",
+               "--set", f"liquid.reuse_shapes={'true' if reuse_shapes else 'false'}"]
     subprocess.run(command, check=True, stdout=subprocess.DEVNULL,
                    env=dict(os.environ, SPINDRIFT_FINISH_PASSES="1"))
     totals = []
@@ -48,7 +51,9 @@ def compare(base_scene, camera_directory, mantaflow_ply, count, repeats, absorpt
     timing = runs.timed_spindrift(scene, exr, {}, repeats, work_directory)
     errors = runs.frame_errors(exr, camera_directory, radius, runs.SPINDRIFT_CHANNELS)
     rows = [{"label": "Spindrift (defaults)", "frame_ms": timing["total_ms"],
-             "steady_frame_ms": steady_frame_ms(scene, work_directory), "mae": errors["mae"],
+             "steady_frame_ms": steady_frame_ms(scene, work_directory),
+             "steady_new_particles_ms": steady_frame_ms(scene, work_directory, reuse_shapes=False),
+             "mae": errors["mae"],
              "iou": errors["iou"], "gl_renderer": timing["gl_renderer"]}]
     for filter_name in vtk_filters:
         composite, frame_ms, first_ms, renderer = runs.run_vtk(
