@@ -299,9 +299,8 @@ RenderResult Renderer::renderPrepared(const Scene& scene, const Particles& parti
   const SolidDepthTiles* frameSolids = solids ? &*solids : nullptr;
   // What the camera's and the lights' views share, kept for the next frame while the particles and the
   // liquid parameters stay the same (liquid.reuse_shapes).
-  FrameLiquidCache& frameCache = impl_->liquidCache.forFrame(particles, liquidParameters);
+  FrameLiquidCache* shared = impl_->liquidCache.forFrame(particles, liquidParameters, !scene.lights.empty());
   stats.liquid.shapesNotKept = impl_->liquidCache.whyNotKept();
-  FrameLiquidCache* shared = liquidParameters.reuse_shapes || !scene.lights.empty() ? &frameCache : nullptr;
   LiquidPreparation liquid = prepareLiquid(particles, camera, liquidParameters, shared, frameSolids);
   const bool cameraInLiquid = aggregatesContain(liquid.aggregates, camera.position(), domainBox);
   const float radius = typicalLiquidRadius(particles);

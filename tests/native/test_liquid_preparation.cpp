@@ -336,44 +336,52 @@ TEST(LiquidPreparation, ViewsSharingAFrameCacheShapeEachParticleOnceAndGetWhatTh
 TEST(LiquidPreparation, ShapesAreKeptForTheNextFrameOnlyWhileItsParticlesAndParametersAreTheSame) {
   // Frames of a block with drops over it, each seen by another camera (a viewport orbiting a paused frame),
   // with and without Mantaflow's surface: a frame that keeps the one before's cache gets bit for bit what it
-  // gets alone, and a moved particle, a changed parameter or liquid.reuse_shapes false forgets it.
+  // gets alone, and a moved particle, a changed parameter or liquid.reuse_shapes false forgets it. A frame
+  // keeps its shapes where its particles are the frame before's, or where other views (lights) share them.
   Particles particles;
   addBlock(particles, {0, 0, 0}, 8, 1.0f, 0.3f, 7);
   for (int i = 0; i < 4; ++i)
     addLiquid(particles, glm::vec3(0.1f * float(i) - 0.2f, 0.05f, 0.45f + 0.07f * float(i)));
   const Camera oblique = Camera::lookAt(64, 64, 60.0f, {2, -3, 2}, {0, 0, 0}, {0, 0, 1});
   const Camera above = Camera::lookAt(64, 64, 60.0f, {0.01f, 0.02f, 4}, {0, 0, 0}, {0, 1, 0});
+  const std::string keptNone = "the frame before kept none (the same particles: this frame keeps them)";
   for (const float meshKernelRadius : {0.0f, 2.0f}) {
     LiquidParameters parameters;
     parameters.mesh_kernel_radius = meshKernelRadius;
     LiquidCacheAcrossFrames across;
+    // `remembered`: the shapes the cache holds before the frame's preparation; -1: no cache for the frame.
     const auto expectFrame = [&](const Particles& frameParticles, const LiquidParameters& frameParameters,
-                                 const Camera& camera, const std::string& whyNotKept,
-                                 std::size_t remembered) {
-      FrameLiquidCache& cache = across.forFrame(frameParticles, frameParameters);
+                                 const Camera& camera, bool lights, const std::string& whyNotKept,
+                                 int remembered) {
+      FrameLiquidCache* cache = across.forFrame(frameParticles, frameParameters, lights);
       EXPECT_EQ(across.whyNotKept(), whyNotKept);
-      EXPECT_EQ(cache.shapes.remembered(), remembered) << "before the frame's preparation";
-      const LiquidPreparation kept = prepareLiquid(frameParticles, camera, frameParameters, &cache);
+      EXPECT_EQ(cache ? int(cache->shapes.remembered()) : -1, remembered) << whyNotKept;
+      const LiquidPreparation kept = prepareLiquid(frameParticles, camera, frameParameters, cache);
       const LiquidPreparation alone = prepareLiquid(frameParticles, camera, frameParameters);
       EXPECT_TRUE(shared_views::sameInstances(kept.aggregates, alone.aggregates)) << whyNotKept;
       EXPECT_TRUE(shared_views::sameInstances(kept.splashes, alone.splashes)) << whyNotKept;
       EXPECT_FALSE(kept.aggregates.empty());
     };
     SCOPED_TRACE(meshKernelRadius);
-    expectFrame(particles, parameters, oblique, "no frame before it kept them", 0);
-    expectFrame(particles, parameters, above, "", particles.size());
-    expectFrame(particles, parameters, oblique, "", particles.size());
+    const int all = int(particles.size());
+    expectFrame(particles, parameters, oblique, false, "no frame before", -1);
+    expectFrame(particles, parameters, above, false, keptNone, 0);
+    expectFrame(particles, parameters, oblique, false, "", all);
+    expectFrame(particles, parameters, above, false, "", all);
     Particles moved = particles;
     moved.positions[5].z += 1e-4f;
-    expectFrame(moved, parameters, above, "the particles changed", 0);
+    expectFrame(moved, parameters, above, true, "the particles changed", 0);
+    expectFrame(moved, parameters, oblique, false, "", all);
     LiquidParameters rounder = parameters;
     rounder.anisotropy_isotropic_scale *= 1.1f;
-    expectFrame(moved, rounder, above, "the liquid parameters changed", 0);
-    expectFrame(moved, rounder, oblique, "", particles.size());
+    expectFrame(moved, rounder, above, false, "the liquid parameters changed", -1);
+    expectFrame(moved, rounder, oblique, false, keptNone, 0);
+    expectFrame(moved, rounder, above, false, "", all);
     LiquidParameters anew = rounder;
     anew.reuse_shapes = false;
-    expectFrame(moved, anew, oblique, "liquid.reuse_shapes is false", 0);
-    expectFrame(moved, rounder, oblique, "no frame before it kept them", 0);
+    expectFrame(moved, anew, oblique, false, "liquid.reuse_shapes is false", -1);
+    expectFrame(moved, anew, oblique, true, "liquid.reuse_shapes is false", 0);
+    expectFrame(moved, rounder, oblique, false, "no frame before", -1);
   }
 }
 

@@ -2,28 +2,35 @@
 
 namespace spindrift {
 
-FrameLiquidCache& LiquidCacheAcrossFrames::forFrame(const Particles& particles,
-                                                    const LiquidParameters& parameters) {
-  if (!parameters.reuse_shapes)
+FrameLiquidCache* LiquidCacheAcrossFrames::forFrame(const Particles& particles,
+                                                    const LiquidParameters& parameters, bool otherViews) {
+  if (!parameters.reuse_shapes) {
     whyNotKept_ = "liquid.reuse_shapes is false";
-  else if (!filled_)
-    whyNotKept_ = "no frame before it kept them";
-  else if (!(parameters == parameters_))
-    whyNotKept_ = "the liquid parameters changed";
-  else if (particles.positions != positions_ || particles.radii != radii_ || particles.kinds != kinds_)
-    whyNotKept_ = "the particles changed";
-  else
+    keyed_ = filled_ = false;
+    cache_.clear();
+    return otherViews ? &cache_ : nullptr;
+  }
+  const bool sameParameters = keyed_ && parameters == parameters_;
+  const bool same = sameParameters && particles.positions == positions_ && particles.radii == radii_ &&
+                    particles.kinds == kinds_;
+  if (same && filled_) {
     whyNotKept_.clear();
-  if (whyNotKept_.empty()) return cache_;
+    return &cache_;
+  }
+  whyNotKept_ = !keyed_           ? "no frame before"
+                : !sameParameters ? "the liquid parameters changed"
+                : !same           ? "the particles changed"
+                                  : "the frame before kept none (the same particles: this frame keeps them)";
   cache_.clear();
-  filled_ = parameters.reuse_shapes;
-  if (filled_) {
+  if (!same) {
     positions_ = particles.positions;
     radii_ = particles.radii;
     kinds_ = particles.kinds;
     parameters_ = parameters;
+    keyed_ = true;
   }
-  return cache_;
+  filled_ = same || otherViews;
+  return filled_ ? &cache_ : nullptr;
 }
 
 }  // namespace spindrift

@@ -40,23 +40,26 @@ struct FrameLiquidCache {
 /// same particles bit for bit (positions, radii, kinds) and the same liquid parameters. That is a camera
 /// moving over a paused frame, as the add-on's viewport redraws it, or the cameras of one frame rendered one
 /// after another: their particles are shaped once (liquid.reuse_shapes; docs/frame-cost.md). Any change
-/// forgets it, so a frame's result is the same with or without it.
+/// forgets it, so a frame's result is the same with or without it. A frame keeps its shapes only where its
+/// views share them anyway (lights) or its particles are the frame before's: a one-frame process, or a
+/// sequence of new particles, does not pay for keeping what no frame reuses.
 class LiquidCacheAcrossFrames {
  public:
-  /// The cache for a frame of `particles` prepared with `parameters`: the previous frame's where both are
-  /// unchanged and parameters.reuse_shapes is set, else an empty one.
-  FrameLiquidCache& forFrame(const Particles& particles, const LiquidParameters& parameters);
+  /// The cache a frame of `particles` prepared with `parameters` fills or reuses, or null where it need not
+  /// keep one. `otherViews`: the frame has views besides the camera's (lights), which share it anyway.
+  FrameLiquidCache* forFrame(const Particles& particles, const LiquidParameters& parameters, bool otherViews);
   /// Empty where forFrame kept the previous frame's cache; else why it did not, for the frame's stats.
   const std::string& whyNotKept() const { return whyNotKept_; }
 
  private:
   FrameLiquidCache cache_;
-  bool filled_ = false;  // a frame has filled cache_ from the particles and parameters below
+  bool keyed_ = false;   // the particles and parameters below are the last frame's
+  bool filled_ = false;  // cache_ holds what the last frame's views computed
   std::vector<glm::vec3> positions_;
   std::vector<float> radii_;
   std::vector<ParticleKind> kinds_;
   LiquidParameters parameters_;
-  std::string whyNotKept_ = "no frame before it kept them";
+  std::string whyNotKept_;
 };
 
 }  // namespace spindrift
