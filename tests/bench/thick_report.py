@@ -86,14 +86,21 @@ def light_cost(stats):
             sum(p["gpu_ms"] for p in stats["passes"]))
 
 
+# The steady measures render one frame again and again; a sequence's frames hold new particles, which a
+# renderer shapes anew (liquid.reuse_shapes keeps the shapes of unchanged particles, as a viewport orbiting a
+# paused frame has them). So that a steady frame costs what a sequence's does, every frame shapes anew.
+SEQUENCE_SETTINGS = {"liquid.reuse_shapes": False}
+
+
 def steady_cost(scene, settings, directory):
     """The light passes' cost in a sequence of one renderer, frames 3 to 6 (median): llvmpipe compiles each
     shader's machine code when it first draws with it, which a single-frame process pays inside its frame. Each
     pass is finished before the next starts (SPINDRIFT_FINISH_PASSES): llvmpipe otherwise rasterises a pass's
-    draws when a later pass reads them, and charges them to that pass (the background's to the lights')."""
+    draws when a later pass reads them, and charges them to that pass (the background's to the lights').
+    Every frame shapes its particles anew, as a sequence's new particles are (SEQUENCE_SETTINGS)."""
     command = [runs.SPINDRIFT, "render", scene, "-o", os.path.join(directory, "steady_####.exr"), "--stats",
                os.path.join(directory, "steady_####.json"), "--frames", "1-6", "-q"]
-    for key, value in settings.items():
+    for key, value in {**SEQUENCE_SETTINGS, **settings}.items():
         command += ["--set", f"{key}={json.dumps(value)}"]
     subprocess.run(command, check=True, stdout=subprocess.DEVNULL, env=dict(os.environ, SPINDRIFT_FINISH_PASSES="1"))
     costs = []
@@ -106,10 +113,10 @@ def steady_cost(scene, settings, directory):
 
 def steady_frame_ms(scene, settings, directory):
     """The median whole-frame time (total_ms) of frames 3 to 8 of a `--frames 1-8` sequence, the passes not
-    finished one by one (as a user's render runs)."""
+    finished one by one (as a user's render runs), each frame's particles shaped anew (SEQUENCE_SETTINGS)."""
     command = [runs.SPINDRIFT, "render", scene, "-o", os.path.join(directory, "frames_####.exr"), "--stats",
                os.path.join(directory, "frames_####.json"), "--frames", "1-8", "-q"]
-    for key, value in settings.items():
+    for key, value in {**SEQUENCE_SETTINGS, **settings}.items():
         command += ["--set", f"{key}={json.dumps(value)}"]
     subprocess.run(command, check=True, stdout=subprocess.DEVNULL)
     totals = []
