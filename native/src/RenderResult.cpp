@@ -104,6 +104,7 @@ nlohmann::json FrameStats::toJson() const {
         {"light_passes", light.lightPasses},
         {"prepare_ms", light.prepareMilliseconds},
         {"view_size", light.viewSize},
+        {"views_kept", light.viewsKept},
         {"view_particles", light.viewParticles},
         {"view_particles_left_out", light.viewParticlesLeftOut},
         {"view_particles_column_thinned", light.viewParticlesColumnThinned}}},

@@ -140,6 +140,7 @@ struct Renderer::Impl {
   std::unique_ptr<FramePipeline> pipeline;  // Lives on glThread; reset there before the thread ends.
   BackgroundCache backgroundCache;
   LiquidCacheAcrossFrames liquidCache;
+  LightingAcrossFrames lightingCache;
   GlLimits glLimits;
   bool intermediateLayers = false;
   LayerSelection layers;
@@ -326,12 +327,13 @@ RenderResult Renderer::renderPrepared(const Scene& scene, const Particles& parti
     checkImageFitsGl(impl_->glLimits, backgroundImages.environment->width,
                      backgroundImages.environment->height,
                      "background.environment " + pathForFrame(scene.background.environment, frame).string());
-  const LightingPreparation lighting =
-      prepareLighting(particles, camera, scene.lights, scene.parameters, shared);
+  const LightingPreparation& lighting = impl_->lightingCache.forFrame(
+      particles, camera, scene.lights, scene.parameters, shared, impl_->liquidCache.sameAsBefore());
   stats.prepareMilliseconds = millisecondsSince(prepareStart);
   recordPreparation(liquid, foam, stats);
   stats.liquid.cameraInLiquid = cameraInLiquid;
   recordLighting(scene.lights.size(), lighting, backgroundImages.lightPasses != nullptr, stats.light);
+  stats.light.viewsKept = impl_->lightingCache.kept();
   const LayerSelection& layers = impl_->layers;
   FrameContents contents{liquid.splashes.size(),     liquid.aggregates.size(),   foam.instances.size(),
                          liquidParameters.smoothing, extras.occluders.size(),    extras.liquidMesh != nullptr,

@@ -7,6 +7,8 @@
 #include <cstring>
 #include <random>
 
+#include <glm/geometric.hpp>
+
 #include "CliCommand.h"
 #include "TempDirectory.h"
 #include "spindrift/Output.h"
@@ -84,20 +86,28 @@ TEST(Determinism, SameProcessTwiceGivesIdenticalLayersAndFiles) {
 }
 
 TEST(Determinism, ACameraMovedOverTheSameParticlesKeepsTheirShapesAndGetsWhatAFreshRendererGets) {
-  // A viewport orbiting a paused frame: the second camera's frame reuses the first's shapes and must match,
-  // bit for bit, that camera rendered by a renderer that never saw the first.
+  // A viewport orbiting a paused frame under a sun: the second camera's frame reuses the first's shapes and
+  // the sun's view, and must match, bit for bit, that camera rendered by a renderer that never saw the first.
   TempDirectory directory;
   spindrift::Scene scene = spindrift::loadScene(writeDeterminismScene(directory));
+  spindrift::Light sun;
+  sun.direction = glm::normalize(glm::vec3(0.4f, 0.3f, -1.0f));
+  scene.lights.push_back(sun);
   spindrift::Renderer orbiting;
   orbiting.renderFrame(scene, 1);
   orbiting.renderFrame(scene, 1);  // the same particles again: their shapes are kept from here on
-  scene.camera = spindrift::Camera::lookAt(160, 120, 40.0f, {2.5f, -3, 1.5f}, {0, 0, 0.2f}, {0, 0, 1});
+  // Turned where it stands: its nearest pixel on the liquid is as large, so the lights' and the sky's views
+  // want the sides they had (a camera that moves nearer may want finer ones).
+  scene.camera = spindrift::Camera::lookAt(160, 120, 40.0f, {0, -4, 2}, {0.25f, 0.1f, 0.3f}, {0, 0, 1});
   const spindrift::RenderResult moved = orbiting.renderFrame(scene, 1);
   EXPECT_EQ(moved.stats.liquid.shapesNotKept, "");
   EXPECT_EQ(moved.stats.liquid.culled, 0u) << "a view that culls shapes its own cloud: nothing kept to reuse";
+  EXPECT_TRUE(moved.stats.light.viewsKept);
+  EXPECT_EQ(moved.stats.light.lightsSeeingLiquid, 1u);
   spindrift::Renderer fresh;
   const spindrift::RenderResult alone = fresh.renderFrame(scene, 1);
   EXPECT_EQ(alone.stats.liquid.shapesNotKept, "no frame before");
+  EXPECT_FALSE(alone.stats.light.viewsKept);
   ASSERT_EQ(moved.layers.size(), alone.layers.size());
   for (std::size_t i = 0; i < moved.layers.size(); ++i) {
     const auto& a = moved.layers[i].pixels;

@@ -1,6 +1,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstring>
 
 #include "prep/LightViews.h"
 
@@ -59,6 +60,51 @@ TEST(LightViews, MantaflowSurfaceGetsLightTexelsPerKernelRadius) {
   // A kernel below the particle radius does not make the view finer than the particles' own detail.
   liquid.mesh_kernel_radius = 0.5f;
   EXPECT_FLOAT_EQ(liquidBounds(sheet(), liquid).detailRadius, kRadius);
+}
+
+// Whether two views hold the same ellipsoids, bit for bit, in the same order, seen by the same camera.
+bool sameView(const LightPreparation& a, const LightPreparation& b) {
+  const std::vector<EllipsoidInstance>&x = a.liquid.aggregates, &y = b.liquid.aggregates;
+  return a.view.camera.width == b.view.camera.width &&
+         a.view.camera.worldFromCamera == b.view.camera.worldFromCamera && a.leftOut == b.leftOut &&
+         x.size() == y.size() && std::memcmp(x.data(), y.data(), x.size() * sizeof(EllipsoidInstance)) == 0;
+}
+
+bool samePreparation(const LightingPreparation& a, const LightingPreparation& b) {
+  if (a.lights.size() != b.lights.size() || a.viewSize != b.viewSize || !a.sky || !b.sky) return false;
+  for (std::size_t i = 0; i < a.lights.size(); ++i)
+    if (!sameView(a.lights[i], b.lights[i])) return false;
+  return sameView(*a.sky, *b.sky);
+}
+
+// A camera orbiting a paused frame keeps the lights' views; a moved light, other particles or a camera so far
+// that it wants coarser views prepare them anew, and whatever is kept is what a fresh preparation gives.
+TEST(LightViews, ViewsAreKeptWhileParticlesLightsAndViewSidesStayTheSame) {
+  const Particles particles = sheet();
+  Parameters parameters;
+  Light sun;
+  sun.direction = glm::normalize(glm::vec3(0.3f, 0.2f, -1.0f));
+  std::vector<Light> lights = {sun};
+  const Camera orbited = Camera::lookAt(512, 512, 1.0f, {30, -30, 12}, {0, 0, 0}, {0, 0, 1});
+  const Camera farAway = Camera::lookAt(64, 64, 60.0f, {0, -400, 100}, {0, 0, 0}, {0, 0, 1});
+  LightingAcrossFrames across;
+  const auto expectFrame = [&](const Camera& camera, bool sameParticles, bool kept) {
+    const LightingPreparation& prepared =
+        across.forFrame(particles, camera, lights, parameters, nullptr, sameParticles);
+    EXPECT_EQ(across.kept(), kept);
+    EXPECT_TRUE(samePreparation(prepared, prepareLighting(particles, camera, lights, parameters)));
+  };
+  expectFrame(distantCamera(), false, false);
+  expectFrame(orbited, true, true);
+  expectFrame(orbited, false, false);  // other particles
+  lights[0].direction = glm::normalize(glm::vec3(-0.3f, 0.2f, -1.0f));
+  expectFrame(orbited, true, false);
+  expectFrame(distantCamera(), true, true);
+  ASSERT_NE(lightViewSize(liquidBounds(particles, parameters.liquid), farAway, parameters.light),
+            lightViewSize(liquidBounds(particles, parameters.liquid), orbited, parameters.light));
+  expectFrame(farAway, true, false);
+  parameters.light.texels_per_radius = 1.5f;
+  expectFrame(farAway, true, false);
 }
 
 }  // namespace

@@ -47,6 +47,9 @@ struct LightParameters {
 inline bool operator==(const LiquidParameters& a, const LiquidParameters& b) {
   return true SPINDRIFT_LIQUID_PARAMETERS(SPINDRIFT_COMPARE_MEMBER);
 }
+inline bool operator==(const LightParameters& a, const LightParameters& b) {
+  return true SPINDRIFT_LIGHT_PARAMETERS(SPINDRIFT_COMPARE_MEMBER);
+}
 
 #undef SPINDRIFT_COMPARE_MEMBER
 

@@ -134,6 +134,9 @@ struct LightFrameStats {
   bool lightPasses = false;            ///< Whether the background had Cycles' light passes.
   double prepareMilliseconds = 0.0;    ///< CPU preparation of the lights' views (included in prepare_ms).
   int viewSize = 0;                    ///< Side in texels of the lights' views (light.texels_per_radius).
+  /// The views were the frame before's, kept with their ellipsoids: the same particles, liquid and light
+  /// parameters, lights and view sides (liquid.reuse_shapes).
+  bool viewsKept = false;
   std::size_t viewParticles = 0;  ///< Liquid particles shaped for the lights' and the sky's views, summed.
   std::size_t viewParticlesLeftOut = 0;  ///< Of those, hidden from both layers of their view: not drawn.
   /// Of those left out, the ones a view of a body few particles deep did not keep in any texel column

@@ -77,6 +77,11 @@ struct Light {
   float spotAngleDegrees = 45.0f;  ///< Spot: full cone angle (Blender's spot_size).
 };
 
+inline bool operator==(const Light& a, const Light& b) {
+  return a.type == b.type && a.direction == b.direction && a.position == b.position && a.color == b.color &&
+         a.strength == b.strength && a.spotAngleDegrees == b.spotAngleDegrees;
+}
+
 /// A scene file, version 1 (docs/scene-format.md), parsed and validated.
 struct Scene {
   std::filesystem::path file;

@@ -6,13 +6,14 @@ FrameLiquidCache* LiquidCacheAcrossFrames::forFrame(const Particles& particles,
                                                     const LiquidParameters& parameters, bool otherViews) {
   if (!parameters.reuse_shapes) {
     whyNotKept_ = "liquid.reuse_shapes is false";
-    keyed_ = filled_ = false;
+    keyed_ = filled_ = same_ = false;
     cache_.clear();
     return otherViews ? &cache_ : nullptr;
   }
   const bool sameParameters = keyed_ && parameters == parameters_;
   const bool same = sameParameters && particles.positions == positions_ && particles.radii == radii_ &&
                     particles.kinds == kinds_;
+  same_ = same;
   if (same && filled_) {
     whyNotKept_.clear();
     return &cache_;

@@ -50,9 +50,13 @@ class LiquidCacheAcrossFrames {
   FrameLiquidCache* forFrame(const Particles& particles, const LiquidParameters& parameters, bool otherViews);
   /// Empty where forFrame kept the previous frame's cache; else why it did not, for the frame's stats.
   const std::string& whyNotKept() const { return whyNotKept_; }
+  /// Whether forFrame's particles and liquid parameters were the frame before's (and liquid.reuse_shapes
+  /// set).
+  bool sameAsBefore() const { return same_; }
 
  private:
   FrameLiquidCache cache_;
+  bool same_ = false;
   bool keyed_ = false;   // the particles and parameters below are the last frame's
   bool filled_ = false;  // cache_ holds what the last frame's views computed
   std::vector<glm::vec3> positions_;

@@ -41,6 +41,17 @@ float texelSizeAt(const Camera& camera, const LiquidBounds& bounds) {
   return camera.pixelSizeAt(glm::distance(camera.position(), bounds.centre));
 }
 
+// The sky's view finds how deep below the surface a point lies, which varies slowly, and what liquid a
+// point's hemisphere holds: half the side of a view of kSkyTexelsPerRadius, whatever the lights' texels.
+// Half the side of a 2-texel view left the floor just past a floating slab's edge 0.036 off the hemisphere
+// integral (GLSkyOcclusion.FloorNearAFloatingSlabKeepsTheHemisphereIntegral).
+int skyViewSide(const LiquidBounds& bounds, const Camera& camera, const LightParameters& parameters) {
+  LightParameters skyParameters = parameters;
+  skyParameters.texels_per_radius = kSkyTexelsPerRadius;
+  const int side = lightViewSize(bounds, camera, skyParameters);
+  return std::max(side / 2, std::min(32, side));
+}
+
 }  // namespace
 
 LiquidBounds liquidBounds(const Particles& particles, const LiquidParameters& parameters) {
@@ -183,18 +194,32 @@ LightingPreparation prepareLighting(const Particles& particles, const Camera& ca
     }
     preparation.lights.push_back(prepareFor(*view));
   }
-  // The sky's view finds how deep below the surface a point lies, which varies slowly, and what liquid a
-  // point's hemisphere holds: half the side of a view of kSkyTexelsPerRadius, whatever the lights' texels.
-  // Half the side of a 2-texel view left the floor just past a floating slab's edge 0.036 off the hemisphere
-  // integral (GLSkyOcclusion.FloorNearAFloatingSlabKeepsTheHemisphereIntegral).
-  LightParameters skyParameters = parameters.light;
-  skyParameters.texels_per_radius = kSkyTexelsPerRadius;
-  const int skySide = lightViewSize(bounds, camera, skyParameters);
-  const LightView sky = skyView(bounds, std::max(skySide / 2, std::min(32, skySide)));
-  preparation.sky = prepareFor(sky);
+  preparation.sky = prepareFor(skyView(bounds, skyViewSide(bounds, camera, parameters.light)));
   preparation.milliseconds =
       std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
   return preparation;
+}
+
+const LightingPreparation& LightingAcrossFrames::forFrame(const Particles& particles, const Camera& camera,
+                                                          const std::vector<Light>& lights,
+                                                          const Parameters& parameters,
+                                                          FrameLiquidCache* frameCache, bool sameParticles) {
+  const auto start = std::chrono::steady_clock::now();
+  // The same particles and liquid parameters frame the views alike (the same bounds); the camera only sizes
+  // them.
+  kept_ = previous_ && sameParticles && lights == lights_ && parameters.light == lightParameters_ &&
+          previous_->sky &&
+          lightViewSize(previous_->bounds, camera, parameters.light) == previous_->viewSize &&
+          skyViewSide(previous_->bounds, camera, parameters.light) == previous_->sky->view.camera.width;
+  if (kept_) {
+    previous_->milliseconds =
+        std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+    return *previous_;
+  }
+  previous_ = prepareLighting(particles, camera, lights, parameters, frameCache);
+  lights_ = lights;
+  lightParameters_ = parameters.light;
+  return *previous_;
 }
 
 }  // namespace spindrift

@@ -83,4 +83,25 @@ LightingPreparation prepareLighting(const Particles& particles, const Camera& ca
                                     const std::vector<Light>& lights, const Parameters& parameters,
                                     FrameLiquidCache* frameCache = nullptr);
 
+/// The lights' preparation kept for the frames after while nothing it depends on changes: the same particles
+/// and liquid parameters (`sameParticles`: LiquidCacheAcrossFrames::sameAsBefore), the same lights and light
+/// parameters, and views of the same sides (a camera that comes nearer may want finer ones, lightViewSize).
+/// A camera orbiting a paused frame in the viewport prepares no light's view again; the GL passes still draw
+/// them, since what the camera sees of their light changes.
+class LightingAcrossFrames {
+ public:
+  /// prepareLighting's result for this frame: the frame before's where it holds, else prepared anew.
+  const LightingPreparation& forFrame(const Particles& particles, const Camera& camera,
+                                      const std::vector<Light>& lights, const Parameters& parameters,
+                                      FrameLiquidCache* frameCache, bool sameParticles);
+  /// Whether forFrame kept the frame before's.
+  bool kept() const { return kept_; }
+
+ private:
+  std::optional<LightingPreparation> previous_;
+  std::vector<Light> lights_;
+  LightParameters lightParameters_;
+  bool kept_ = false;
+};
+
 }  // namespace spindrift
