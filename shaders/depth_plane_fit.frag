@@ -11,7 +11,7 @@ layout(binding = 0) uniform sampler2D currentEyeDepth;  // this iteration's dept
 layout(binding = 1) uniform sampler2D originalNormal;   // world normals before smoothing: ñ_j in eq. 3
 
 // (s - 1) / 2, a constant of each program (PlaneFitPass): llvmpipe unrolls the window's loops, which took the
-// dam break's smoothing from 33-34 to 31-32 ms (docs/frame-cost.md).
+// dam break's smoothing from 34-37 to 31-32.5 ms (docs/frame-cost.md, session 42).
 const int halfWindow = HALF_WINDOW;
 uniform int tapSpacing;  // pixels between taps: the window's taps spread over a taller image (PlaneFitPass.h)
 uniform float sigma;     // world units: liquid.plane_fit_sigma × r

@@ -1,8 +1,8 @@
 #pragma once
 
 #include <map>
-#include "framedata/SmoothedDepth.h"
 
+#include "framedata/SmoothedDepth.h"
 #include "gl/GlObjects.h"
 #include "gl/ShaderLibrary.h"
 #include "passes/DepthPingPong.h"
