@@ -117,7 +117,7 @@ TEST(Determinism, ACameraMovedOverTheSameParticlesKeepsTheirShapesAndGetsWhatAFr
   }
   // A changed parameter shapes them anew.
   scene.parameters.liquid.surface_offset += 0.1f;
-  EXPECT_EQ(orbiting.renderFrame(scene, 1).stats.liquid.shapesNotKept, "the liquid parameters changed");
+  EXPECT_EQ(orbiting.renderFrame(scene, 1).stats.liquid.shapesNotKept, "a shaping parameter changed");
 }
 
 TEST(Determinism, TwoProcessesAndOneWorkerThreadGiveIdenticalExrs) {

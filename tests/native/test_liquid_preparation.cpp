@@ -13,6 +13,7 @@
 #include "prep/Anisotropy.h"
 #include "prep/FrameLiquidCache.h"
 #include "prep/LiquidPreparation.h"
+#include "spindrift/Parameters.h"
 
 namespace spindrift {
 namespace {
@@ -374,7 +375,7 @@ TEST(LiquidPreparation, ShapesAreKeptForTheNextFrameOnlyWhileItsParticlesAndPara
     expectFrame(moved, parameters, oblique, false, "", all);
     LiquidParameters rounder = parameters;
     rounder.anisotropy_isotropic_scale *= 1.1f;
-    expectFrame(moved, rounder, above, false, "the liquid parameters changed", -1);
+    expectFrame(moved, rounder, above, false, "a shaping parameter changed", -1);
     expectFrame(moved, rounder, oblique, false, keptNone, 0);
     expectFrame(moved, rounder, above, false, "", all);
     LiquidParameters anew = rounder;
@@ -383,6 +384,65 @@ TEST(LiquidPreparation, ShapesAreKeptForTheNextFrameOnlyWhileItsParticlesAndPara
     expectFrame(moved, anew, oblique, true, "liquid.reuse_shapes is false", 0);
     expectFrame(moved, rounder, oblique, false, "no frame before", -1);
   }
+}
+
+// Another valid value of a parameter: a Bool flipped, a number moved within its range, another choice.
+nlohmann::json otherValue(const ParameterInfo& info, const nlohmann::json& current) {
+  if (info.type == "Bool") return !current.get<bool>();
+  if (info.type == "Choice") {
+    for (const std::string& choice : info.choices)
+      if (choice != current.get<std::string>()) return choice;
+  }
+  const auto moved = [&](double value) {
+    const double up = value != 0.0 ? value * 1.2 : std::min(info.maximum, info.minimum + 0.5);
+    return up <= info.maximum ? up : value * 0.8;
+  };
+  if (info.type == "Int") {
+    const int value = current.get<int>();
+    return value + 1 <= int(info.maximum) ? value + 1 : value - 1;
+  }
+  if (info.type == "Float") return moved(current.get<double>());
+  nlohmann::json vector = nlohmann::json::array();  // Color, Vec3
+  for (const nlohmann::json& component : current)
+    vector.push_back(moved(component.get<double>()));
+  return vector;
+}
+
+TEST(LiquidPreparation, OnlyTheShapingParametersForgetTheKeptShapes) {
+  // Every liquid parameter outside shapingParameterKeys() leaves the kept shapes valid: with it changed, a
+  // frame that keeps the frame before's cache gets bit for bit what it gets alone. Each of those keys,
+  // changed, forgets them.
+  Particles particles;
+  addBlock(particles, {0, 0, 0}, 7, 1.0f, 0.3f, 9);
+  for (int i = 0; i < 4; ++i)
+    addLiquid(particles, glm::vec3(0.1f * float(i) - 0.2f, 0.05f, 0.42f + 0.07f * float(i)));
+  const Camera camera = Camera::lookAt(64, 64, 60.0f, {2, -3, 2}, {0, 0, 0}, {0, 0, 1});
+  const std::vector<std::string>& shaping = shapingParameterKeys();
+  std::size_t checked = 0;
+  for (const float meshKernelRadius : {0.0f, 2.0f})
+    for (const ParameterInfo& info : parameterTable()) {
+      if (info.key.rfind("liquid.", 0) != 0) continue;
+      Parameters base;
+      base.liquid.mesh_kernel_radius = meshKernelRadius;
+      Parameters changed = base;
+      setParameter(changed, info.key, otherValue(info, getParameter(base, info.key)));
+      const bool shapes = std::find(shaping.begin(), shaping.end(), info.key) != shaping.end();
+      EXPECT_EQ(sameShapingParameters(base.liquid, changed.liquid), !shapes) << info.key;
+      if (shapes) continue;
+      LiquidCacheAcrossFrames across;
+      across.forFrame(particles, base.liquid, false);
+      prepareLiquid(particles, camera, base.liquid, across.forFrame(particles, base.liquid, false));
+      FrameLiquidCache* kept = across.forFrame(particles, changed.liquid, false);
+      EXPECT_EQ(across.whyNotKept(), "") << info.key;
+      ASSERT_NE(kept, nullptr) << info.key;
+      ASSERT_GT(kept->shapes.remembered(), 0u) << info.key;
+      const LiquidPreparation reused = prepareLiquid(particles, camera, changed.liquid, kept);
+      const LiquidPreparation alone = prepareLiquid(particles, camera, changed.liquid);
+      EXPECT_TRUE(shared_views::sameInstances(reused.aggregates, alone.aggregates)) << info.key;
+      EXPECT_TRUE(shared_views::sameInstances(reused.splashes, alone.splashes)) << info.key;
+      ++checked;
+    }
+  EXPECT_GT(checked, 60u) << "the liquid group's other parameters, twice";
 }
 
 TEST(LiquidPreparation, ShapeMemoryForgetsAParticleThatMoved) {

@@ -36,8 +36,16 @@ struct FrameLiquidCache {
   }
 };
 
+/// The liquid parameters ("liquid.layers", ...) that what a FrameLiquidCache keeps depends on: each
+/// particle's shape and density, the frame's neighbourhood, Mantaflow's surface. The others (the smoothing,
+/// the refraction, the absorption, the splash threshold, ...) change only what a view makes from it.
+const std::vector<std::string>& shapingParameterKeys();
+/// Whether every parameter of shapingParameterKeys() is the same in both.
+bool sameShapingParameters(const LiquidParameters& a, const LiquidParameters& b);
+
 /// A FrameLiquidCache kept from one frame to the next while everything it was computed from is unchanged: the
-/// same particles bit for bit (positions, radii, kinds) and the same liquid parameters. That is a camera
+/// same particles bit for bit (positions, radii, kinds) and the same shaping parameters (an artist tuning
+/// the water's colour or the smoothing keeps them). That is a camera
 /// moving over a paused frame, as the add-on's viewport redraws it, or the cameras of one frame rendered one
 /// after another: their particles are shaped once (liquid.reuse_shapes; docs/frame-cost.md). Any change
 /// forgets it, so a frame's result is the same with or without it. A frame keeps its shapes only where its
@@ -50,7 +58,7 @@ class LiquidCacheAcrossFrames {
   FrameLiquidCache* forFrame(const Particles& particles, const LiquidParameters& parameters, bool otherViews);
   /// Empty where forFrame kept the previous frame's cache; else why it did not, for the frame's stats.
   const std::string& whyNotKept() const { return whyNotKept_; }
-  /// Whether forFrame's particles and liquid parameters were the frame before's (and liquid.reuse_shapes
+  /// Whether forFrame's particles and shaping parameters were the frame before's (and liquid.reuse_shapes
   /// set).
   bool sameAsBefore() const { return same_; }
 

@@ -207,8 +207,8 @@ const LightingPreparation& LightingAcrossFrames::forFrame(const Particles& parti
   const auto start = std::chrono::steady_clock::now();
   // The same particles and liquid parameters frame the views alike (the same bounds); the camera only sizes
   // them.
-  kept_ = previous_ && sameParticles && lights == lights_ && parameters.light == lightParameters_ &&
-          previous_->sky &&
+  kept_ = previous_ && sameParticles && lights == lights_ && parameters.liquid == liquidParameters_ &&
+          parameters.light == lightParameters_ && previous_->sky &&
           lightViewSize(previous_->bounds, camera, parameters.light) == previous_->viewSize &&
           skyViewSide(previous_->bounds, camera, parameters.light) == previous_->sky->view.camera.width;
   if (kept_) {
@@ -218,6 +218,7 @@ const LightingPreparation& LightingAcrossFrames::forFrame(const Particles& parti
   }
   previous_ = prepareLighting(particles, camera, lights, parameters, frameCache);
   lights_ = lights;
+  liquidParameters_ = parameters.liquid;
   lightParameters_ = parameters.light;
   return *previous_;
 }

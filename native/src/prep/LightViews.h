@@ -84,8 +84,8 @@ LightingPreparation prepareLighting(const Particles& particles, const Camera& ca
                                     FrameLiquidCache* frameCache = nullptr);
 
 /// The lights' preparation kept for the frames after while nothing it depends on changes: the same particles
-/// and liquid parameters (`sameParticles`: LiquidCacheAcrossFrames::sameAsBefore), the same lights and light
-/// parameters, and views of the same sides (a camera that comes nearer may want finer ones, lightViewSize).
+/// (`sameParticles`: LiquidCacheAcrossFrames::sameAsBefore), the same liquid and light parameters and
+/// lights, and views of the same sides (a camera that comes nearer may want finer ones, lightViewSize).
 /// A camera orbiting a paused frame in the viewport prepares no light's view again; the GL passes still draw
 /// them, since what the camera sees of their light changes.
 class LightingAcrossFrames {
@@ -100,6 +100,7 @@ class LightingAcrossFrames {
  private:
   std::optional<LightingPreparation> previous_;
   std::vector<Light> lights_;
+  LiquidParameters liquidParameters_;  // all of them: a light's view classifies and sizes its particles too
   LightParameters lightParameters_;
   bool kept_ = false;
 };
