@@ -334,16 +334,26 @@ TEST(LiquidPreparation, ViewsSharingAFrameCacheShapeEachParticleOnceAndGetWhatTh
   EXPECT_GT(alone[0].splashes.size(), 0u);
 }
 
+// A jittered block with four drops over it: aggregates, splashes and Mantaflow's surface all take part.
+Particles jitteredBlockWithDrops() {
+  Particles particles;
+  addBlock(particles, {0, 0, 0}, 8, 1.0f, 0.3f, 7);
+  for (int i = 0; i < 4; ++i)
+    addLiquid(particles, glm::vec3(0.1f * float(i) - 0.2f, 0.05f, 0.45f + 0.07f * float(i)));
+  return particles;
+}
+
+Camera obliqueCamera() {
+  return Camera::lookAt(64, 64, 60.0f, {2, -3, 2}, {0, 0, 0}, {0, 0, 1});
+}
+
 TEST(LiquidPreparation, ShapesAreKeptForTheNextFrameOnlyWhileItsParticlesAndParametersAreTheSame) {
   // Frames of a block with drops over it, each seen by another camera (a viewport orbiting a paused frame),
   // with and without Mantaflow's surface: a frame that keeps the one before's cache gets bit for bit what it
   // gets alone, and a moved particle, a changed parameter or liquid.reuse_shapes false forgets it. A frame
   // keeps its shapes where its particles are the frame before's, or where other views (lights) share them.
-  Particles particles;
-  addBlock(particles, {0, 0, 0}, 8, 1.0f, 0.3f, 7);
-  for (int i = 0; i < 4; ++i)
-    addLiquid(particles, glm::vec3(0.1f * float(i) - 0.2f, 0.05f, 0.45f + 0.07f * float(i)));
-  const Camera oblique = Camera::lookAt(64, 64, 60.0f, {2, -3, 2}, {0, 0, 0}, {0, 0, 1});
+  const Particles particles = jitteredBlockWithDrops();
+  const Camera oblique = obliqueCamera();
   const Camera above = Camera::lookAt(64, 64, 60.0f, {0.01f, 0.02f, 4}, {0, 0, 0}, {0, 1, 0});
   const std::string keptNone = "the frame before kept none (the same particles: this frame keeps them)";
   for (const float meshKernelRadius : {0.0f, 2.0f}) {
@@ -412,11 +422,8 @@ TEST(LiquidPreparation, OnlyTheShapingParametersForgetTheKeptShapes) {
   // Every liquid parameter outside shapingParameterKeys() leaves the kept shapes valid: with it changed, a
   // frame that keeps the frame before's cache gets bit for bit what it gets alone. Each of those keys,
   // changed, forgets them.
-  Particles particles;
-  addBlock(particles, {0, 0, 0}, 7, 1.0f, 0.3f, 9);
-  for (int i = 0; i < 4; ++i)
-    addLiquid(particles, glm::vec3(0.1f * float(i) - 0.2f, 0.05f, 0.42f + 0.07f * float(i)));
-  const Camera camera = Camera::lookAt(64, 64, 60.0f, {2, -3, 2}, {0, 0, 0}, {0, 0, 1});
+  const Particles particles = jitteredBlockWithDrops();
+  const Camera camera = obliqueCamera();
   const std::vector<std::string>& shaping = shapingParameterKeys();
   std::size_t checked = 0;
   for (const float meshKernelRadius : {0.0f, 2.0f})
