@@ -1,5 +1,7 @@
 #include "prep/FrameLiquidCache.h"
 
+#include <algorithm>
+
 namespace spindrift {
 
 const std::vector<std::string>& shapingParameterKeys() {
@@ -19,14 +21,13 @@ const std::vector<std::string>& shapingParameterKeys() {
 }
 
 bool sameShapingParameters(const LiquidParameters& a, const LiquidParameters& b) {
-  return a.layers == b.layers && a.neighbour_radius == b.neighbour_radius &&
-         a.anisotropy_max_ratio == b.anisotropy_max_ratio &&
-         a.anisotropy_min_neighbours == b.anisotropy_min_neighbours &&
-         a.anisotropy_min_neighbour_fraction == b.anisotropy_min_neighbour_fraction &&
-         a.anisotropy_isotropic_scale == b.anisotropy_isotropic_scale &&
-         a.anisotropy_smoothing == b.anisotropy_smoothing && a.max_ellipsoid_scale == b.max_ellipsoid_scale &&
-         a.surface_offset == b.surface_offset && a.reach_radius == b.reach_radius &&
-         a.mesh_kernel_radius == b.mesh_kernel_radius && a.reuse_shapes == b.reuse_shapes;
+  // Compared through the parameter table, so that the list above is the only one.
+  Parameters first, second;
+  first.liquid = a;
+  second.liquid = b;
+  return std::all_of(
+      shapingParameterKeys().begin(), shapingParameterKeys().end(),
+      [&](const std::string& key) { return getParameter(first, key) == getParameter(second, key); });
 }
 
 FrameLiquidCache* LiquidCacheAcrossFrames::forFrame(const Particles& particles,
