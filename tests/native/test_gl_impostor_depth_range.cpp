@@ -2,7 +2,8 @@
 // exit kept by GL_MIN and GL_MAX blending) against the two draws with opposite depth tests that every other
 // view makes: the same layers bit for bit, on a wavy sheet seen from above as the sky sees it, with the
 // occlusion test's split (which runDepthRange ignores: it draws every ellipsoid into both layers), and empty
-// layers for an empty list.
+// layers for an empty list. The sky's view is prepared without the occlusion test (prep/LightViews.cpp): the
+// range of a deep block drawn whole is the range of what that test leaves, bit for bit.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -79,6 +80,30 @@ TEST(GLImpostorDepthRange, OneDrawKeepsWhatTheTwoDrawsKeep) {
   RecordProperty("covered_pixels", int(covered));
   EXPECT_GT(covered, 3000u) << "the sheet fills much of the view";
   EXPECT_LT(covered, twoDraws.front.size()) << "and leaves empty pixels, which both layers must mark";
+  EXPECT_EQ(frontDiffers, 0u);
+  EXPECT_EQ(backDiffers, 0u);
+}
+
+TEST(GLImpostorDepthRange, TheOcclusionTestLeavesTheRangeAsItIs) {
+  const Camera camera = skyLikeView();
+  const Particles block =
+      liquid_test::particlesOf(liquid_test::block({-0.6f, -0.6f, -0.25f}, {0.6f, 0.6f, 0.25f}, 0.05f), 0.05f);
+  const LiquidPreparation whole = prepareLiquid(block, camera, LiquidParameters{});
+  LiquidPreparation tested = whole;
+  const HiddenInteriorResult hidden = dropHiddenAggregates(tested, camera, nullptr);
+  ASSERT_GT(hidden.dropped + hidden.occluded.dropped, whole.aggregates.size() / 2)
+      << "the test needs a body whose inside the occlusion test leaves out";
+  Layers wholeRange, testedRange, unused;
+  drawBothWays(whole, camera, unused, wholeRange);
+  drawBothWays(tested, camera, unused, testedRange);
+  std::size_t covered = 0, frontDiffers = 0, backDiffers = 0;
+  for (std::size_t i = 0; i < wholeRange.front.size(); ++i) {
+    ASSERT_TRUE(std::isfinite(wholeRange.front[i]) && std::isfinite(wholeRange.back[i]));
+    covered += wholeRange.front[i] < 1e9f;
+    frontDiffers += wholeRange.front[i] != testedRange.front[i];
+    backDiffers += wholeRange.back[i] != testedRange.back[i];
+  }
+  EXPECT_GT(covered, 3000u) << "the block fills much of the view";
   EXPECT_EQ(frontDiffers, 0u);
   EXPECT_EQ(backDiffers, 0u);
 }

@@ -3,13 +3,13 @@
 #include <algorithm>
 #include <cmath>
 
-#include <openvdb/math/Mat3.h>
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 #include <glm/geometric.hpp>
 
 #include "prep/MantaflowSurface.h"
 #include "prep/NeighbourOffsets.h"
+#include "prep/SymmetricEigen.h"
 
 namespace spindrift {
 namespace {
@@ -226,21 +226,18 @@ ParticleShape shapeFromMoments(const NeighbourMoments& moments, float radius,
     return shape;
   }
 
-  const openvdb::math::Mat3d matrix(xx, xy, xz, xy, yy, yz, xz, yz, zz);
-  openvdb::math::Mat3d eigenvectors;
-  openvdb::math::Vec3d eigenvalues;
-  const bool converged = openvdb::math::diagonalizeSymmetricMatrix(matrix, eigenvectors, eigenvalues);
-  double largest = 0.0;
-  for (int k = 0; k < 3; ++k)
-    largest = std::max(largest, eigenvalues[k]);
-  if (!converged || !(largest > kDegenerateCovariance) || !std::isfinite(largest)) return shape;
+  SymmetricEigen3 eigen;
+  if (!symmetricEigen3(xx, xy, xz, yy, yz, zz, eigen)) return shape;
+  const glm::dvec3& eigenvalues = eigen.values;
+  const double largest = eigenvalues[2];
+  if (!(largest > kDegenerateCovariance)) return shape;
 
   // Yu and Turk's clamp: no eigenvalue below the largest / k_r. Semi-axes are the clamped eigenvalues
   // relative to the rest covariance (the unit-free k_s), so an isotropic neighbourhood at rest gets r.
   glm::vec3 relative;
   for (int k = 0; k < 3; ++k) {
     relative[k] = float(std::max(eigenvalues[k], largest / settings.maxRatio) / kRestCovariance);
-    shape.axes[k] = glm::normalize(glm::vec3(eigenvectors(0, k), eigenvectors(1, k), eigenvectors(2, k)));
+    shape.axes[k] = glm::normalize(glm::vec3(eigen.vectors[k]));
   }
   const float longest = float(largest / kRestCovariance);
   // The liquid paper bounds the drawn ellipsoid by maxEllipsoidScale r; k_n r bounds it from below, as it
