@@ -141,6 +141,7 @@ struct Renderer::Impl {
   BackgroundCache backgroundCache;
   LiquidCacheAcrossFrames liquidCache;
   LightingAcrossFrames lightingCache;
+  OcclusionWorkspace occlusionWorkspace;  // the camera's occlusion test's memory, kept for the next frame
   GlLimits glLimits;
   bool intermediateLayers = false;
   LayerSelection layers;
@@ -310,7 +311,8 @@ RenderResult Renderer::renderPrepared(const Scene& scene, const Particles& parti
   if (liquidParameters.surface == "raymarch")
     raymarch.emplace(prepareRaymarch(liquid, camera, radius, liquidParameters, domainBox));
   if (liquidParameters.drop_hidden_interior) {
-    const HiddenInteriorResult hidden = dropHiddenAggregates(liquid, camera, domainBox, frameSolids);
+    const HiddenInteriorResult hidden =
+        dropHiddenAggregates(liquid, camera, domainBox, frameSolids, &impl_->occlusionWorkspace);
     stats.liquid.hiddenInteriorDropped = hidden.dropped;
     stats.liquid.hiddenInteriorFrontLayerOnly = hidden.split.frontOnly;
     stats.liquid.hiddenInteriorBackLayerOnly = hidden.split.backOnly;

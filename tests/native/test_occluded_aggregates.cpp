@@ -198,6 +198,34 @@ TEST(OccludedAggregates, EveryPixelSeesInEachLayerWhatAllEllipsoidsGive) {
   EXPECT_EQ(check.differing, 0u) << "of " << 2 * check.hits << " layer values";
 }
 
+// A workspace lent from call to call (a sequence's frames) changes nothing: each call, whether the
+// workspace's memory is fresh, reused with room to spare or grown, leaves what a call with none leaves, for
+// block sizes that shrink and grow. Its memory grows only.
+TEST(OccludedAggregates, AWorkspaceReusedAcrossCallsGivesWhatAFreshCallGives) {
+  const Camera camera = Camera::lookAt(128, 96, 40.0f, {4.0f, -2.5f, 3.0f}, {0.8f, 0.8f, 0.4f}, {0, 0, 1});
+  const std::vector<EllipsoidInstance> block = jitteredBlock(camera);
+  OcclusionWorkspace workspace;
+  std::size_t largest = 0;
+  for (const std::size_t count : {block.size() / 2, block.size(), block.size() / 3, block.size()}) {
+    std::vector<EllipsoidInstance> fresh(block.begin(), block.begin() + std::ptrdiff_t(count)),
+        reused = fresh;
+    LayerSplit freshSplit, reusedSplit;
+    const OccludedAggregatesResult alone =
+        dropOccludedAggregates(fresh, freshSplit, camera, nullptr, nullptr);
+    const OccludedAggregatesResult lent =
+        dropOccludedAggregates(reused, reusedSplit, camera, nullptr, nullptr, &workspace);
+    largest = std::max(largest, count);
+    EXPECT_EQ(workspace.capacity(), largest);
+    EXPECT_GT(alone.dropped, 0u) << count;
+    EXPECT_EQ(alone.dropped, lent.dropped) << count;
+    EXPECT_EQ(alone.shownPixels, lent.shownPixels) << count;
+    EXPECT_EQ(freshSplit.frontOnly, reusedSplit.frontOnly) << count;
+    EXPECT_EQ(freshSplit.backOnly, reusedSplit.backOnly) << count;
+    ASSERT_EQ(fresh.size(), reused.size()) << count;
+    EXPECT_EQ(std::memcmp(fresh.data(), reused.data(), fresh.size() * sizeof(EllipsoidInstance)), 0) << count;
+  }
+}
+
 TEST(OccludedAggregates, WhatTheSolidsHideAtEveryPixelGoesFromBothLayers) {
   // The background's depth holds a wall before the block's left part and a floor-like slope behind its
   // right part; every layer must still give, through every pixel, what all the ellipsoids the impostor pass

@@ -359,7 +359,8 @@ bool manyDeepAggregates(const LiquidPreparation& liquid) {
 }
 
 HiddenInteriorResult dropHiddenAggregates(LiquidPreparation& liquid, const Camera& camera,
-                                          const DomainBox* domain, const SolidDepthTiles* solidTiles) {
+                                          const DomainBox* domain, const SolidDepthTiles* solidTiles,
+                                          OcclusionWorkspace* workspace) {
   // Deep particles are the ones the anisotropy found isotropic; where they are few the body is a sheet or a
   // spray, which hides little: on the dam-break example (5 % deep) 0.8 % of the aggregates are hidden from
   // both layers and 6 % from one, fewer fragments than the grid's cost on the CPU (docs/frame-cost.md).
@@ -373,8 +374,8 @@ HiddenInteriorResult dropHiddenAggregates(LiquidPreparation& liquid, const Camer
   liquid.aggregateLayers = result.split;
   // What the view hides: the body's far side behind its near side, and the inside of a body whose particles
   // leave gaps between them.
-  result.occluded =
-      dropOccludedAggregates(liquid.aggregates, liquid.aggregateLayers, camera, domain, solidTiles);
+  result.occluded = dropOccludedAggregates(liquid.aggregates, liquid.aggregateLayers, camera, domain,
+                                           solidTiles, workspace);
   return result;
 }
 

@@ -46,8 +46,9 @@ bool manyDeepAggregates(const LiquidPreparation& liquid);
 
 /// dropHiddenInterior on a preparation's aggregates (where manyDeepAggregates), then
 /// dropOccludedAggregates, recording the split in `liquid.aggregateLayers`; `solids` are the frame's, or
-/// null.
+/// null; `workspace` is lent to dropOccludedAggregates.
 HiddenInteriorResult dropHiddenAggregates(LiquidPreparation& liquid, const Camera& camera,
-                                          const DomainBox* domain, const SolidDepthTiles* solids = nullptr);
+                                          const DomainBox* domain, const SolidDepthTiles* solids = nullptr,
+                                          OcclusionWorkspace* workspace = nullptr);
 
 }  // namespace spindrift

@@ -150,7 +150,7 @@ std::size_t causticLights(const LightingPreparation& lighting) {
 
 LightingPreparation prepareLighting(const Particles& particles, const Camera& camera,
                                     const std::vector<Light>& lights, const Parameters& parameters,
-                                    FrameLiquidCache* frameCache) {
+                                    FrameLiquidCache* frameCache, OcclusionWorkspace* occlusion) {
   const auto start = std::chrono::steady_clock::now();
   LightingPreparation preparation;
   if (lights.empty()) return preparation;
@@ -188,7 +188,8 @@ LightingPreparation prepareLighting(const Particles& particles, const Camera& ca
       light.liquid.aggregateLayers = hidden.split;
       light.leftOut = hidden.dropped;
     } else if (parameters.liquid.drop_hidden_interior) {
-      const HiddenInteriorResult hidden = dropHiddenAggregates(light.liquid, view.camera, nullptr);
+      const HiddenInteriorResult hidden =
+          dropHiddenAggregates(light.liquid, view.camera, nullptr, nullptr, occlusion);
       light.leftOut = hidden.dropped + hidden.occluded.dropped;
     }
     return light;
@@ -226,7 +227,7 @@ const LightingPreparation& LightingAcrossFrames::forFrame(const Particles& parti
         std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
     return *previous_;
   }
-  previous_ = prepareLighting(particles, camera, lights, parameters, frameCache);
+  previous_ = prepareLighting(particles, camera, lights, parameters, frameCache, &occlusion_);
   lights_ = lights;
   liquidParameters_ = parameters.liquid;
   lightParameters_ = parameters.light;

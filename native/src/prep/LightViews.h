@@ -7,6 +7,7 @@
 #include <glm/vec3.hpp>
 
 #include "prep/LiquidPreparation.h"
+#include "prep/OccludedAggregates.h"
 #include "spindrift/Camera.h"
 #include "spindrift/Parameters.h"
 #include "spindrift/Particles.h"
@@ -78,10 +79,12 @@ struct LightingPreparation {
 std::size_t causticLights(const LightingPreparation& lighting);
 
 /// Prepares each light's view (and the sky's) of the liquid. `frameCache`: the camera's, so that each
-/// particle is shaped and Mantaflow's surface built and searched once per frame (prepareLiquid).
+/// particle is shaped and Mantaflow's surface built and searched once per frame (prepareLiquid);
+/// `occlusion`: memory for the lights' occlusion tests, kept from an earlier frame.
 LightingPreparation prepareLighting(const Particles& particles, const Camera& camera,
                                     const std::vector<Light>& lights, const Parameters& parameters,
-                                    FrameLiquidCache* frameCache = nullptr);
+                                    FrameLiquidCache* frameCache = nullptr,
+                                    OcclusionWorkspace* occlusion = nullptr);
 
 /// The lights' preparation kept for the frames after while nothing it depends on changes: the same particles
 /// (`sameParticles`: LiquidCacheAcrossFrames::sameAsBefore), the same liquid and light parameters and
@@ -102,6 +105,7 @@ class LightingAcrossFrames {
   std::vector<Light> lights_;
   LiquidParameters liquidParameters_;  // all of them: a light's view classifies and sizes its particles too
   LightParameters lightParameters_;
+  OcclusionWorkspace occlusion_;
   bool kept_ = false;
 };
 

@@ -44,9 +44,10 @@ constexpr double kDistanceMargin = 1e-5;
 // One ellipsoid as this view sees it: grown by the margins, where a pixel's ray meets it (it may be drawn
 // there, no nearer than that entry and no farther than that exit); shrunk by them, where it certainly is
 // (entering no later and leaving no earlier). A trivial type, left uninitialised until the threads that
-// compute the views fill it, so that they touch its pages first: 248 bytes an ellipsoid, 37 MB for the
-// benchmark's bigger bake, whose page faults took 18 ms in one thread value-initialising them. `valid` is set
-// for every ellipsoid, the rest for a valid one (the cover rectangle where it covers).
+// compute the views fill it, so that they touch fresh pages first: 248 bytes an ellipsoid, 37 MB for the
+// benchmark's bigger bake, whose page faults took 18 ms in one thread value-initialising them (and an
+// OcclusionWorkspace keeps them for the next call). `valid` is set for every ellipsoid, the rest for a valid
+// one (the cover rectangle where it covers).
 struct ViewedEllipsoid {
   double grown, shrunk;  // the scales about its centre
   double chordMargin;
@@ -62,9 +63,33 @@ static_assert(std::is_trivially_default_constructible_v<ViewedEllipsoid>);
 
 }  // namespace
 
+struct OcclusionWorkspace::Views {
+  std::unique_ptr<ViewedEllipsoid[]> views;
+  std::size_t capacity = 0;
+
+  // Room for `count` views: the memory of the call before where it is enough.
+  ViewedEllipsoid* reserve(std::size_t count) {
+    if (count > capacity) {
+      views.reset();  // the old pages go before the new ones are faulted in
+      views.reset(new ViewedEllipsoid[count]);
+      capacity = count;
+    }
+    return views.get();
+  }
+};
+
+OcclusionWorkspace::OcclusionWorkspace() : views_(std::make_unique<Views>()) {}
+OcclusionWorkspace::~OcclusionWorkspace() = default;
+OcclusionWorkspace::OcclusionWorkspace(OcclusionWorkspace&&) noexcept = default;
+OcclusionWorkspace& OcclusionWorkspace::operator=(OcclusionWorkspace&&) noexcept = default;
+std::size_t OcclusionWorkspace::capacity() const {
+  return views_ ? views_->capacity : 0;
+}
+
 OccludedAggregatesResult dropOccludedAggregates(std::vector<EllipsoidInstance>& ellipsoids, LayerSplit& split,
                                                 const Camera& camera, const DomainBox* domain,
-                                                const SolidDepthTiles* solids) {
+                                                const SolidDepthTiles* solids,
+                                                OcclusionWorkspace* workspace) {
   const auto start = std::chrono::steady_clock::now();
   OccludedAggregatesResult result;
   const std::size_t count = ellipsoids.size();
@@ -76,7 +101,9 @@ OccludedAggregatesResult dropOccludedAggregates(std::vector<EllipsoidInstance>& 
     grid.clipToBox(*domain,
                    glm::inverse(glm::dmat4(domain->worldFromBox)) * glm::dmat4(camera.worldFromCamera));
 
-  const std::unique_ptr<ViewedEllipsoid[]> viewed(new ViewedEllipsoid[count]);
+  OcclusionWorkspace::Views ownViews;
+  OcclusionWorkspace::Views& views = workspace && workspace->views_ ? *workspace->views_ : ownViews;
+  ViewedEllipsoid* const viewed = views.reserve(count);
   std::vector<char> covers(count, 0);
   tbb::parallel_for(tbb::blocked_range<std::size_t>(0, count), [&](const tbb::blocked_range<std::size_t>& r) {
     for (std::size_t i = r.begin(); i != r.end(); ++i) {

@@ -2,6 +2,7 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <memory>
 
 #include "prep/LiquidPreparation.h"
 #include "prep/SolidDepthTiles.h"
@@ -23,6 +24,28 @@ struct OccludedAggregatesResult {
   double milliseconds = 0.0;
 };
 
+/// Memory dropOccludedAggregates keeps from one call to the next: its per-ellipsoid views (248 bytes each),
+/// which a sequence's frames then write into pages already mapped. Allocated afresh, the bigger bake's 36 MB
+/// (150,000 particles) were faulted in again every frame: 8,900 page faults, about 30 ms of CPU time
+/// (docs/frame-cost.md, session 43). One workspace serves one call at a time.
+class OcclusionWorkspace {
+ public:
+  OcclusionWorkspace();
+  ~OcclusionWorkspace();
+  OcclusionWorkspace(OcclusionWorkspace&&) noexcept;
+  OcclusionWorkspace& operator=(OcclusionWorkspace&&) noexcept;
+  /// Ellipsoids' room held (for tests).
+  std::size_t capacity() const;
+
+  struct Views;  // OccludedAggregates.cpp
+
+ private:
+  friend OccludedAggregatesResult dropOccludedAggregates(std::vector<EllipsoidInstance>&, LayerSplit&,
+                                                         const Camera&, const DomainBox*,
+                                                         const SolidDepthTiles*, OcclusionWorkspace*);
+  std::unique_ptr<Views> views_;
+};
+
 /// Leaves out of each depth layer the ellipsoids that another one hides from the view at every pixel they
 /// could cover, on the view's own pixel grid. An ellipsoid Q covers a pixel when the pixel's ray passes
 /// through Q's inscribed ball: there the front layer is at most Q's farthest depth (its bounding sphere's).
@@ -40,9 +63,10 @@ struct OccludedAggregatesResult {
 /// hides it at that pixel in both layers: one hidden so at every pixel it may reach is dropped (the dam
 /// break's grazing camera, whose obstacle and walls hide most of the water: 11,654 → 51,943 dropped).
 /// `ellipsoids` and `split` come as dropHiddenInterior leaves them ([front only | both | back only]) and
-/// leave in that order too.
+/// leave in that order too. `workspace` (may be null) lends the memory of an earlier call.
 OccludedAggregatesResult dropOccludedAggregates(std::vector<EllipsoidInstance>& ellipsoids, LayerSplit& split,
                                                 const Camera& camera, const DomainBox* domain,
-                                                const SolidDepthTiles* solids);
+                                                const SolidDepthTiles* solids,
+                                                OcclusionWorkspace* workspace = nullptr);
 
 }  // namespace spindrift

@@ -120,8 +120,14 @@ bool symmetricEigen3(double a00, double a01, double a02, double a11, double a12,
   pairInComplement(a, first, pairValues, pairVectors);
   const double values[3] = {glm::dot(first, a.times(first)), pairValues[0], pairValues[1]};
   const glm::dvec3 vectors[3] = {first, pairVectors[0], pairVectors[1]};
+  // Ascending, by three compare-exchanges.
   int order[3] = {0, 1, 2};
-  std::sort(order, order + 3, [&](int i, int j) { return values[i] < values[j]; });
+  const auto exchange = [&](int i, int j) {
+    if (values[order[j]] < values[order[i]]) std::swap(order[i], order[j]);
+  };
+  exchange(0, 1);
+  exchange(1, 2);
+  exchange(0, 1);
   for (int k = 0; k < 3; ++k) {
     result.values[k] = values[order[k]] * largest;
     result.vectors[k] = vectors[order[k]];
