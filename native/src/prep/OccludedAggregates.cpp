@@ -61,6 +61,18 @@ struct ViewedEllipsoid {
 };
 static_assert(std::is_trivially_default_constructible_v<ViewedEllipsoid>);
 
+// The bands take their ellipsoids nearest first, at random places in the views' memory (tens of megabytes on
+// a bigger bake): each view is asked for this many ellipsoids ahead, so that its cache lines arrive while
+// the ones before are worked on.
+constexpr std::size_t kPrefetchDistance = 4;
+
+void prefetchView(const ViewedEllipsoid& view) {
+  const char* const bytes = reinterpret_cast<const char*>(&view);
+  for (std::size_t offset = 0; offset < sizeof(ViewedEllipsoid); offset += 64)
+    __builtin_prefetch(bytes + offset);
+  __builtin_prefetch(bytes + sizeof(ViewedEllipsoid) - 1);
+}
+
 }  // namespace
 
 struct OcclusionWorkspace::Views {
@@ -105,6 +117,10 @@ OccludedAggregatesResult dropOccludedAggregates(std::vector<EllipsoidInstance>& 
   OcclusionWorkspace::Views& views = workspace && workspace->views_ ? *workspace->views_ : ownViews;
   ViewedEllipsoid* const viewed = views.reserve(count);
   std::vector<char> covers(count, 0);
+  // The rows of each covering ellipsoid's cover rectangle, apart from its view: the bands are filled in
+  // depth order, which reads these at random, and 8 bytes an ellipsoid stay in the caches where 248 do not
+  // (the bigger bake's bands took 7 to 12 ms reading the views).
+  std::vector<glm::ivec2> coverRows(count);
   tbb::parallel_for(tbb::blocked_range<std::size_t>(0, count), [&](const tbb::blocked_range<std::size_t>& r) {
     for (std::size_t i = r.begin(); i != r.end(); ++i) {
       ViewedEllipsoid& view = viewed[i];
@@ -128,6 +144,7 @@ OccludedAggregatesResult dropOccludedAggregates(std::vector<EllipsoidInstance>& 
       if (!(view.shrunk > 0.0)) continue;
       grid.rectangle(centre, glm::vec3(view.shrunk * halfExtents), view.coverLow, view.coverHigh);
       covers[i] = 1;
+      coverRows[i] = {view.coverLow.y, view.coverHigh.y};
     }
   });
 
@@ -164,8 +181,8 @@ OccludedAggregatesResult dropOccludedAggregates(std::vector<EllipsoidInstance>& 
   // Each band's ellipsoids, in that order: a band touches only the few it holds.
   std::vector<std::vector<std::uint32_t>> inBand(static_cast<std::size_t>(bands));
   for (const std::uint32_t i : nearestFirst) {
-    const int first = std::max(viewed[i].coverLow.y, 0) / kRowsPerBand;
-    const int last = std::min(viewed[i].coverHigh.y / kRowsPerBand, bands - 1);
+    const int first = std::max(coverRows[i].x, 0) / kRowsPerBand;
+    const int last = std::min(coverRows[i].y / kRowsPerBand, bands - 1);
     for (int band = first; band <= last; ++band)
       inBand[std::size_t(band)].push_back(i);
   }
@@ -200,7 +217,10 @@ OccludedAggregatesResult dropOccludedAggregates(std::vector<EllipsoidInstance>& 
   };
   tbb::parallel_for(0, bands, [&](int band) {
     const int firstRow = band * kRowsPerBand, lastRow = std::min(firstRow + kRowsPerBand, grid.height) - 1;
-    for (const std::uint32_t i : inBand[std::size_t(band)]) {
+    const std::vector<std::uint32_t>& members = inBand[std::size_t(band)];
+    for (std::size_t k = 0; k < members.size(); ++k) {
+      if (k + kPrefetchDistance < members.size()) prefetchView(viewed[members[k + kPrefetchDistance]]);
+      const std::uint32_t i = members[k];
       const ViewedEllipsoid& view = viewed[i];
       const occlusion_rows::Cover cover{
           i, view.nearest, view.farthest, view.chordMargin, i < backFrom, i >= split.frontOnly};
