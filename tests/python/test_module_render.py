@@ -155,7 +155,6 @@ def test_liquid_is_the_background_through_the_refraction_uv_times_transmittance_
 
 
 def test_other_python_threads_run_while_a_frame_renders(renderer):
-    arrays = sphere_of_particles(count=3000, particle_radius=0.05)
     scene = scene_json(width=320, height=240)
     stamps, stop = [], threading.Event()
 
@@ -167,7 +166,10 @@ def test_other_python_threads_run_while_a_frame_renders(renderer):
     worker = threading.Thread(target=stamp)
     worker.start()
     try:
-        for _ in range(5):  # Until a render lasts long enough for the margins below.
+        # Until a render lasts long enough for the margins below: each try more particles, and new ones (the
+        # renderer keeps the shapes of particles it rendered the frame before, liquid.reuse_shapes).
+        for attempt in range(5):
+            arrays = sphere_of_particles(count=3000 * 2**attempt, particle_radius=0.05, seed=attempt)
             start = time.monotonic()
             renderer.render(scene, 1, particles=arrays, layers=["composite"])
             end = time.monotonic()
