@@ -85,14 +85,32 @@ glm::vec2 ViewGrid::pixelOf(const glm::vec3& point) const {
 
 void ViewGrid::rectangle(const glm::vec3& centre, const glm::vec3& halfExtents, glm::ivec2& low,
                          glm::ivec2& high) const {
-  glm::vec2 least(std::numeric_limits<float>::max()), most(std::numeric_limits<float>::lowest());
-  for (int corner = 0; corner < 8; ++corner) {
-    const glm::vec3 point =
-        centre + halfExtents * glm::vec3(corner & 1 ? 1.0f : -1.0f, corner & 2 ? 1.0f : -1.0f,
-                                         corner & 4 ? 1.0f : -1.0f);
-    const glm::vec2 pixel = pixelOf(point);
-    least = glm::min(least, pixel);
-    most = glm::max(most, pixel);
+  glm::vec2 least, most;
+  const float nearZ = centre.z + halfExtents.z, farZ = centre.z - halfExtents.z;
+  if (nearZ < 0.0f) {
+    // Every corner in front of the eye: each extreme comes from a known corner, the same float values the
+    // eight corners' projections give (their rounding is monotonic in x, y and -z). The window's x grows
+    // with focal x / -z, which grows with x, and for x >= 0 falls as -z grows, for x < 0 rises.
+    const float xLow = centre.x - halfExtents.x, xHigh = centre.x + halfExtents.x;
+    const float yLow = centre.y - halfExtents.y, yHigh = centre.y + halfExtents.y;
+    const auto nearer = [&](float along) { return focal * along >= 0.0f ? nearZ : farZ; };
+    const auto farther = [&](float along) { return focal * along >= 0.0f ? farZ : nearZ; };
+    least.x = pixelOf({xLow, 0.0f, farther(xLow)}).x;
+    most.x = pixelOf({xHigh, 0.0f, nearer(xHigh)}).x;
+    // The window's y falls as focal y / -z grows.
+    least.y = pixelOf({0.0f, yHigh, nearer(yHigh)}).y;
+    most.y = pixelOf({0.0f, yLow, farther(yLow)}).y;
+  } else {
+    least = glm::vec2(std::numeric_limits<float>::max());
+    most = glm::vec2(std::numeric_limits<float>::lowest());
+    for (int corner = 0; corner < 8; ++corner) {
+      const glm::vec3 point =
+          centre + halfExtents * glm::vec3(corner & 1 ? 1.0f : -1.0f, corner & 2 ? 1.0f : -1.0f,
+                                           corner & 4 ? 1.0f : -1.0f);
+      const glm::vec2 pixel = pixelOf(point);
+      least = glm::min(least, pixel);
+      most = glm::max(most, pixel);
+    }
   }
   // Pixel centres at +0.5 inside [least, most], widened by one pixel for rounding; clamped to just outside
   // the frame first, so that a ball close to the eye plane cannot overflow the conversion to int.
