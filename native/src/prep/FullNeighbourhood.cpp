@@ -42,19 +42,34 @@ std::uint64_t cellKey(std::int64_t x, std::int64_t y, std::int64_t z) {
   return (part(x) << 42) | (part(y) << 21) | part(z);
 }
 
+// One cell's particles: a range of SampledNeighbourhoods::memberList.
+struct CellMembers {
+  const std::uint32_t* first;
+  const std::uint32_t* last;
+  const std::uint32_t* begin() const { return first; }
+  const std::uint32_t* end() const { return last; }
+};
+
 // The frame's sample (every k-th liquid particle) and every liquid particle filed into the cells around it:
-// all the neighbours a sampled particle has.
+// all the neighbours a sampled particle has. The cells' members lie in one list, each cell's in index order
+// (a vector per cell took a hundred thousand allocations on the bigger bake).
 struct SampledNeighbourhoods {
   float cellSize = 0.0f;
   std::vector<std::uint32_t> samples;
-  std::unordered_map<std::uint64_t, std::vector<std::uint32_t>> cells;
+  std::unordered_map<std::uint64_t, std::uint32_t> cellIndex;  // a cell's key: its place in memberStart
+  std::vector<std::uint32_t> memberStart;                      // each cell's first member; then the end
+  std::vector<std::uint32_t> memberList;
 
   Cell cellOf(const Particles& particles, std::uint32_t i) const {
     const glm::vec3 c = glm::floor(particles.positions[i] / cellSize);
     return Cell{std::int64_t(c.x), std::int64_t(c.y), std::int64_t(c.z)};
   }
-  const std::vector<std::uint32_t>& members(const Cell& c, int dx, int dy, int dz) const {
-    return cells.at(cellKey(c.x + dx, c.y + dy, c.z + dz));
+  CellMembers membersOf(std::uint64_t key) const {
+    const std::uint32_t cell = cellIndex.at(key);
+    return {memberList.data() + memberStart[cell], memberList.data() + memberStart[cell + 1]};
+  }
+  CellMembers members(const Cell& c, int dx, int dy, int dz) const {
+    return membersOf(cellKey(c.x + dx, c.y + dy, c.z + dz));
   }
 };
 
@@ -79,20 +94,29 @@ SampledNeighbourhoods sampleNeighbourhoods(const Particles& particles, float nei
     for (int dx = -1; dx <= 1; ++dx)
       for (int dy = -1; dy <= 1; ++dy)
         for (int dz = -1; dz <= 1; ++dz)
-          sampled.cells[cellKey(c.x + dx, c.y + dy, c.z + dz)];
+          sampled.cellIndex.try_emplace(cellKey(c.x + dx, c.y + dy, c.z + dz),
+                                        std::uint32_t(sampled.cellIndex.size()));
   }
-  // Each particle's cell looked up in parallel (the map is only read), then filed in index order.
-  std::vector<std::vector<std::uint32_t>*> cellOfParticle(liquid.size(), nullptr);
+  // Each particle's cell looked up in parallel (the map is only read), then counted and filed in index order.
+  constexpr std::uint32_t kNoCell = ~std::uint32_t(0);
+  std::vector<std::uint32_t> cellOfParticle(liquid.size(), kNoCell);
   tbb::parallel_for(tbb::blocked_range<std::size_t>(0, liquid.size(), 4096),
                     [&](const tbb::blocked_range<std::size_t>& block) {
                       for (std::size_t k = block.begin(); k != block.end(); ++k) {
                         const Cell c = sampled.cellOf(particles, liquid[k]);
-                        const auto found = sampled.cells.find(cellKey(c.x, c.y, c.z));
-                        if (found != sampled.cells.end()) cellOfParticle[k] = &found->second;
+                        const auto found = sampled.cellIndex.find(cellKey(c.x, c.y, c.z));
+                        if (found != sampled.cellIndex.end()) cellOfParticle[k] = found->second;
                       }
                     });
+  sampled.memberStart.assign(sampled.cellIndex.size() + 1, 0);
+  for (const std::uint32_t cell : cellOfParticle)
+    if (cell != kNoCell) ++sampled.memberStart[cell + 1];
+  for (std::size_t cell = 1; cell < sampled.memberStart.size(); ++cell)
+    sampled.memberStart[cell] += sampled.memberStart[cell - 1];
+  sampled.memberList.resize(sampled.memberStart.back());
+  std::vector<std::uint32_t> next(sampled.memberStart.begin(), sampled.memberStart.end() - 1);
   for (std::size_t k = 0; k < liquid.size(); ++k)
-    if (cellOfParticle[k]) cellOfParticle[k]->push_back(liquid[k]);
+    if (cellOfParticle[k] != kNoCell) sampled.memberList[next[cellOfParticle[k]]++] = liquid[k];
   return sampled;
 }
 
@@ -136,7 +160,7 @@ std::vector<float> interiorDensities(const SampledNeighbourhoods& sampled, const
           const std::uint64_t key = cellKey(c.x + dx, c.y + dy, c.z + dz);
           if (!taken.insert(key).second) continue;
           const bool centre = centreKeys.count(key) > 0;
-          for (const std::uint32_t i : sampled.cells.at(key)) {
+          for (const std::uint32_t i : sampled.membersOf(key)) {
             const glm::vec3& p = particles.positions[i];
             cloud.x.push_back(p.x);
             cloud.y.push_back(p.y);
