@@ -57,6 +57,23 @@ void drawBothWays(const LiquidPreparation& liquid, const Camera& camera, Layers&
   });
 }
 
+// Pixels `expected` covers, and those where `actual`'s front or back layer differs from it; every value of
+// `actual` finite.
+struct LayerDifferences {
+  std::size_t covered = 0, frontDiffers = 0, backDiffers = 0;
+};
+
+LayerDifferences compareLayers(const Layers& expected, const Layers& actual) {
+  LayerDifferences differences;
+  for (std::size_t i = 0; i < expected.front.size(); ++i) {
+    EXPECT_TRUE(std::isfinite(actual.front[i]) && std::isfinite(actual.back[i])) << "pixel " << i;
+    differences.covered += expected.front[i] < 1e9f;
+    differences.frontDiffers += actual.front[i] != expected.front[i];
+    differences.backDiffers += actual.back[i] != expected.back[i];
+  }
+  return differences;
+}
+
 }  // namespace
 
 TEST(GLImpostorDepthRange, OneDrawKeepsWhatTheTwoDrawsKeep) {
@@ -70,18 +87,13 @@ TEST(GLImpostorDepthRange, OneDrawKeepsWhatTheTwoDrawsKeep) {
   Layers twoDraws, oneDraw;
   drawBothWays(liquid, camera, twoDraws, oneDraw);
 
-  std::size_t covered = 0, frontDiffers = 0, backDiffers = 0;
-  for (std::size_t i = 0; i < twoDraws.front.size(); ++i) {
-    ASSERT_TRUE(std::isfinite(oneDraw.front[i]) && std::isfinite(oneDraw.back[i]));
-    covered += twoDraws.front[i] < 1e9f;
-    frontDiffers += oneDraw.front[i] != twoDraws.front[i];
-    backDiffers += oneDraw.back[i] != twoDraws.back[i];
-  }
-  RecordProperty("covered_pixels", int(covered));
-  EXPECT_GT(covered, 3000u) << "the sheet fills much of the view";
-  EXPECT_LT(covered, twoDraws.front.size()) << "and leaves empty pixels, which both layers must mark";
-  EXPECT_EQ(frontDiffers, 0u);
-  EXPECT_EQ(backDiffers, 0u);
+  const LayerDifferences differences = compareLayers(twoDraws, oneDraw);
+  RecordProperty("covered_pixels", int(differences.covered));
+  EXPECT_GT(differences.covered, 3000u) << "the sheet fills much of the view";
+  EXPECT_LT(differences.covered, twoDraws.front.size())
+      << "and leaves empty pixels, which both layers must mark";
+  EXPECT_EQ(differences.frontDiffers, 0u);
+  EXPECT_EQ(differences.backDiffers, 0u);
 }
 
 TEST(GLImpostorDepthRange, TheOcclusionTestLeavesTheRangeAsItIs) {
@@ -96,16 +108,10 @@ TEST(GLImpostorDepthRange, TheOcclusionTestLeavesTheRangeAsItIs) {
   Layers wholeRange, testedRange, unused;
   drawBothWays(whole, camera, unused, wholeRange);
   drawBothWays(tested, camera, unused, testedRange);
-  std::size_t covered = 0, frontDiffers = 0, backDiffers = 0;
-  for (std::size_t i = 0; i < wholeRange.front.size(); ++i) {
-    ASSERT_TRUE(std::isfinite(wholeRange.front[i]) && std::isfinite(wholeRange.back[i]));
-    covered += wholeRange.front[i] < 1e9f;
-    frontDiffers += wholeRange.front[i] != testedRange.front[i];
-    backDiffers += wholeRange.back[i] != testedRange.back[i];
-  }
-  EXPECT_GT(covered, 3000u) << "the block fills much of the view";
-  EXPECT_EQ(frontDiffers, 0u);
-  EXPECT_EQ(backDiffers, 0u);
+  const LayerDifferences differences = compareLayers(wholeRange, testedRange);
+  EXPECT_GT(differences.covered, 3000u) << "the block fills much of the view";
+  EXPECT_EQ(differences.frontDiffers, 0u);
+  EXPECT_EQ(differences.backDiffers, 0u);
 }
 
 TEST(GLImpostorDepthRange, EmptyListLeavesBothLayersEmpty) {
