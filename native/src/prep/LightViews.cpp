@@ -181,7 +181,7 @@ LightingPreparation prepareLighting(const Particles& particles, const Camera& ca
       light.leftOut = light.columnThinned;
     } else if (parameters.liquid.drop_hidden_interior && depthRangeOnly) {
       // Blending the range costs llvmpipe a few texels an ellipsoid, far less than the occlusion test's CPU
-      // time: the thick bodies' sky views took 1.5 to 6.1 ms less a frame without it (docs/frame-cost.md,
+      // time: the thick bodies' sky views took 1 to 8 ms less a frame without it (docs/frame-cost.md,
       // session 43). What lies inside the others is still left out, bit-identically.
       const HiddenInteriorResult hidden = dropHiddenInterior(light.liquid.aggregates, view.camera, nullptr,
                                                              nullptr, light.liquid.particleSpacing);
