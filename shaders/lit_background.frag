@@ -1,15 +1,18 @@
 #version 450 core
 // The background lit as the liquid lets it be: every light's shadow and caustics (the sums of
 // liquid_shadow.frag and caustic_splat.frag, weighted by each light's irradiance) scale the lamps' direct
-// light, and the sky light a point keeps (found here, from the sky's view) scales the rest. With Cycles' light
-// passes: Combined - direct (s (1 - shadow - caustics) + (1 - s)(1 - sky)) - indirect (1 - sky), where "direct"
-// is Cycles' direct diffuse and glossy light and s the lamps' share of it. Cycles counts the world's light as
-// direct too (the sky is sampled like a lamp), so s is the lamps' diffuse light at the point without the
-// liquid (liquid_shadow.frag) over DiffDir, at most 1; the glossy light takes the diffuse share (caustics
-// add diffuse light only). Without the passes, `directFraction` of the background is taken as the lamps'.
+// light, and the sky light a point keeps scales the rest. With Cycles' light passes: Combined - direct
+// (s (1 - shadow - caustics) + (1 - s)(1 - sky)) - indirect (1 - sky), where "direct" is Cycles' direct diffuse
+// and glossy light and s the lamps' share of it. Cycles counts the world's light as direct too (the sky is
+// sampled like a lamp), so s is the lamps' diffuse light at the point without the liquid (liquid_shadow.frag)
+// over DiffDir, at most 1; the glossy light takes the diffuse share (caustics add diffuse light only). Without
+// the passes, `directFraction` of the background is taken as the lamps'.
 //
-// The sky a point keeps is found in this pass rather than written by a pass of its own and read here: a
-// full-screen pass's targets and fetches cost llvmpipe more than the sky's arithmetic (docs/frame-cost.md).
+// The sky light a point keeps is upsampled from the sky occlusion's samples, which hold what a point keeps
+// below the liquid's surface and past other liquid (sky_occlusion.frag). Where that pass does not run
+// (light.sky_occlusion_directions 0), what a point keeps below the surface is found here, at every pixel,
+// from the sky's view. The two are variants compiled from this source (SKY_OCCLUSION_SAMPLES, chosen by
+// LitBackgroundPass), not switched by a uniform: llvmpipe runs both sides of a branch with masks.
 #include "lib/frame.glsl"
 #include "lib/depth_layer.glsl"
 #include "lib/optics.glsl"
@@ -24,44 +27,26 @@ layout(binding = 4) uniform sampler2D directDiffuse;  // DiffCol x DiffDir; alph
 layout(binding = 5) uniform sampler2D directGlossy;   // GlossCol x GlossDir
 layout(binding = 6) uniform sampler2D indirectLight;  // DiffCol x DiffInd + GlossCol x GlossInd
 layout(binding = 7) uniform sampler2D lampDiffuse;    // the lamps' diffuse light without the liquid
-layout(binding = 8) uniform sampler2D lightFrontDepth;  // the sky's view (bound at binding 2 as lightView)
-layout(binding = 9) uniform sampler2D lightBackDepth;
-layout(binding = 10) uniform sampler2D skyOcclusion;  // sky_occlusion.frag's samples
-
-#include "lib/light_column.glsl"
 
 uniform bool hasLightPasses;
 uniform float directFraction;
-uniform vec3 absorptionPerUnitLength;
-uniform float submergedTolerance;  // how far below the liquid's drawn bottom a point still lies in it
-uniform int skyOcclusionScale;     // pixels per sample of skyOcclusion along each axis; 0: none
 
 layout(location = 0) out vec4 outColor;
 layout(location = 1) out vec4 outShadow;
 layout(location = 2) out vec4 outCaustics;
 layout(location = 3) out vec4 outSky;
 
-const float kHemisphericalFresnel = 0.066;  // water's Fresnel reflectance averaged over a cosine-weighted sky
-const float kDiffusePathFactor = 1.194;     // mean 1 / cos of cosine-weighted sky light refracted into water
+#ifdef SKY_OCCLUSION_SAMPLES
+layout(binding = 10) uniform sampler2D skyOcclusion;  // sky_occlusion.frag's samples
+uniform int skyOcclusionScale;                        // pixels per sample along each axis
 
-// The sky light that reaches a point through one texel's column of the sky's view: sky light enters the
-// surface above and travels down to the point; light past the liquid's bottom is unaffected (that point is
-// under the liquid but not in it).
-vec3 skyThroughTexel(ivec2 texel, float pointDepth) {
-  float front, back, texelSize;
-  if (!liquidInColumn(texel, pointDepth, front, back, texelSize)) return vec3(1.0);
-  // The drawn bottom undulates by about a particle radius; a floor the liquid rests on lies within that.
-  if (pointDepth > back + max(2.0 * texelSize, submergedTolerance)) return vec3(1.0);
-  float pathLength = pathInColumn(texel, front, back, pointDepth);
-  return (1.0 - kHemisphericalFresnel) * exp(-absorptionPerUnitLength * pathLength * kDiffusePathFactor);
-}
-
-// The sky light a point keeps past liquid other than the body it lies in (sky_occlusion.frag), from the four
-// nearest samples, each weighted bilinearly and by how far it lies off the point's tangent plane, in pixel
-// widths at the point's depth: a solid's edge does not blend the floor behind it with the solid in front, nor
-// a crease the two faces that meet there.
-vec3 keptPastOtherLiquid(ivec2 pixel, float eyeDepth) {
-  if (skyOcclusionScale == 0) return vec3(1.0);
+// The sky light a point keeps, from the four nearest samples, each weighted bilinearly and by how far it lies
+// off the point's tangent plane, in pixel widths at the point's depth: a solid's edge does not blend the floor
+// behind it with the solid in front, nor a crease the two faces that meet there. A point whose four samples
+// all lack a surface (a lone pixel against the sky) keeps all of it.
+vec3 skyKeptAt(ivec2 pixel) {
+  float eyeDepth = texelFetch(backgroundEyeDepth, pixel, 0).r;
+  if (eyeDepth >= kNoSurfaceDepth * 0.5) return vec3(1.0);  // Nothing there to lose it.
   // In camera space: the distances are the world's.
   vec3 point = cameraPositionAtPixel(pixel, eyeDepth);
   vec3 normal = backgroundCameraNormal(backgroundEyeDepth, pixel, eyeDepth);
@@ -87,27 +72,24 @@ vec3 keptPastOtherLiquid(ivec2 pixel, float eyeDepth) {
       sum += weight * sample_.rgb;
       weightSum += weight;
     }
-  return weightSum > 0.0 ? sum / weightSum : vec3(1.0);  // only samples of the sky around a lone point
+  return weightSum > 0.0 ? sum / weightSum : vec3(1.0);
 }
+#else
+layout(binding = 8) uniform sampler2D lightFrontDepth;  // the sky's view (bound at binding 2 as lightView)
+layout(binding = 9) uniform sampler2D lightBackDepth;
+uniform vec3 absorptionPerUnitLength;
+uniform float submergedTolerance;  // how far below the liquid's drawn bottom a point still lies in it
 
-// The sky and bounced light a background point keeps: below the liquid's surface, and past other liquid.
+#include "lib/light_column.glsl"
+#include "lib/submerged_sky.glsl"
+
+// The sky and bounced light a point keeps below the liquid's surface.
 vec3 skyKeptAt(ivec2 pixel) {
   float eyeDepth = texelFetch(backgroundEyeDepth, pixel, 0).r;
   if (eyeDepth >= kNoSurfaceDepth * 0.5) return vec3(1.0);  // Nothing there to lose it.
-  vec3 world = worldPositionFromFragCoord(gl_FragCoord.xy, eyeDepth);
-  vec2 texel = lightTexelFromWorld(world);
-  vec3 kept = vec3(1.0);
-  if (insideLightView(texel) && lightEyeDepthOf(world) > 0.0) {
-    ivec2 base;
-    vec2 blend;
-    lightFootprint(texel, base, blend);
-    float pointDepth = lightEyeDepthOf(world);
-    vec3 s00 = skyThroughTexel(base, pointDepth), s10 = skyThroughTexel(base + ivec2(1, 0), pointDepth);
-    vec3 s01 = skyThroughTexel(base + ivec2(0, 1), pointDepth), s11 = skyThroughTexel(base + ivec2(1, 1), pointDepth);
-    kept = mix(mix(s00, s10, blend.x), mix(s01, s11, blend.x), blend.y);
-  }
-  return kept * keptPastOtherLiquid(pixel, eyeDepth);
+  return submergedSkyKept(worldPositionFromFragCoord(gl_FragCoord.xy, eyeDepth));
 }
+#endif
 
 void main() {
   ivec2 pixel = ivec2(gl_FragCoord.xy);

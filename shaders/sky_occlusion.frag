@@ -2,14 +2,17 @@
 // How much sky and bounced light a background point keeps when liquid stands between it and part of its sky:
 // the floor beside a block of water, under a floating ball, the wall of a tank above its water line. Drawn at
 // a reduced resolution (one sample per `scale` x `scale` pixels, at the block's central pixel), since the
-// result varies over the liquid's size, and upsampled by liquid_shadow.frag in sky mode.
+// result varies over the liquid's size, and upsampled by lit_background.frag.
 // Light from the sky and the surroundings is taken as uniform: the point keeps the mean, over a fixed set of
 // cosine-weighted directions around its normal, of what each direction's straight path lets through: Fresnel
 // at every crossing of the liquid's surface (water's hemispherical mean each way) and Beer-Lambert over its
 // length in the liquid. The liquid is the sky view's (straight down) depth layers: a point lies in it when it
 // is between the front and back layer of its column. A path ends at a solid (a point behind the background's
 // depth, as the camera sees it, by less than `solidThickness`). A point that lies in the liquid itself loses
-// the light of the liquid above it in liquid_shadow.frag: its own body is not counted again here.
+// the light of the liquid above it (lib/submerged_sky.glsl), which each sample multiplies in here, so that the
+// lit background only upsamples: computed at every pixel, those four columns took llvmpipe 4.8 of the lit
+// background's 11.5 ms on the pool seen from the side (docs/frame-cost.md, session 44). Its own body is not
+// counted again by the directions.
 // Output: (kept light per channel, the sample's eye depth) for the depth-aware upsampling.
 #include "lib/frame.glsl"
 #include "lib/depth_layer.glsl"
@@ -18,8 +21,10 @@
 #include "lib/background_normal.glsl"
 
 layout(binding = 0) uniform sampler2D backgroundEyeDepth;
-layout(binding = 1) uniform sampler2D skyFrontDepth;
-layout(binding = 2) uniform sampler2D skyBackDepth;
+layout(binding = 1) uniform sampler2D lightFrontDepth;  // the sky's view (bound at binding 2 as lightView)
+layout(binding = 2) uniform sampler2D lightBackDepth;
+
+#include "lib/light_column.glsl"
 
 uniform int scale;                  // full-resolution pixels per sample along each axis
 uniform int directionCount;         // cosine-weighted directions per sample
@@ -32,10 +37,11 @@ uniform float submergedTolerance;   // how far below the liquid's drawn bottom a
 uniform float solidThickness;       // world depth behind a solid's visible surface that counts as inside it
 uniform vec3 absorptionPerUnitLength;
 
+#include "lib/submerged_sky.glsl"
+
 layout(location = 0) out vec4 outKept;
 
 const int kMaxStepsPerDirection = 32;
-const float kHemisphericalFresnel = 0.066;  // water's Fresnel reflectance averaged over a cosine-weighted sky
 const float kGoldenAngle = 2.39996323;
 
 // A point as the two views that judge it see it: the sky view's clip coordinates and eye depth (is it in the
@@ -63,7 +69,7 @@ ViewedPoint advanced(ViewedPoint start, ViewedPoint perUnit, float t) {
 vec2 skyColumn(ViewedPoint point) {
   vec2 texel = (point.skyClip.xy / point.skyClip.w * 0.5 + 0.5) * lightView.viewportSize.xy;
   if (!insideLightView(texel)) return vec2(kNoSurfaceDepth, 0.0);
-  return vec2(texelFetch(skyFrontDepth, ivec2(texel), 0).r, texelFetch(skyBackDepth, ivec2(texel), 0).r);
+  return vec2(texelFetch(lightFrontDepth, ivec2(texel), 0).r, texelFetch(lightBackDepth, ivec2(texel), 0).r);
 }
 
 // Whether a point lies in the liquid of its column (`tolerance` below its drawn bottom too).
@@ -153,5 +159,5 @@ void main() {
     vec3 local = vec3(sqrt(radiusSquared) * vec2(cos(angle), sin(angle)), sqrt(1.0 - radiusSquared));
     kept += keptAlong(origin, basis * local, submerged);
   }
-  outKept = vec4(kept / float(directionCount), eyeDepth);
+  outKept = vec4(kept / float(directionCount) * submergedSkyKept(world), eyeDepth);
 }

@@ -137,10 +137,10 @@ TEST(GLSkyOcclusion, FloorNearAFloatingSlabKeepsTheHemisphereIntegral) {
   }
 }
 
-// A point that lies in the liquid loses the light of the liquid above it once (liquid_shadow.frag's submerged
-// term): its own body is not counted again, so under the middle of a slab resting on the floor the sky kept
-// is the same with and without the occlusion. Beside the slab the floor loses light to it; without the
-// occlusion it keeps all of it, and the stats say the pass did not run.
+// A point that lies in the liquid loses the light of the liquid above it once (lib/submerged_sky.glsl): its
+// own body is not counted again, so under the middle of a slab resting on the floor the sky kept is the same
+// with and without the occlusion. Beside the slab the floor loses light to it; without the occlusion it keeps
+// all of it, and the stats say the pass did not run.
 TEST(GLSkyOcclusion, APointInTheLiquidDoesNotCountItsOwnBodyTwice) {
   TempDirectory directory;
   const Particles slab = slabParticles({-1.0f, -1.0f, 0.05f}, {1.0f, 1.0f, 0.45f});
@@ -157,7 +157,9 @@ TEST(GLSkyOcclusion, APointInTheLiquidDoesNotCountItsOwnBodyTwice) {
   for (int c = 0; c < 3; ++c) {
     const double submerged = at(withoutSky, kWidth, centre, row, c);
     EXPECT_LT(submerged, 0.95) << "the floor under the slab is submerged";
-    EXPECT_NEAR(at(withSky, kWidth, centre, row, c), submerged, 1e-5) << "channel " << c;
+    // With the occlusion the submerged term is upsampled from samples four pixels apart, over which it varies
+    // by about 1e-4 here; counting the body twice would take another quarter or more.
+    EXPECT_NEAR(at(withSky, kWidth, centre, row, c), submerged, 1e-3 * submerged) << "channel " << c;
     EXPECT_FLOAT_EQ(at(withoutSky, kWidth, beside, row, c), 1.0f);
     EXPECT_LT(at(withSky, kWidth, beside, row, c), 0.99) << "channel " << c;
   }

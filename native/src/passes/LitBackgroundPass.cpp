@@ -6,6 +6,8 @@ namespace spindrift {
 
 LitBackgroundPass::LitBackgroundPass(const ShaderLibrary& shaders)
     : program_(shaders.program({"fullscreen.vert", "lit_background.frag"})),
+      upsamplingProgram_(
+          shaders.program({"fullscreen.vert", "lit_background.frag"}, {"SKY_OCCLUSION_SAMPLES"})),
       emptyVertexArray_(createVertexArray()),
       framebuffer_(createFramebuffer()) {}
 
@@ -17,15 +19,21 @@ LitBackgroundData LitBackgroundPass::run(const BackgroundData& background, const
   bindColorTargets(framebuffer_.id(), {&color_, &liquidShadow_, &caustics_, &skyKept_});
   glDisable(GL_DEPTH_TEST);
   glDisable(GL_BLEND);
-  const GLuint program = program_.id();
+  const GLuint program = sky.occlusion ? upsamplingProgram_.id() : program_.id();
   glUseProgram(program);
   const bool hasLightPasses = background.lightPasses != nullptr;
   glUniform1i(uniformLocation(program, "hasLightPasses"), hasLightPasses ? 1 : 0);
   glUniform1f(uniformLocation(program, "directFraction"), parameters.light.direct_fraction);
-  const glm::vec3 absorption = parameters.liquid.absorption * parameters.liquid.absorption_rgb;
-  glUniform3fv(uniformLocation(program, "absorptionPerUnitLength"), 1, &absorption.x);
-  glUniform1f(uniformLocation(program, "submergedTolerance"), 2.0f * sky.particleRadius);
-  glUniform1i(uniformLocation(program, "skyOcclusionScale"), sky.occlusion ? sky.occlusion->scale : 0);
+  if (sky.occlusion) {
+    glUniform1i(uniformLocation(program, "skyOcclusionScale"), sky.occlusion->scale);
+    glBindTextureUnit(10, sky.occlusion->kept.id());
+  } else {
+    const glm::vec3 absorption = parameters.liquid.absorption * parameters.liquid.absorption_rgb;
+    glUniform3fv(uniformLocation(program, "absorptionPerUnitLength"), 1, &absorption.x);
+    glUniform1f(uniformLocation(program, "submergedTolerance"), 2.0f * sky.particleRadius);
+    glBindTextureUnit(8, sky.layers.front.eyeDepth.id());
+    glBindTextureUnit(9, sky.layers.back.eyeDepth.id());
+  }
   glBindTextureUnit(0, background.color.id());
   glBindTextureUnit(1, shadows.shadowSum.id());
   glBindTextureUnit(2, caustics.causticSum.id());
@@ -33,9 +41,6 @@ LitBackgroundData LitBackgroundPass::run(const BackgroundData& background, const
   for (int i = 0; i < 3; ++i)
     glBindTextureUnit(GLuint(4 + i), hasLightPasses ? background.lightPasses[i].id() : 0);
   glBindTextureUnit(7, shadows.lampDiffuse.id());
-  glBindTextureUnit(8, sky.layers.front.eyeDepth.id());
-  glBindTextureUnit(9, sky.layers.back.eyeDepth.id());
-  glBindTextureUnit(10, sky.occlusion ? sky.occlusion->kept.id() : 0);
   drawFullscreenTriangle(emptyVertexArray_.id());
   checkGlError("lighting the background");
   return {BackgroundData{color_, background.eyeDepth, background.environment, background.fallbackColor,

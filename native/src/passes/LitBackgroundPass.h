@@ -18,8 +18,9 @@ struct SkyView {
 
 /// Applies the shadow and caustic sums and the sky light each point keeps (below the liquid's surface, and
 /// past other liquid) to the background (shaders/lit_background.frag): exactly through Cycles' light passes
-/// when the background has them, else with light.direct_fraction. The sky's view must be bound at binding 2
-/// (LightDepthLayers) when `run` runs.
+/// when the background has them, else with light.direct_fraction. The sky light is upsampled from the sky
+/// occlusion's samples where that pass ran, else found below the surface at every pixel from the sky's view,
+/// which must then be bound at binding 2 (LightDepthLayers) when `run` runs.
 class LitBackgroundPass {
  public:
   explicit LitBackgroundPass(const ShaderLibrary& shaders);
@@ -28,7 +29,8 @@ class LitBackgroundPass {
                         int width, int height);
 
  private:
-  ProgramObject program_;
+  ProgramObject program_;            // finds what points below the surface keep (no sky occlusion)
+  ProgramObject upsamplingProgram_;  // upsamples the sky occlusion's samples, which hold it
   VertexArrayObject emptyVertexArray_;
   FramebufferObject framebuffer_;
   Texture2D color_;

@@ -30,7 +30,7 @@ SkyOcclusionData SkyOcclusionPass::run(const SurfaceLayers& skyLayers, const Lig
   // Steps of one texel and of two found the same light kept (the light benchmark's errors to four digits) at
   // three quarters of the pass's time for the pool from above.
   glUniform1f(uniformLocation(program, "shortestStep"), 2.0f * sky.texelSize);
-  // As liquid_shadow.frag's sky mode: the drawn bottom undulates by about a particle radius.
+  // As lib/submerged_sky.glsl: the drawn bottom undulates by about a particle radius.
   glUniform1f(uniformLocation(program, "submergedTolerance"), 2.0f * bounds.particleRadius);
   // A tank's wall or a floor is thicker than this; a point that far behind what the camera sees is taken as
   // hidden from it rather than inside a solid.
