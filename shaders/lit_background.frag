@@ -11,8 +11,10 @@
 // The sky light a point keeps is upsampled from the sky occlusion's samples, which hold what a point keeps
 // below the liquid's surface and past other liquid (sky_occlusion.frag). Where that pass does not run
 // (light.sky_occlusion_directions 0), what a point keeps below the surface is found here, at every pixel,
-// from the sky's view. The two are variants compiled from this source (SKY_OCCLUSION_SAMPLES, chosen by
-// LitBackgroundPass), not switched by a uniform: llvmpipe runs both sides of a branch with masks.
+// from the sky's view. With the samples and one light whose caustics are on, the pass also finds that light's
+// shadow itself (SHADOW_IN_PLACE, lib/liquid_shadow.glsl) instead of reading the shadow pass's sums: one
+// full-screen pass, two targets and one rebuilt normal fewer. These are variants compiled from this source
+// (chosen by LitBackgroundPass), not switched by a uniform: llvmpipe runs both sides of a branch with masks.
 #include "lib/frame.glsl"
 #include "lib/depth_layer.glsl"
 #include "lib/optics.glsl"
@@ -27,6 +29,19 @@ layout(binding = 4) uniform sampler2D directDiffuse;  // DiffCol x DiffDir; alph
 layout(binding = 5) uniform sampler2D directGlossy;   // GlossCol x GlossDir
 layout(binding = 6) uniform sampler2D indirectLight;  // DiffCol x DiffInd + GlossCol x GlossInd
 layout(binding = 7) uniform sampler2D lampDiffuse;    // the lamps' diffuse light without the liquid
+
+// The view bound at binding 2 as lightView: the one light's with SHADOW_IN_PLACE, the sky's without the sky
+// occlusion's samples, none in the other variant.
+layout(binding = 8) uniform sampler2D lightFrontDepth;
+layout(binding = 9) uniform sampler2D lightBackDepth;
+
+#include "lib/light_column.glsl"
+
+#ifdef SHADOW_IN_PLACE
+layout(binding = 11) uniform sampler2D lightFrontNormal;
+
+#include "lib/liquid_shadow.glsl"
+#endif
 
 uniform bool hasLightPasses;
 uniform float directFraction;
@@ -44,12 +59,11 @@ uniform int skyOcclusionScale;                        // pixels per sample along
 // off the point's tangent plane, in pixel widths at the point's depth: a solid's edge does not blend the floor
 // behind it with the solid in front, nor a crease the two faces that meet there. A point whose four samples
 // all lack a surface (a lone pixel against the sky) keeps all of it.
-vec3 skyKeptAt(ivec2 pixel) {
-  float eyeDepth = texelFetch(backgroundEyeDepth, pixel, 0).r;
-  if (eyeDepth >= kNoSurfaceDepth * 0.5) return vec3(1.0);  // Nothing there to lose it.
+// `normal`: the point's in camera space (backgroundCameraNormal).
+vec3 skyKeptAt(ivec2 pixel, float eyeDepth, vec3 normal) {
+  if (!hasSurface(eyeDepth)) return vec3(1.0);  // Nothing there to lose it.
   // In camera space: the distances are the world's.
   vec3 point = cameraPositionAtPixel(pixel, eyeDepth);
-  vec3 normal = backgroundCameraNormal(backgroundEyeDepth, pixel, eyeDepth);
   float pixelWidth = 2.0 * frame.tanHalfFov.y * eyeDepth * frame.viewportSize.w;
   // Sample (i, j) lies at the centre of pixel (scale i + scale / 2, scale j + scale / 2).
   vec2 position = vec2(pixel - skyOcclusionScale / 2) / float(skyOcclusionScale);
@@ -75,18 +89,14 @@ vec3 skyKeptAt(ivec2 pixel) {
   return weightSum > 0.0 ? sum / weightSum : vec3(1.0);
 }
 #else
-layout(binding = 8) uniform sampler2D lightFrontDepth;  // the sky's view (bound at binding 2 as lightView)
-layout(binding = 9) uniform sampler2D lightBackDepth;
 uniform vec3 absorptionPerUnitLength;
 uniform float submergedTolerance;  // how far below the liquid's drawn bottom a point still lies in it
 
-#include "lib/light_column.glsl"
 #include "lib/submerged_sky.glsl"
 
 // The sky and bounced light a point keeps below the liquid's surface.
-vec3 skyKeptAt(ivec2 pixel) {
-  float eyeDepth = texelFetch(backgroundEyeDepth, pixel, 0).r;
-  if (eyeDepth >= kNoSurfaceDepth * 0.5) return vec3(1.0);  // Nothing there to lose it.
+vec3 skyKeptAt(float eyeDepth) {
+  if (!hasSurface(eyeDepth)) return vec3(1.0);  // Nothing there to lose it.
   return submergedSkyKept(worldPositionFromFragCoord(gl_FragCoord.xy, eyeDepth));
 }
 #endif
@@ -94,15 +104,34 @@ vec3 skyKeptAt(ivec2 pixel) {
 void main() {
   ivec2 pixel = ivec2(gl_FragCoord.xy);
   vec4 background = texelFetch(backgroundColor, pixel, 0);
+  float eyeDepth = texelFetch(backgroundEyeDepth, pixel, 0).r;
+#ifdef SKY_OCCLUSION_SAMPLES
+  vec3 cameraNormal = hasSurface(eyeDepth) ? backgroundCameraNormal(backgroundEyeDepth, pixel, eyeDepth) : vec3(0.0);
+  vec3 sky = skyKeptAt(pixel, eyeDepth, cameraNormal);
+#else
+  vec3 sky = skyKeptAt(eyeDepth);
+#endif
+#ifdef SHADOW_IN_PLACE
+  // What the shadow pass would have added up for its one light (liquid_shadow.frag).
+  vec4 shadowWeighted = vec4(0.0);
+  vec3 lampLight = vec3(0.0);
+  if (hasSurface(eyeDepth)) {
+    vec3 world = worldPositionFromFragCoord(gl_FragCoord.xy, eyeDepth);
+    float weight = lightWeightAt(world);
+    shadowWeighted = vec4(weight * liquidShadowAt(world), weight);
+    lampLight = lampDiffuseAt(world, mat3(frame.worldFromCamera) * cameraNormal);
+  }
+#else
   vec4 shadowWeighted = texelFetch(shadowSum, pixel, 0);
+  vec3 lampLight = texelFetch(lampDiffuse, pixel, 0).rgb;
+#endif
   bool lit = shadowWeighted.a > 0.0;
   vec3 shadow = lit ? shadowWeighted.rgb / shadowWeighted.a : vec3(1.0);
   vec3 caustics = lit ? texelFetch(causticSum, pixel, 0).rgb / shadowWeighted.a : vec3(0.0);
-  vec3 sky = skyKeptAt(pixel);
   vec3 colour;
   if (hasLightPasses) {
     vec4 diffuse = texelFetch(directDiffuse, pixel, 0);
-    float lamps = dot(texelFetch(lampDiffuse, pixel, 0).rgb, vec3(1.0 / 3.0));
+    float lamps = dot(lampLight, vec3(1.0 / 3.0));
     float share = diffuse.a > 0.0 ? clamp(lamps / diffuse.a, 0.0, 1.0) : 1.0;
     vec3 skyLost = (1.0 - share) * (1.0 - sky);
     colour = background.rgb - diffuse.rgb * (share * (1.0 - shadow - caustics) + skyLost) -

@@ -27,6 +27,12 @@ class LiquidLighting {
                         bool occludeSky, PassTimer& timer);
 
  private:
+  /// One light's depth layers, its shadow (`withShadowPass`) and its caustics (suns and spots, with
+  /// light.caustics); returns the layers, whose view it leaves bound at binding 2.
+  SurfaceLayers drawLight(const LightPreparation& light, const Camera& camera,
+                          const BackgroundData& background, float particleRadius,
+                          const Parameters& parameters, bool withShadowPass, PassTimer& timer);
+
   LightDepthLayers layers_;
   LiquidShadowPass shadow_;
   SkyOcclusionPass skyOcclusion_;

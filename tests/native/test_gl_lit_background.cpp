@@ -168,3 +168,38 @@ TEST(GLLiquidLight, AFloorUnderWaterKeepsOneOverNSquaredOfItsRadiance) {
     EXPECT_EQ(compared, 144);
   }
 }
+
+// One sun whose caustics are on, beside the sky occlusion: the lit background finds its shadow itself and the
+// shadow pass does not run (docs/frame-cost.md, session 44). The same sun with a second one of no strength
+// goes through the shadow pass's sums, which the second adds nothing to: every light layer and the composite
+// agree to rounding.
+TEST(GLLiquidLight, TheLitBackgroundFindsOneSunsShadowAsTheShadowPassDoes) {
+  TempDirectory directory;
+  Scene scene = floorScene(directory);
+  scene.lights.push_back(sunAlong({0.5f, 0.2f, -1.0f}));
+  const Particles slab = slabParticles({-1.0f, -1.0f, 0.05f}, {0.5f, 1.0f, 0.5f});
+  const RenderResult inPlace = renderer().renderParticles(scene, slab, 1);
+  Scene twoSuns = scene;
+  twoSuns.lights.push_back(sunAlong({-0.3f, 0.1f, -1.0f}, 0.0f));
+  const RenderResult summed = renderer().renderParticles(twoSuns, slab, 1);
+  expectAllChannelsFinite(inPlace);
+  expectAllChannelsFinite(summed);
+  const auto ran = [](const RenderResult& result, const std::string& pass) {
+    for (const PassTiming& timing : result.stats.passes)
+      if (timing.name == pass) return true;
+    return false;
+  };
+  EXPECT_FALSE(ran(inPlace, "liquid_shadow"));
+  EXPECT_TRUE(ran(summed, "liquid_shadow"));
+  double shadowed = 0.0;
+  for (const char* layer : {"composite", "liquid_shadow", "caustics", "liquid_sky"})
+    for (int row = 0; row < kHeight; ++row)
+      for (int column = 0; column < kWidth; ++column)
+        for (int c = 0; c < 3; ++c) {
+          const float a = at(*inPlace.layer(layer), kWidth, column, row, c);
+          ASSERT_NEAR(a, at(*summed.layer(layer), kWidth, column, row, c), 1e-5)
+              << layer << " at " << column << ", " << row << ", channel " << c;
+          if (std::string(layer) == "liquid_shadow") shadowed += 1.0 - a;
+        }
+  EXPECT_GT(shadowed, 100.0) << "the slab shadows the floor";
+}

@@ -1,6 +1,7 @@
 #include "passes/LitBackgroundPass.h"
 
 #include "passes/FrameUniforms.h"
+#include "passes/LightUniforms.h"
 
 namespace spindrift {
 
@@ -8,10 +9,12 @@ LitBackgroundPass::LitBackgroundPass(const ShaderLibrary& shaders)
     : program_(shaders.program({"fullscreen.vert", "lit_background.frag"})),
       upsamplingProgram_(
           shaders.program({"fullscreen.vert", "lit_background.frag"}, {"SKY_OCCLUSION_SAMPLES"})),
+      shadowingProgram_(shaders.program({"fullscreen.vert", "lit_background.frag"},
+                                        {"SKY_OCCLUSION_SAMPLES", "SHADOW_IN_PLACE"})),
       emptyVertexArray_(createVertexArray()),
       framebuffer_(createFramebuffer()) {}
 
-LitBackgroundData LitBackgroundPass::run(const BackgroundData& background, const LiquidShadowData& shadows,
+LitBackgroundData LitBackgroundPass::run(const BackgroundData& background, const LampLight& lamps,
                                          const CausticData& caustics, const SkyView& sky,
                                          const Parameters& parameters, int width, int height) {
   for (Texture2D* target : {&color_, &liquidShadow_, &caustics_, &skyKept_})
@@ -19,7 +22,9 @@ LitBackgroundData LitBackgroundPass::run(const BackgroundData& background, const
   bindColorTargets(framebuffer_.id(), {&color_, &liquidShadow_, &caustics_, &skyKept_});
   glDisable(GL_DEPTH_TEST);
   glDisable(GL_BLEND);
-  const GLuint program = sky.occlusion ? upsamplingProgram_.id() : program_.id();
+  const GLuint program = lamps.light     ? shadowingProgram_.id()
+                         : sky.occlusion ? upsamplingProgram_.id()
+                                         : program_.id();
   glUseProgram(program);
   const bool hasLightPasses = background.lightPasses != nullptr;
   glUniform1i(uniformLocation(program, "hasLightPasses"), hasLightPasses ? 1 : 0);
@@ -35,12 +40,19 @@ LitBackgroundData LitBackgroundPass::run(const BackgroundData& background, const
     glBindTextureUnit(9, sky.layers.back.eyeDepth.id());
   }
   glBindTextureUnit(0, background.color.id());
-  glBindTextureUnit(1, shadows.shadowSum.id());
+  if (lamps.light) {
+    setLightUniforms(program, *lamps.light);
+    glBindTextureUnit(8, lamps.layers->front.eyeDepth.id());
+    glBindTextureUnit(9, lamps.layers->back.eyeDepth.id());
+    glBindTextureUnit(11, lamps.layers->front.normal.id());
+  } else {
+    glBindTextureUnit(1, lamps.sums->shadowSum.id());
+    glBindTextureUnit(7, lamps.sums->lampDiffuse.id());
+  }
   glBindTextureUnit(2, caustics.causticSum.id());
   glBindTextureUnit(3, background.eyeDepth.id());
   for (int i = 0; i < 3; ++i)
     glBindTextureUnit(GLuint(4 + i), hasLightPasses ? background.lightPasses[i].id() : 0);
-  glBindTextureUnit(7, shadows.lampDiffuse.id());
   drawFullscreenTriangle(emptyVertexArray_.id());
   checkGlError("lighting the background");
   return {BackgroundData{color_, background.eyeDepth, background.environment, background.fallbackColor,
