@@ -84,7 +84,9 @@ TEST(GLLiquidLight, SlabShadowFollowsBeerLambertAndFresnel) {
   expectAllChannelsFinite(result);
   ASSERT_NE(result.layer("liquid_shadow"), nullptr);
   ASSERT_NE(result.layer("caustics"), nullptr);
-  EXPECT_EQ(result.stats.light.viewParticlesColumnThinned, 0u) << "a body this deep keeps the exact test";
+  // The sky's view is thinned to its columns' ends whatever the depth; the sun's keeps the exact test.
+  EXPECT_GT(result.stats.light.viewParticlesLeftOut, result.stats.light.viewParticlesColumnThinned)
+      << "a body this deep keeps the exact test in the sun's view";
   const SlabShadow shadow = slabShadow(result, scene, incidence, 1.25);
   ASSERT_GT(shadow.thickness, 0.4);
   ASSERT_GT(shadow.pixels, 500);
