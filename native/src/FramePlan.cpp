@@ -87,15 +87,27 @@ FramePlan planFrame(const FrameContents& contents) {
                         : contents.lightsSeeingLiquid == 0 ? "no light sees the liquid"
                         : !lightShown ? "no light layer, liquid layer, composite or foam asked for (--layers)"
                                       : nullptr;
-  for (Pass pass : {Pass::LightDepthLayers, Pass::LiquidShadow})
-    decide(pass, noLight);
-  decide(Pass::Caustics, noLight                       ? noLight
-                         : !contents.caustics          ? "light.caustics is off"
-                         : contents.causticLights == 0 ? "no sun or spot light sees the liquid"
-                                                       : nullptr);
-  decide(Pass::SkyOcclusion, noLight                                ? noLight
-                             : contents.skyOcclusionDirections == 0 ? "light.sky_occlusion_directions is 0"
-                                                                    : nullptr);
+  const char* noCaustics = noLight                       ? noLight
+                           : !contents.caustics          ? "light.caustics is off"
+                           : contents.causticLights == 0 ? "no sun or spot light sees the liquid"
+                                                         : nullptr;
+  const char* noSkyOcclusion = noLight                                ? noLight
+                               : contents.skyOcclusionDirections == 0 ? "light.sky_occlusion_directions is 0"
+                                                                      : nullptr;
+  // One light, whose caustics carry what crosses the liquid, beside the sky occlusion's samples: the lit
+  // background finds its shadow itself (lib/liquid_shadow.glsl), and its layers and caustics come after the
+  // sky's passes, whose depth range shares their targets (LiquidLighting).
+  if (!noCaustics && !noSkyOcclusion && contents.lightsSeeingLiquid == 1) {
+    decide(Pass::SkyOcclusion, nullptr);
+    decide(Pass::LightDepthLayers, nullptr);
+    decide(Pass::LiquidShadow, "the lit background finds the one light's shadow itself");
+    decide(Pass::Caustics, nullptr);
+  } else {
+    for (Pass pass : {Pass::LightDepthLayers, Pass::LiquidShadow})
+      decide(pass, noLight);
+    decide(Pass::Caustics, noCaustics);
+    decide(Pass::SkyOcclusion, noSkyOcclusion);
+  }
   decide(Pass::LitBackground, noLight);
   decide(Pass::SplashDepthLayers, !splashes      ? "no splash particles in view"
                                   : !layersShown ? noLiquidOutput

@@ -37,14 +37,15 @@ SurfaceLayers LiquidLighting::drawLight(const LightPreparation& light, const Cam
 
 LitBackgroundData LiquidLighting::run(const LightingPreparation& lights, const Camera& camera,
                                       const BackgroundData& background, float particleRadius,
-                                      const Parameters& parameters, bool occludeSky, PassTimer& timer) {
+                                      const Parameters& parameters, bool occludeSky, bool shadowPass,
+                                      PassTimer& timer) {
   const int width = camera.width, height = camera.height;
   caustics_.begin(width, height);
-  // One light whose caustics carry what crosses the liquid, beside the sky occlusion's samples: the lit
-  // background finds its shadow itself, one full-screen pass fewer (docs/frame-cost.md, session 44). Its
-  // layers are drawn after the sky's, whose depth range shares their targets, and stay bound for it.
-  const bool shadowInLitBackground =
-      occludeSky && lights.lights.size() == 1 && refracts(lights.lights.front(), parameters);
+  // Without the shadow pass (FramePlan: one light whose caustics carry what crosses the liquid, beside the
+  // sky occlusion's samples) the lit background finds the light's shadow itself, one full-screen pass fewer
+  // (docs/frame-cost.md, session 44). Its layers are drawn after the sky's, whose depth range shares their
+  // targets, and stay bound for it.
+  const bool shadowInLitBackground = !shadowPass && lights.lights.size() == 1 && occludeSky;
   if (!shadowInLitBackground) {
     shadow_.begin(width, height);
     for (const LightPreparation& light : lights.lights)

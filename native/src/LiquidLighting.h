@@ -21,10 +21,11 @@ namespace spindrift {
 class LiquidLighting {
  public:
   explicit LiquidLighting(const ShaderLibrary& shaders);
-  /// `occludeSky`: the plan runs the sky occlusion (points outside the liquid lose the sky light it takes).
+  /// `occludeSky`: the plan runs the sky occlusion (points outside the liquid lose the sky light it takes);
+  /// `shadowPass`: the plan runs the shadow pass, else the lit background finds the one light's shadow.
   LitBackgroundData run(const LightingPreparation& lights, const Camera& camera,
                         const BackgroundData& background, float particleRadius, const Parameters& parameters,
-                        bool occludeSky, PassTimer& timer);
+                        bool occludeSky, bool shadowPass, PassTimer& timer);
 
  private:
   /// One light's depth layers, its shadow (`withShadowPass`) and its caustics (suns and spots, with

@@ -386,7 +386,8 @@ RenderResult Renderer::renderPrepared(const Scene& scene, const Particles& parti
     std::optional<LitBackgroundData> lit;
     if (plan.runs(Pass::LitBackground))
       lit.emplace(pipeline.lighting.run(lighting, camera, unlit, radius, scene.parameters,
-                                        plan.runs(Pass::SkyOcclusion), pipeline.timer));
+                                        plan.runs(Pass::SkyOcclusion), plan.runs(Pass::LiquidShadow),
+                                        pipeline.timer));
     const BackgroundData background = lit ? lit->background : unlit;
     std::optional<SurfaceLayers> splashes, aggregates;
     if (plan.runs(Pass::SplashDepthLayers)) {

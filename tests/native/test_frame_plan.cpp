@@ -91,8 +91,9 @@ TEST(FramePlan, FoamWithoutLiquidRunsTheFoamPasses) {
     EXPECT_TRUE(plan.runs(pass)) << passName(pass);
 }
 
-// Lights: all four light passes run when a light sees the liquid; caustics need a sun or a spot and
-// light.caustics; a scene whose lights see no liquid says so.
+// Lights: the light passes run when a light sees the liquid (one sun's or spot's shadow found by the lit
+// background itself); caustics need a sun or a spot and light.caustics; a scene whose lights see no liquid
+// says so.
 FrameContents withLights(std::size_t lights, std::size_t seeing, std::size_t causticLights, bool caustics) {
   FrameContents contents{0, 10, 0, "plane_fit"};
   contents.lights = lights;
@@ -112,14 +113,26 @@ TEST(FramePlan, LightsRunTheLightPasses) {
   const FramePlan unseen = planFrame(withLights(1, 0, 0, true));
   for (const std::string& pass : kLightPasses)
     EXPECT_EQ(reasonFor(unseen, pass), "no light sees the liquid");
-  const FramePlan withCaustics = planFrame(withLights(1, 1, 1, true));
+  // One sun: the lit background finds its shadow, and its layers and caustics follow the sky's passes.
+  const FramePlan oneSun = planFrame(withLights(1, 1, 1, true));
+  const std::vector<std::string> oneSunOrder = {"sky_occlusion", "light_depth_layers", "caustics",
+                                                "lit_background"};
+  std::vector<std::string> lightPassesRun;
+  for (const std::string& pass : names(oneSun.passes))
+    if (std::find(kLightPasses.begin(), kLightPasses.end(), pass) != kLightPasses.end())
+      lightPassesRun.push_back(pass);
+  EXPECT_EQ(lightPassesRun, oneSunOrder);
+  EXPECT_EQ(reasonFor(oneSun, "liquid_shadow"), "the lit background finds the one light's shadow itself");
+  // Two suns, or one without the sky occlusion's samples, add their shadows up in the shadow pass.
+  const FramePlan twoSuns = planFrame(withLights(2, 2, 2, true));
   for (Pass pass :
        {Pass::LightDepthLayers, Pass::LiquidShadow, Pass::Caustics, Pass::SkyOcclusion, Pass::LitBackground})
-    EXPECT_TRUE(withCaustics.runs(pass)) << passName(pass);
+    EXPECT_TRUE(twoSuns.runs(pass)) << passName(pass);
   FrameContents noSkyOcclusion = withLights(1, 1, 1, true);
   noSkyOcclusion.skyOcclusionDirections = 0;
   const FramePlan withoutSky = planFrame(noSkyOcclusion);
   EXPECT_TRUE(withoutSky.runs(Pass::LitBackground));
+  EXPECT_TRUE(withoutSky.runs(Pass::LiquidShadow));
   EXPECT_EQ(reasonFor(withoutSky, "sky_occlusion"), "light.sky_occlusion_directions is 0");
 }
 
@@ -128,8 +141,7 @@ TEST(FramePlan, LightPassesFollowTheLayerSelection) {
   FrameContents lightOnly = withLights(1, 1, 1, true);
   lightOnly.compositeWanted = lightOnly.liquidLayersWanted = lightOnly.foamLayersWanted = false;
   const FramePlan plan = planFrame(lightOnly);
-  for (Pass pass :
-       {Pass::LightDepthLayers, Pass::LiquidShadow, Pass::Caustics, Pass::SkyOcclusion, Pass::LitBackground})
+  for (Pass pass : {Pass::LightDepthLayers, Pass::Caustics, Pass::SkyOcclusion, Pass::LitBackground})
     EXPECT_TRUE(plan.runs(pass)) << passName(pass);
   EXPECT_FALSE(plan.runs(Pass::Refraction));
   FrameContents nothing = lightOnly;
