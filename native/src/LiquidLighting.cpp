@@ -41,11 +41,11 @@ LitBackgroundData LiquidLighting::run(const LightingPreparation& lights, const C
                                       PassTimer& timer) {
   const int width = camera.width, height = camera.height;
   caustics_.begin(width, height);
-  // Without the shadow pass (FramePlan: one light whose caustics carry what crosses the liquid, beside the
-  // sky occlusion's samples) the lit background finds the light's shadow itself, one full-screen pass fewer
-  // (docs/frame-cost.md, session 44). Its layers are drawn after the sky's, whose depth range shares their
-  // targets, and stay bound for it.
-  const bool shadowInLitBackground = !shadowPass && lights.lights.size() == 1 && occludeSky;
+  // Without the shadow pass (FramePlan skips it for one light whose caustics carry what crosses the liquid,
+  // beside the sky occlusion's samples) the lit background finds that light's shadow itself, one full-screen
+  // pass fewer (docs/frame-cost.md, session 44). Its layers are drawn after the sky's, whose depth range
+  // shares their targets, and stay bound for it.
+  const bool shadowInLitBackground = !shadowPass;
   if (!shadowInLitBackground) {
     shadow_.begin(width, height);
     for (const LightPreparation& light : lights.lights)

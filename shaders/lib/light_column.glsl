@@ -28,3 +28,20 @@ void lightFootprint(vec2 texel, out ivec2 base, out vec2 blend) {
   base = ivec2(floor(footprint));
   blend = footprint - vec2(base);
 }
+
+// The four columns a world point blends, as lightFootprint gives them, and its depth along the light's view;
+// false where the point lies outside the view or behind the light.
+bool columnsAround(vec3 world, out ivec2 base, out vec2 blend, out float pointDepth) {
+  vec2 texel = lightTexelFromWorld(world);
+  pointDepth = lightEyeDepthOf(world);
+  base = ivec2(0);
+  blend = vec2(0.0);
+  if (!insideLightView(texel) || !(pointDepth > 0.0)) return false;
+  lightFootprint(texel, base, blend);
+  return true;
+}
+
+// The bilinear blend of what four columns give (s00 at `base`, s10 one texel along x, s01 along y).
+vec3 blendColumns(vec3 s00, vec3 s10, vec3 s01, vec3 s11, vec2 blend) {
+  return mix(mix(s00, s10, blend.x), mix(s01, s11, blend.x), blend.y);
+}

@@ -33,15 +33,13 @@ vec3 shadowThroughTexel(ivec2 texel, vec3 world, float pointDepth) {
 
 // What a world point keeps of the light's direct light past the liquid (1: all of it).
 vec3 liquidShadowAt(vec3 world) {
-  vec2 texel = lightTexelFromWorld(world);
-  float pointDepth = lightEyeDepthOf(world);
-  if (!insideLightView(texel) || !(pointDepth > 0.0)) return vec3(1.0);
   ivec2 base;
   vec2 blend;
-  lightFootprint(texel, base, blend);
-  vec3 s00 = shadowThroughTexel(base, world, pointDepth), s10 = shadowThroughTexel(base + ivec2(1, 0), world, pointDepth);
-  vec3 s01 = shadowThroughTexel(base + ivec2(0, 1), world, pointDepth), s11 = shadowThroughTexel(base + ivec2(1, 1), world, pointDepth);
-  return mix(mix(s00, s10, blend.x), mix(s01, s11, blend.x), blend.y);
+  float depth;
+  if (!columnsAround(world, base, blend, depth)) return vec3(1.0);
+  return blendColumns(shadowThroughTexel(base, world, depth), shadowThroughTexel(base + ivec2(1, 0), world, depth),
+                      shadowThroughTexel(base + ivec2(0, 1), world, depth),
+                      shadowThroughTexel(base + ivec2(1, 1), world, depth), blend);
 }
 
 // The diffuse direct light the light gives a point without the liquid, in the units of Cycles' DiffDir pass

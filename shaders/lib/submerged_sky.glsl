@@ -21,13 +21,10 @@ vec3 skyThroughTexel(ivec2 texel, float pointDepth) {
 
 // The same at a world point, from the four texels around it, blended bilinearly.
 vec3 submergedSkyKept(vec3 world) {
-  vec2 texel = lightTexelFromWorld(world);
-  float pointDepth = lightEyeDepthOf(world);
-  if (!insideLightView(texel) || !(pointDepth > 0.0)) return vec3(1.0);
   ivec2 base;
   vec2 blend;
-  lightFootprint(texel, base, blend);
-  vec3 s00 = skyThroughTexel(base, pointDepth), s10 = skyThroughTexel(base + ivec2(1, 0), pointDepth);
-  vec3 s01 = skyThroughTexel(base + ivec2(0, 1), pointDepth), s11 = skyThroughTexel(base + ivec2(1, 1), pointDepth);
-  return mix(mix(s00, s10, blend.x), mix(s01, s11, blend.x), blend.y);
+  float depth;
+  if (!columnsAround(world, base, blend, depth)) return vec3(1.0);
+  return blendColumns(skyThroughTexel(base, depth), skyThroughTexel(base + ivec2(1, 0), depth),
+                      skyThroughTexel(base + ivec2(0, 1), depth), skyThroughTexel(base + ivec2(1, 1), depth), blend);
 }
