@@ -4,6 +4,7 @@
 #include <chrono>
 #include <cstdint>
 #include <filesystem>
+#include <future>
 #include <optional>
 #include <utility>
 
@@ -248,9 +249,10 @@ RenderResult Renderer::renderFrame(const Scene& scene, int frame, const FrameInp
 
 // The frame, top to bottom, as the liquid paper's figure 4 draws it: prepare the particles on the CPU (split
 // into splashes and aggregates, anisotropic ellipsoids; foam culled and packed) and plan the passes, then on
-// the GL thread the background, the light through the liquid onto it, the front and back depth layers of
-// splashes and of aggregates, smoothing of the aggregate layers, refraction, the foam paper's seven passes
-// (figure 2), and the composite; then read the layers back. A pass the plan leaves out is not run, and the
+// the GL thread the background, the front and back depth layers of splashes and of aggregates and the
+// smoothing of the aggregate layers (while the CPU prepares the lights' views), the light through the liquid
+// onto the background, refraction, the foam paper's seven passes (figure 2), and the composite; then read
+// the layers back. A pass the plan leaves out is not run, and the
 // stats say why (FramePlan.cpp).
 RenderResult Renderer::renderParticles(const Scene& scene, const Particles& particles, int frame) {
   return renderPrepared(scene, particles, frame, FrameExtras{});
@@ -329,13 +331,9 @@ RenderResult Renderer::renderPrepared(const Scene& scene, const Particles& parti
     checkImageFitsGl(impl_->glLimits, backgroundImages.environment->width,
                      backgroundImages.environment->height,
                      "background.environment " + pathForFrame(scene.background.environment, frame).string());
-  const LightingPreparation& lighting = impl_->lightingCache.forFrame(
-      particles, camera, scene.lights, scene.parameters, shared, impl_->liquidCache.sameAsBefore());
   stats.prepareMilliseconds = millisecondsSince(prepareStart);
   recordPreparation(liquid, foam, stats);
   stats.liquid.cameraInLiquid = cameraInLiquid;
-  recordLighting(scene.lights.size(), lighting, backgroundImages.lightPasses != nullptr, stats.light);
-  stats.light.viewsKept = impl_->lightingCache.kept();
   const LayerSelection& layers = impl_->layers;
   FrameContents contents{liquid.splashes.size(),     liquid.aggregates.size(),   foam.instances.size(),
                          liquidParameters.smoothing, extras.occluders.size(),    extras.liquidMesh != nullptr,
@@ -345,8 +343,11 @@ RenderResult Renderer::renderPrepared(const Scene& scene, const Particles& parti
   contents.foamCulling = foamParameters.cull_hidden;
   contents.skipEmptyTiles = liquidParameters.skip_empty_tiles;
   contents.skipEmptyFoamTiles = foamParameters.skip_empty_tiles;
-  contents.lightsSeeingLiquid = lighting.lights.size();
-  contents.causticLights = causticLights(lighting);
+  // Which lights see the liquid is known from its bounds; their views are prepared below, while the GL
+  // thread draws the camera's surface.
+  const LightsSeeing seeing = lightsSeeingTheLiquid(particles, scene.lights, liquidParameters);
+  contents.lightsSeeingLiquid = seeing.lights;
+  contents.causticLights = seeing.causticLights;
   contents.caustics = scene.parameters.light.caustics;
   contents.skyOcclusionDirections = scene.parameters.light.sky_occlusion_directions;
   contents.lightLayersWanted = layers.wantsLightLayers();
@@ -357,14 +358,19 @@ RenderResult Renderer::renderPrepared(const Scene& scene, const Particles& parti
   impl_->pipelineReady.get();
   stats.firstFrame = std::exchange(impl_->firstFrame, false);
   if (stats.firstFrame) stats.setup = impl_->setup;
-  impl_->glThread.run([&] {
-    FramePipeline& pipeline = *impl_->pipeline;
-    auto timed = [&](Pass pass, auto&& issuePass) {
-      return timePass(pipeline.timer, passName(pass), issuePass);
-    };
-    IntermediateLayers intermediate(impl_->intermediateLayers);
+  FramePipeline& pipeline = *impl_->pipeline;
+  auto timed = [&](Pass pass, auto&& issuePass) {
+    return timePass(pipeline.timer, passName(pass), issuePass);
+  };
+  IntermediateLayers intermediate(impl_->intermediateLayers);
+  // The camera's surface first: its background, its depth layers and their smoothing test against the
+  // solids' depth alone, which no light changes, so the GL thread draws them while this thread prepares the
+  // lights' views (docs/frame-cost.md, session 45).
+  std::optional<BackgroundData> unlit;
+  std::optional<SurfaceLayers> splashes, aggregates;
+  std::optional<PixelTiles> liquidTiles;
+  std::future<void> surfaceDrawn = impl_->glThread.submit([&] {
     pipeline.frameUniforms.update(camera);
-
     const BackgroundData resolved =
         timed(Pass::Background, [&] { return pipeline.background.run(backgroundImages, width, height); });
     // Solid geometry handed as triangles joins the background's depth, so every later pass that tests against
@@ -379,32 +385,22 @@ RenderResult Renderer::renderPrepared(const Scene& scene, const Particles& parti
         *meshDepth(Pass::OccluderDepth, pipeline.occluderDepth, extras.occluders, &resolved.eyeDepth);
     const Texture2D* liquidDepth = meshDepth(Pass::LiquidMeshDepth, pipeline.liquidMeshDepth,
                                              {extras.liquidMesh}, resolved.liquidEyeDepth);
-    const BackgroundData unlit{resolved.color,         solidDepth,  resolved.environment,
-                               resolved.fallbackColor, liquidDepth, resolved.lightPasses};
-    // Light through the liquid onto the background (shadows, caustics, submerged points), before anything
-    // refracts or shows the background; LiquidLighting times its passes per light.
-    std::optional<LitBackgroundData> lit;
-    if (plan.runs(Pass::LitBackground))
-      lit.emplace(pipeline.lighting.run(lighting, camera, unlit, radius, scene.parameters,
-                                        plan.runs(Pass::SkyOcclusion), plan.runs(Pass::LiquidShadow),
-                                        pipeline.timer));
-    const BackgroundData background = lit ? lit->background : unlit;
-    std::optional<SurfaceLayers> splashes, aggregates;
+    unlit.emplace(BackgroundData{resolved.color, solidDepth, resolved.environment, resolved.fallbackColor,
+                                 liquidDepth, resolved.lightPasses});
     if (plan.runs(Pass::SplashDepthLayers)) {
       splashes.emplace(timed(Pass::SplashDepthLayers, [&] {
-        return pipeline.splashImpostors.run(liquid.splashes, {}, &background, camera, domainBox);
+        return pipeline.splashImpostors.run(liquid.splashes, {}, &*unlit, camera, domainBox);
       }));
       intermediate.keep(*splashes, "splash");
     }
     if (plan.runs(Pass::AggregateDepthLayers)) {
       aggregates.emplace(timed(Pass::AggregateDepthLayers, [&] {
-        return pipeline.aggregateImpostors.run(liquid.aggregates, liquid.aggregateLayers, &background, camera,
+        return pipeline.aggregateImpostors.run(liquid.aggregates, liquid.aggregateLayers, &*unlit, camera,
                                                domainBox);
       }));
       intermediate.keep(*aggregates, "aggregate");
     }
     // The pixel tiles that hold a pixel of any layer: smoothing and refraction shade only these.
-    std::optional<PixelTiles> liquidTiles;
     if (plan.runs(Pass::LiquidTiles))
       liquidTiles.emplace(timed(Pass::LiquidTiles, [&] {
         return pipeline.liquidTiles.run(eyeDepthsOf(splashes, aggregates), width, height);
@@ -422,6 +418,30 @@ RenderResult Renderer::renderPrepared(const Scene& scene, const Particles& parti
       }));
       intermediate.keep(*aggregates, "aggregate_smoothed");
     }
+  });
+  const LightingPreparation* preparedLighting = nullptr;
+  try {
+    preparedLighting = &impl_->lightingCache.forFrame(particles, camera, scene.lights, scene.parameters,
+                                                      shared, impl_->liquidCache.sameAsBefore());
+  } catch (...) {
+    surfaceDrawn.wait();  // it draws into this frame's locals
+    throw;
+  }
+  const LightingPreparation& lighting = *preparedLighting;
+  recordLighting(scene.lights.size(), lighting, backgroundImages.lightPasses != nullptr, stats.light);
+  stats.light.viewsKept = impl_->lightingCache.kept();
+  surfaceDrawn.get();
+
+  impl_->glThread.run([&] {
+    // Light through the liquid onto the background (shadows, caustics, submerged points), before anything
+    // refracts or shows the background; LiquidLighting times its passes per light.
+    std::optional<LitBackgroundData> lit;
+    if (plan.runs(Pass::LitBackground))
+      lit.emplace(pipeline.lighting.run(lighting, camera, *unlit, radius, scene.parameters,
+                                        plan.runs(Pass::SkyOcclusion), plan.runs(Pass::LiquidShadow),
+                                        pipeline.timer));
+    const BackgroundData background = lit ? lit->background : *unlit;
+    const PixelTiles* withLiquid = liquidTiles ? &*liquidTiles : nullptr;
     if (plan.runs(Pass::RaymarchSurface)) {  // times its six passes itself
       RaymarchSurface& surface = pipeline.raymarch;
       replaceFrontLayers(surface.run(*raymarch, splashes, aggregates, background, liquidParameters,

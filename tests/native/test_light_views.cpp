@@ -107,5 +107,40 @@ TEST(LightViews, ViewsAreKeptWhileParticlesLightsAndViewSidesStayTheSame) {
   expectFrame(farAway, true, false);
 }
 
+// The frame is planned before the lights' views are prepared (they are prepared while the GL thread draws the
+// camera's surface): the count found from the bounds alone is the one the preparation then finds.
+TEST(LightViews, TheLightsSeeingTheLiquidAreCountedAsThePreparationFindsThem) {
+  Particles particles;
+  for (int i = 0; i < 10; ++i)
+    for (int j = 0; j < 10; ++j)
+      for (int k = 0; k < 3; ++k)
+        particles.append({0.1f * float(i), 0.1f * float(j), 0.1f * float(k)}, 0.06f, ParticleKind::Liquid,
+                         0.0f, {});
+  Parameters parameters;
+  Light sun;
+  Light distantPoint;
+  distantPoint.type = Light::Type::Point;
+  distantPoint.position = {0.5f, 0.5f, 10.0f};
+  Light pointInside = distantPoint;
+  pointInside.position = {0.45f, 0.45f, 0.1f};
+  Light spotAtIt;
+  spotAtIt.type = Light::Type::Spot;
+  spotAtIt.position = {0.5f, 0.5f, 6.0f};
+  spotAtIt.direction = {0.0f, 0.0f, -1.0f};
+  Light spotAway = spotAtIt;
+  spotAway.direction = {0.0f, 0.0f, 1.0f};
+  const std::vector<Light> lights = {sun, distantPoint, pointInside, spotAtIt, spotAway};
+  const LightsSeeing seeing = lightsSeeingTheLiquid(particles, lights, parameters.liquid);
+  EXPECT_EQ(seeing.lights, 3u);
+  EXPECT_EQ(seeing.causticLights, 2u);
+  const LightingPreparation prepared = prepareLighting(particles, distantCamera(), lights, parameters);
+  EXPECT_EQ(seeing.lights, prepared.lights.size());
+  EXPECT_EQ(seeing.causticLights, causticLights(prepared));
+  EXPECT_EQ(prepared.skipped.size(), 2u);
+  // No liquid, or no light: none.
+  EXPECT_EQ(lightsSeeingTheLiquid(Particles{}, lights, parameters.liquid).lights, 0u);
+  EXPECT_EQ(lightsSeeingTheLiquid(particles, {}, parameters.liquid).lights, 0u);
+}
+
 }  // namespace
 }  // namespace spindrift

@@ -132,8 +132,10 @@ struct LightFrameStats {
   std::size_t lightsSeeingLiquid = 0;  ///< Whose view of the liquid was drawn.
   bool caustics = false;               ///< Whether any light's caustics were splatted.
   bool lightPasses = false;            ///< Whether the background had Cycles' light passes.
-  double prepareMilliseconds = 0.0;    ///< CPU preparation of the lights' views (included in prepare_ms).
-  int viewSize = 0;                    ///< Side in texels of the lights' views (light.texels_per_radius).
+  /// CPU preparation of the lights' views; not in prepare_ms, as it runs while the GL thread draws the
+  /// camera's surface.
+  double prepareMilliseconds = 0.0;
+  int viewSize = 0;  ///< Side in texels of the lights' views (light.texels_per_radius).
   /// The views were the frame before's, kept with their ellipsoids: the same particles, liquid and light
   /// parameters, lights and view sides (liquid.reuse_shapes).
   bool viewsKept = false;

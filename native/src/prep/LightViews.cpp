@@ -148,6 +148,22 @@ std::size_t causticLights(const LightingPreparation& lighting) {
   return count;
 }
 
+LightsSeeing lightsSeeingTheLiquid(const Particles& particles, const std::vector<Light>& lights,
+                                   const LiquidParameters& parameters) {
+  LightsSeeing seeing;
+  if (lights.empty()) return seeing;
+  const LiquidBounds bounds = liquidBounds(particles, parameters);
+  if (bounds.radius == 0.0f) return seeing;
+  std::string whyNot;
+  for (const Light& light : lights) {
+    // A view's side does not decide whether there is one.
+    if (!lightViewOf(light, bounds, 1, &whyNot)) continue;
+    ++seeing.lights;
+    seeing.causticLights += light.type != Light::Type::Point;
+  }
+  return seeing;
+}
+
 LightingPreparation prepareLighting(const Particles& particles, const Camera& camera,
                                     const std::vector<Light>& lights, const Parameters& parameters,
                                     FrameLiquidCache* frameCache, OcclusionWorkspace* occlusion) {

@@ -78,6 +78,16 @@ struct LightingPreparation {
 /// The lights among `lighting.lights` that can cast caustics (suns and spots).
 std::size_t causticLights(const LightingPreparation& lighting);
 
+/// How many of a frame's lights see its liquid (those prepareLighting prepares a view for), and how many of
+/// them can cast caustics: what the frame's plan needs, found from the liquid's bounds alone, before the
+/// views are prepared.
+struct LightsSeeing {
+  std::size_t lights = 0;
+  std::size_t causticLights = 0;
+};
+LightsSeeing lightsSeeingTheLiquid(const Particles& particles, const std::vector<Light>& lights,
+                                   const LiquidParameters& parameters);
+
 /// Prepares each light's view (and the sky's) of the liquid. `frameCache`: the camera's, so that each
 /// particle is shaped and Mantaflow's surface built and searched once per frame (prepareLiquid);
 /// `occlusion`: memory for the lights' occlusion tests, kept from an earlier frame.
