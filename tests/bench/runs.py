@@ -97,8 +97,27 @@ def run_spindrift(scene, exr, settings, stats_path):
     return wall, stats, usage.ru_maxrss / 1024.0, gpu.peak_mib
 
 
+def warm_frame_ms(scene, settings, work_directory):
+    """The scene's frame rendered three times in one process, its particles shaped anew each time
+    (liquid.reuse_shapes false, as a sequence's new particles are): the mean total_ms of the second and third,
+    what a frame costs a renderer already running. VTK's frame ms (after a warm-up frame) and Cycles' render
+    times (inside a running Blender) are measured so; the one-frame process's frame ms also pays for the
+    process's first frame (shader variants, first touch of every page: docs/frame-cost.md, session 45)."""
+    frame = json.load(open(scene)).get("frame", 1)
+    stats_path = os.path.join(work_directory, "warm_stats.json")
+    command = [SPINDRIFT, "render", scene, "--frames", f"{frame},{frame},{frame}", "--stats", stats_path, "-q",
+               "--set", "liquid.reuse_shapes=false"]
+    for key, value in settings.items():
+        command += ["--set", f"{key}={json.dumps(value)}"]
+    subprocess.run(command, check=True, stdout=subprocess.DEVNULL, stderr=subprocess.PIPE)
+    with open(stats_path) as handle:
+        frames = json.load(handle)["frames"]
+    return statistics.mean(entry["total_ms"] for entry in frames[1:])
+
+
 def timed_spindrift(scene, exr, settings, repeats, work_directory):
-    """`repeats` runs (at least one); medians of wall time, total_ms and every pass's gpu_ms and cpu_ms."""
+    """`repeats` runs (at least one); medians of wall time, total_ms and every pass's gpu_ms and cpu_ms; and
+    warm_frame_ms."""
     walls, totals, passes, rss, gpu = [], [], {}, [], []
     for repeat in range(max(1, repeats)):
         stats_path = os.path.join(work_directory, f"stats_{repeat}.json")
@@ -121,6 +140,7 @@ def timed_spindrift(scene, exr, settings, repeats, work_directory):
         "particles": stats.get("particles", {}),
         "gl_renderer": stats.get("gl_renderer", "?"),
         "raymarch": stats.get("raymarch"),  # steps per ray, rays cast, tiles (liquid.surface = raymarch)
+        "warm_total_ms": warm_frame_ms(scene, settings, work_directory),
     }
 
 
