@@ -45,6 +45,9 @@ FoamSurfaceData FoamDepthPass::run(const std::vector<FoamInstance>& particles, c
   glBindVertexArray(emptyVertexArray_.id());
   glDrawArrays(GL_TRIANGLES, 0, GLsizei(3 * particles.size()));
   glDisable(GL_DEPTH_TEST);
+  // Submitted at once: issued behind it unsubmitted, llvmpipe ran the thickness pass's sprites 3-5 times
+  // slower (the drop's steady frame 431-510 against 304-321 ms; docs/frame-cost.md, session 45).
+  glFlush();
   checkGlError("drawing foam depth");
   return {depthAndSearchRadius_, normal_, particleBuffer_, GLsizei(particles.size())};
 }
