@@ -70,6 +70,8 @@ def cycles_time_at_error(cycles, error):
 def method_points(data):
     points = [(row["timing"]["total_ms"], row["errors"]["mae"], "spindrift", row["label"])
               for row in data["spindrift"] if "timing" in row]
+    points += [(row["timing"]["warm_total_ms"], row["errors"]["mae"], "spindrift, warm frame", row["label"])
+               for row in data["spindrift"] if "timing" in row and row["timing"].get("warm_total_ms")]
     points += [(row["frame_ms"], row["errors"]["mae"], "vtk", row["label"]) for row in data["vtk"]]
     points += [(p["time_s"] * 1e3, p["mae"], "cycles", f"{p['spp']} spp") for p in data["cycles"]]
     return points
