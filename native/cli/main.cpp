@@ -12,10 +12,11 @@
 #include <memory>
 #include <optional>
 
-#include <malloc.h>
+#include <sys/resource.h>
 
 #include <CLI/CLI.hpp>
 
+#include "Heap.h"
 #include "Progress.h"
 #include "Sequence.h"
 #include "spindrift/Error.h"
@@ -39,6 +40,7 @@ struct RenderOptions {
   bool intermediate = false;
   bool skipExisting = false;
   bool keepGoing = false;
+  bool populateHeap = true;
   int threads = 0;  // 0: all cores
   ExrOptions exr;   // every layer, 32-bit float, ZIP unless --exr-half or --exr-compression
 };
@@ -58,14 +60,22 @@ void applyAssignments(Scene& scene, const std::vector<std::string>& assignments)
   }
 }
 
+// Minor page faults of the whole process so far.
+long minorPageFaults() {
+  rusage usage{};
+  getrusage(RUSAGE_SELF, &usage);
+  return usage.ru_minflt;
+}
+
 bool hasFramePattern(const std::string& path) {
   return path.find('#') != std::string::npos;
 }
 
 // The frame's stats, with the radius of every liquid source and where it came from (the scene file, or the
 // Mantaflow domain it was derived from) and the surface offset the frame was drawn with.
-nlohmann::json statsJson(const RenderResult& result, const Scene& scene) {
+nlohmann::json statsJson(const RenderResult& result, const Scene& scene, const nlohmann::json& process) {
   nlohmann::json stats = result.stats.toJson();
+  stats["process"] = process;
   nlohmann::json sources = nlohmann::json::array();
   for (const ParticleSource& source : scene.particles)
     if (source.role == ParticleRole::Liquid)
@@ -94,7 +104,19 @@ int runRender(const RenderOptions& options) {
 
   std::optional<WorkerThreadLimit> threadLimit;
   if (options.threads > 0) threadLimit.emplace(options.threads);
+  // The first frame's heap is mapped while the renderer starts its GL context (docs/frame-cost.md, session
+  // 46).
+  std::optional<cli::HeapPopulation> heap;
+  if (options.populateHeap) heap.emplace(cli::firstFrameHeapBytes(scene.camera.width, scene.camera.height));
   Renderer renderer;
+  nlohmann::json heapStats = {{"populated", false}, {"why_not", "--no-populate-heap"}};
+  if (heap) {
+    heap->wait();
+    heapStats = {{"populated", heap->populatedBytes() > 0},
+                 {"populated_mib", double(heap->populatedBytes()) / double(1 << 20)},
+                 {"ms", heap->milliseconds()}};
+    if (!heap->notPopulated().empty()) heapStats["why_not"] = heap->notPopulated();
+  }
   renderer.setIntermediateLayers(options.intermediate);
   std::vector<std::string> layers = options.layers;
   if (!layers.empty() && !options.pngPath.empty() &&
@@ -135,6 +157,7 @@ int runRender(const RenderOptions& options) {
       continue;
     }
     const auto start = std::chrono::steady_clock::now();
+    const long faultsBefore = minorPageFaults();
     std::shared_ptr<const RenderResult> result;
     try {
       result = std::make_shared<const RenderResult>(renderer.renderFrame(scene, frame));
@@ -154,13 +177,18 @@ int runRender(const RenderOptions& options) {
     // would otherwise delete the temporary the write in flight is about to rename.
     for (const std::filesystem::path& output : outputs)
       cli::removeStaleTemporaries(output);
-    allStats.push_back(statsJson(*result, scene));
+    // The process's page faults while the frame rendered (every thread's; the previous frame's write
+    // included), and on the first frame rendered, the heap mapped for it.
+    nlohmann::json process = {{"page_faults", minorPageFaults() - faultsBefore}};
+    if (allStats.empty()) process["heap"] = heapStats;
+    allStats.push_back(statsJson(*result, scene, process));
     pendingFrame = frame;
-    pendingWrite = std::async(std::launch::async, [&options, &scene, result, frame] {
+    pendingWrite = std::async(std::launch::async, [&options, &scene, result, frame, process] {
       if (!options.exrPath.empty()) writeExr(*result, pathForFrame(options.exrPath, frame), options.exr);
       if (!options.pngPath.empty()) writePng(*result, pathForFrame(options.pngPath, frame));
       if (!options.statsPath.empty() && hasFramePattern(options.statsPath))
-        cli::writeTextFile(pathForFrame(options.statsPath, frame), statsJson(*result, scene).dump(2) + "\n");
+        cli::writeTextFile(pathForFrame(options.statsPath, frame),
+                           statsJson(*result, scene, process).dump(2) + "\n");
     });
     pendingSeconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   }
@@ -210,20 +238,10 @@ int runInfo() {
   return 0;
 }
 
-// A frame allocates the same large buffers as the last (the preparation's arrays, the readback, the EXR's
-// lines). glibc hands blocks over 128 KiB back to the kernel when they are freed and takes them again with
-// page faults at the next frame: 9 % of a dam-break sequence's time on the benchmark machine, where
-// keeping them took the frame from 705-724 to 653-671 ms (docs/frame-cost.md, "The heap"). The process is
-// ours; the Python module leaves Blender's heap alone.
-void keepTheHeap() {
-  mallopt(M_MMAP_THRESHOLD, 32 << 20);  // glibc's largest: blocks up to 32 MiB come from the heap
-  mallopt(M_TRIM_THRESHOLD, 1 << 30);   // and freed ones stay in it
-}
-
 }  // namespace
 
 int main(int argc, char** argv) {
-  keepTheHeap();
+  cli::keepTheHeap();
   CLI::App app{"Spindrift: screen-space liquid and foam rendering of particle simulations"};
   app.set_version_flag("--version", "spindrift 0.1.0");
   app.require_subcommand(1);
@@ -254,6 +272,8 @@ int main(int argc, char** argv) {
                           "Skip frames whose output files all exist (resume a stopped sequence)");
   renderCommand->add_flag("--keep-going", render.keepGoing,
                           "Go on after a frame fails; exit with 3 at the end if any did");
+  renderCommand->add_flag("!--no-populate-heap", render.populateHeap,
+                          "Leave the first frame's heap pages to fault in at first use (for measuring)");
   renderCommand
       ->add_option("--threads", render.threads, "Worker threads of the CPU preparation (default: all)")
       ->check(CLI::PositiveNumber);
