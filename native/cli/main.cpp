@@ -60,11 +60,17 @@ void applyAssignments(Scene& scene, const std::vector<std::string>& assignments)
   }
 }
 
-// Minor page faults of the whole process so far.
-long minorPageFaults() {
+// What the whole process has used so far: its minor page faults and its CPU time in user and system mode.
+struct ProcessUsage {
+  long pageFaults = 0;
+  double userMilliseconds = 0.0, systemMilliseconds = 0.0;
+};
+
+ProcessUsage processUsage() {
   rusage usage{};
   getrusage(RUSAGE_SELF, &usage);
-  return usage.ru_minflt;
+  const auto milliseconds = [](const timeval& time) { return time.tv_sec * 1e3 + time.tv_usec * 1e-3; };
+  return {usage.ru_minflt, milliseconds(usage.ru_utime), milliseconds(usage.ru_stime)};
 }
 
 bool hasFramePattern(const std::string& path) {
@@ -157,7 +163,7 @@ int runRender(const RenderOptions& options) {
       continue;
     }
     const auto start = std::chrono::steady_clock::now();
-    const long faultsBefore = minorPageFaults();
+    const ProcessUsage before = processUsage();
     std::shared_ptr<const RenderResult> result;
     try {
       result = std::make_shared<const RenderResult>(renderer.renderFrame(scene, frame));
@@ -177,9 +183,12 @@ int runRender(const RenderOptions& options) {
     // would otherwise delete the temporary the write in flight is about to rename.
     for (const std::filesystem::path& output : outputs)
       cli::removeStaleTemporaries(output);
-    // The process's page faults while the frame rendered (every thread's; the previous frame's write
-    // included), and on the first frame rendered, the heap mapped for it.
-    nlohmann::json process = {{"page_faults", minorPageFaults() - faultsBefore}};
+    // The process's page faults and CPU time while the frame rendered (every thread's; the previous frame's
+    // write included), and on the first frame rendered, the heap mapped for it.
+    const ProcessUsage after = processUsage();
+    nlohmann::json process = {{"page_faults", after.pageFaults - before.pageFaults},
+                              {"user_ms", after.userMilliseconds - before.userMilliseconds},
+                              {"system_ms", after.systemMilliseconds - before.systemMilliseconds}};
     if (allStats.empty()) process["heap"] = heapStats;
     allStats.push_back(statsJson(*result, scene, process));
     pendingFrame = frame;

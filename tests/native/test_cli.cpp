@@ -273,5 +273,7 @@ TEST(CLI, TheFirstFramesHeapIsMappedBeforeItAndItsPagesNeedNotFaultIn) {
   EXPECT_LE(heap["populated_mib"].get<double>(), expectedMib);
   const long withMapping = mapped["process"]["page_faults"], without = faulted["process"]["page_faults"];
   EXPECT_GE(withMapping, 0);
+  EXPECT_GT(mapped["process"]["user_ms"].get<double>(), 0.0) << "the frame's CPU time, every thread's";
+  EXPECT_GE(mapped["process"]["system_ms"].get<double>(), 0.0);
   EXPECT_LT(2 * withMapping, without) << "with the heap mapped " << withMapping << ", without " << without;
 }
