@@ -44,7 +44,24 @@ std::uint64_t firstFrameHeapBytes(int width, int height) {
   return (std::uint64_t(128) << 20) + std::uint64_t(700) * std::uint64_t(width) * std::uint64_t(height);
 }
 
+// Under AddressSanitizer malloc is the sanitizer's allocator, which neither mallopt nor freed blocks steer.
+#if defined(__SANITIZE_ADDRESS__)
+constexpr bool kGlibcAllocator = false;
+#elif defined(__has_feature)
+#if __has_feature(address_sanitizer)
+constexpr bool kGlibcAllocator = false;
+#else
+constexpr bool kGlibcAllocator = true;
+#endif
+#else
+constexpr bool kGlibcAllocator = true;
+#endif
+
 HeapPopulation::HeapPopulation(std::uint64_t bytes) {
+  if (!kGlibcAllocator) {
+    notPopulated_ = "built with AddressSanitizer, whose allocator is not glibc's";
+    return;
+  }
   const std::uint64_t allowed = std::min({bytes, availableMemoryBytes() / 2, kMostPopulated});
   if (allowed < bytes)
     notPopulated_ = "capped at " + std::to_string(allowed >> 20) + " MiB (half the memory available, " +
