@@ -5,7 +5,7 @@
 #include <thread>
 
 // The CLI's process is ours, so it shapes glibc's heap for the way a render uses memory (docs/frame-cost.md,
-// "The first frame's pages"). The Python module leaves Blender's heap alone.
+// "The first frame's heap mapped at once"). The Python module leaves Blender's heap alone.
 namespace spindrift::cli {
 
 /// Set before any thread starts: blocks up to 32 MiB come from the heap and freed ones stay in it (a frame
@@ -14,8 +14,9 @@ namespace spindrift::cli {
 void keepTheHeap();
 
 /// The heap a process's first frame of width × height takes, from the benchmark's frames: about 700 bytes a
-/// pixel (the GL driver's targets, the readback, the EXR's lines) and 64 MiB besides (the driver's programs,
-/// the particles and their preparation). 480×270: 155 MiB; 960×540: 410 MiB.
+/// pixel (the GL driver's targets, the readback, the EXR's lines) and 128 MiB besides (the driver's programs,
+/// the particles and their preparation; 64 MiB left the drop example 17,900 faults). 480×270: 215 MiB;
+/// 960×540: 474 MiB.
 std::uint64_t firstFrameHeapBytes(int width, int height);
 
 /// Maps `bytes` of fresh heap at once (MADV_POPULATE_WRITE) on a thread of its own, and frees them into the
