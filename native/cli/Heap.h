@@ -19,6 +19,10 @@ void keepTheHeap();
 /// 960×540: 474 MiB.
 std::uint64_t firstFrameHeapBytes(int width, int height);
 
+/// The kernel's transparent huge pages setting: "always", "madvise" (where a process asks), "never" or
+/// "unknown".
+std::string transparentHugePagesMode();
+
 /// Maps `bytes` of fresh heap at once (MADV_POPULATE_WRITE) on a thread of its own, and frees them into the
 /// heap, where the first frame's blocks find them: a page the kernel maps this way costs a fraction of one
 /// faulted in at its first write (0.67 against 11.8 µs on the benchmark's VM). Half the memory available at
@@ -36,6 +40,8 @@ class HeapPopulation {
   /// Why fewer bytes than asked were populated; empty when all were.
   const std::string& notPopulated() const { return notPopulated_; }
   double milliseconds() const { return milliseconds_; }
+  /// How much of the process's memory the kernel mapped with huge pages once the heap was populated.
+  std::uint64_t hugePageBytes() const { return hugePageBytes_; }
 
  private:
   void populate(std::uint64_t bytes);
@@ -44,6 +50,7 @@ class HeapPopulation {
   std::uint64_t populated_ = 0;
   std::string notPopulated_;
   double milliseconds_ = 0.0;
+  std::uint64_t hugePageBytes_ = 0;
 };
 
 }  // namespace spindrift::cli

@@ -120,6 +120,8 @@ int runRender(const RenderOptions& options) {
     heap->wait();
     heapStats = {{"populated", heap->populatedBytes() > 0},
                  {"populated_mib", double(heap->populatedBytes()) / double(1 << 20)},
+                 {"huge_page_mib", double(heap->hugePageBytes()) / double(1 << 20)},
+                 {"transparent_huge_pages", cli::transparentHugePagesMode()},
                  {"ms", heap->milliseconds()}};
     if (!heap->notPopulated().empty()) heapStats["why_not"] = heap->notPopulated();
   }
