@@ -4,11 +4,19 @@
 // that have a surface, weighted by their eye-depth difference (eq. 2), with the weighted mean of the original
 // normals as the plane's normal (eq. 3) through the weighted mean position (eq. 4), and moves to where its
 // view ray meets that plane (eq. 5).
+//
+// PACKED_INPUT reads each tap's depth and original normal from one RGBA32F texture (xyz the normal, w the
+// depth) that the previous iteration wrote with PACKED_OUTPUT: one fetch a tap instead of two, which llvmpipe
+// pays for per tap (PlaneFitPass).
 #include "lib/frame.glsl"
 #include "lib/depth_layer.glsl"
 
+#if PACKED_INPUT
+layout(binding = 0) uniform sampler2D currentSurface;  // xyz: ñ_j in eq. 3; w: this iteration's depth
+#else
 layout(binding = 0) uniform sampler2D currentEyeDepth;  // this iteration's depth: z in eq. 2, p_j
 layout(binding = 1) uniform sampler2D originalNormal;   // world normals before smoothing: ñ_j in eq. 3
+#endif
 
 // (s - 1) / 2, a constant of each program (PlaneFitPass): llvmpipe unrolls the window's loops, which took the
 // dam break's smoothing from 34-37 to 31-32.5 ms (docs/frame-cost.md, session 42).
@@ -16,7 +24,11 @@ const int halfWindow = HALF_WINDOW;
 uniform int tapSpacing;  // pixels between taps: the window's taps spread over a taller image (PlaneFitPass.h)
 uniform float sigma;     // world units: liquid.plane_fit_sigma × r
 
+#if PACKED_OUTPUT
+layout(location = 0) out vec4 outSurface;  // the pixel's original normal and its new depth
+#else
 layout(location = 0) out float outEyeDepth;
+#endif
 
 // Below this |n·v| the fitted plane is within about half a degree of containing the view ray, and the
 // intersection of eq. 5 runs off towards infinity: the pixel keeps its depth instead.
@@ -25,13 +37,21 @@ const float kMinimumRayPlaneCosine = 1e-2;
 // two sides of a thin sheet): there is no plane to fit.
 const float kMinimumNormalAgreement = 1e-4;
 
-void main() {
-  ivec2 pixel = ivec2(gl_FragCoord.xy);
-  float centreDepth = texelFetch(currentEyeDepth, pixel, 0).r;
-  outEyeDepth = kNoSurfaceDepth;
-  if (!hasSurface(centreDepth)) return;  // smoothing never creates a surface
-  outEyeDepth = centreDepth;
+// A pixel's original normal (xyz) and current depth (w); outside the image, no surface.
+vec4 surfaceAt(ivec2 pixel) {
+#if PACKED_INPUT
+  if (any(lessThan(pixel, ivec2(0))) || any(greaterThanEqual(pixel, ivec2(frame.viewportSize.xy))))
+    return vec4(0.0, 0.0, 0.0, kNoSurfaceDepth);
+  return texelFetch(currentSurface, pixel, 0);
+#else
+  float depth = layerDepthAt(currentEyeDepth, pixel);
+  // The normal is read only where there is a surface, as the taps without one never use it.
+  return hasSurface(depth) ? vec4(texelFetch(originalNormal, pixel, 0).xyz, depth) : vec4(0.0, 0.0, 0.0, depth);
+#endif
+}
 
+// The centre pixel's depth after this iteration (its own where no plane can be fitted).
+float smoothedDepth(ivec2 pixel, float centreDepth) {
   vec3 centrePosition = cameraPositionAtPixel(pixel, centreDepth);
   vec3 normalSum = vec3(0.0);  // Σ w_ij ñ_j in world space: turned into camera space once, after the sum
   vec3 offsetSum = vec3(0.0);  // Σ w_ij (p_j - p_i): eq. 4 relative to p_i, which keeps float precision
@@ -39,11 +59,12 @@ void main() {
   for (int dy = -halfWindow; dy <= halfWindow; ++dy)
     for (int dx = -halfWindow; dx <= halfWindow; ++dx) {
       ivec2 neighbour = pixel + ivec2(dx, dy) * tapSpacing;
-      float depth = layerDepthAt(currentEyeDepth, neighbour);
+      vec4 surface = surfaceAt(neighbour);
+      float depth = surface.w;
       if (!hasSurface(depth)) continue;
       float depthDifference = (depth - centreDepth) / sigma;
       float weight = exp(-depthDifference * depthDifference);
-      normalSum += weight * texelFetch(originalNormal, neighbour, 0).xyz;
+      normalSum += weight * surface.xyz;
       offsetSum += weight * (cameraPositionAtPixel(neighbour, depth) - centrePosition);
       weightSum += weight;
     }
@@ -52,12 +73,24 @@ void main() {
   // written so that NaN fails it and leaves the depth as it was.
   normalSum = mat3(frame.cameraFromWorld) * normalSum;
   float normalLength = length(normalSum);
-  if (!(weightSum >= 1.0) || !(normalLength > kMinimumNormalAgreement * weightSum)) return;
+  if (!(weightSum >= 1.0) || !(normalLength > kMinimumNormalAgreement * weightSum)) return centreDepth;
   vec3 planeNormal = normalSum / normalLength;
   vec3 ray = cameraRayFromFragCoord(vec2(pixel) + 0.5);  // z = -1: its parameter along the ray is eye depth
   float rayDotNormal = dot(planeNormal, ray);
-  if (!(abs(rayDotNormal) > kMinimumRayPlaneCosine * length(ray))) return;
+  if (!(abs(rayDotNormal) > kMinimumRayPlaneCosine * length(ray))) return centreDepth;
   // Eq. 5 with d_i = n_i·p̄_i, written as the step from p_i = z_i·ray to the plane along the ray.
-  float smoothedDepth = centreDepth + dot(planeNormal, offsetSum / weightSum) / rayDotNormal;
-  if (hasSurface(smoothedDepth) && !isinf(smoothedDepth)) outEyeDepth = smoothedDepth;
+  float smoothed = centreDepth + dot(planeNormal, offsetSum / weightSum) / rayDotNormal;
+  return hasSurface(smoothed) && !isinf(smoothed) ? smoothed : centreDepth;
+}
+
+void main() {
+  ivec2 pixel = ivec2(gl_FragCoord.xy);
+  vec4 centre = surfaceAt(pixel);
+  // Smoothing never creates a surface: an empty pixel stays empty.
+  float depth = hasSurface(centre.w) ? smoothedDepth(pixel, centre.w) : kNoSurfaceDepth;
+#if PACKED_OUTPUT
+  outSurface = vec4(centre.xyz, depth);
+#else
+  outEyeDepth = depth;
+#endif
 }

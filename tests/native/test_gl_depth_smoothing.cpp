@@ -215,6 +215,40 @@ TEST(GLDepthSmoothing, PlaneFitReconstructsATiltedPlane) {
   EXPECT_LT(after.normal95Degrees, before.normalMedianDegrees / 5.0);
 }
 
+// Chained rounds pass each pixel's depth and original normal packed in one texture (PlaneFitPass); one round
+// at a time reads the layer's own textures. n chained rounds must give what n single rounds give, each fed
+// the last one's depth and the original normals: 2 rounds (no middle round), 3 (the default) and 5.
+TEST(GLDepthSmoothing, PlaneFitRoundsChainedMatchRoundsRunOneAtATime) {
+  const SheetScene scene = sheetScene(160, 120);
+  const double radius = scene.sheet.radius;
+  const CpuDepthLayer input = renderSheet(scene.sheet, scene.camera, false);
+  LiquidParameters oneRound = withMethod("plane_fit");
+  oneRound.smoothing_iterations = 1;
+  CpuDepthLayer stepped = input;
+  for (int rounds = 1; rounds <= 5; ++rounds) {
+    const CpuDepthLayer next =
+        SmoothingHarness::instance().smooth(stepped, scene.camera, radius, false, oneRound);
+    stepped.eyeDepth = next.eyeDepth;  // the normals stay the layer's originals
+    if (rounds != 2 && rounds != 3 && rounds != 5) continue;
+    LiquidParameters chained = withMethod("plane_fit");
+    chained.smoothing_iterations = rounds;
+    const CpuDepthLayer output =
+        SmoothingHarness::instance().smooth(input, scene.camera, radius, false, chained);
+    double largest = 0.0;
+    int covered = 0;
+    for (std::size_t i = 0; i < input.eyeDepth.size(); ++i) {
+      ASSERT_EQ(input.covered(int(i % input.width), int(i / input.width)),
+                output.covered(int(i % input.width), int(i / input.width)));
+      if (!input.covered(int(i % input.width), int(i / input.width))) continue;
+      ++covered;
+      largest =
+          std::max(largest, std::abs(double(output.eyeDepth[i]) - double(stepped.eyeDepth[i])) / radius);
+    }
+    EXPECT_GT(covered, 1000);
+    EXPECT_LE(largest, 1e-4) << rounds << " rounds: the largest difference, in radii";
+  }
+}
+
 // The same sheet rendered at twice the resolution covers twice the pixels per particle: a plane fit whose
 // window is fixed in pixels spans half the sheet it spans in the preview and leaves the bumps in. With
 // liquid.plane_fit_reference_height at the preview's height the taps spread two pixels apart, and the large

@@ -22,7 +22,10 @@ Texture2D& DepthPingPong::targetOtherThan(const Texture2D& source) {
 
 const Texture2D& DepthPingPong::draw(const Texture2D& source) {
   // The target is never the source, so a filter never reads the texture it writes.
-  Texture2D& target = targetOtherThan(source);
+  return drawInto(source, targetOtherThan(source));
+}
+
+const Texture2D& DepthPingPong::drawInto(const Texture2D& source, const Texture2D& target) {
   glNamedFramebufferTexture(framebuffer_.id(), GL_COLOR_ATTACHMENT0, target.id(), 0);
   glBindFramebuffer(GL_FRAMEBUFFER, framebuffer_.id());
   glViewport(0, 0, target.width, target.height);

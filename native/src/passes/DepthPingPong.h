@@ -24,6 +24,11 @@ class DepthPingPong {
   /// Draws `count` times, each reading the previous result, starting from `source`; returns the last result
   /// (`source` itself when `count` is 0).
   const Texture2D& drawRepeatedly(const Texture2D& source, int count);
+  /// Draws as draw() does into `target`, a texture of the targets' size that is not `source` (a filter's
+  /// own intermediate format); returns it.
+  const Texture2D& drawInto(const Texture2D& source, const Texture2D& target);
+  /// The tiles later draws shade (null: every pixel), as prepare() was given them.
+  const PixelTiles* tiles() const { return tiles_; }
   /// Copies `source` into a target and returns it.
   const Texture2D& copy(const Texture2D& source);
 

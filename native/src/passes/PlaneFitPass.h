@@ -1,6 +1,8 @@
 #pragma once
 
+#include <array>
 #include <map>
+#include <tuple>
 
 #include "framedata/SmoothedDepth.h"
 #include "gl/GlObjects.h"
@@ -19,6 +21,8 @@ int planeFitTapSpacing(int imageHeight, const LiquidParameters& parameters);
 /// The liquid paper's depth smoothing (section 4.3): liquid.smoothing_iterations rounds of local plane
 /// fitting in a liquid.plane_fit_window window with view-dependent weights, each round reading the previous
 /// round's depth and the layer's original normals. Unlike filters, it leaves silhouettes where they are.
+/// Between rounds each pixel's depth travels with its original normal in one RGBA32F texture, so that a
+/// round reads each tap once.
 class PlaneFitPass {
  public:
   explicit PlaneFitPass(const ShaderLibrary& shaders);
@@ -28,11 +32,14 @@ class PlaneFitPass {
                     const LiquidParameters& parameters, DepthPingPong& targets);
 
  private:
-  /// The program of a window 2 halfWindow + 1 taps wide, built at its first use.
-  GLuint program(int halfWindow);
+  /// The program of a window 2 halfWindow + 1 taps wide reading (and writing) depth and normals apart or
+  /// packed, built at its first use.
+  GLuint program(int halfWindow, bool packedInput, bool packedOutput);
 
   const ShaderLibrary& shaders_;
-  std::map<int, ProgramObject> programs_;  // by half window
+  std::map<std::tuple<int, bool, bool>, ProgramObject> programs_;
+  std::array<Texture2D, 2> packed_;  // RGBA32F: the original normal in xyz, a round's depth in w
+  FramebufferObject clearFramebuffer_;
 };
 
 }  // namespace spindrift
