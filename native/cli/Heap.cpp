@@ -87,7 +87,7 @@ void HeapPopulation::wait() {
 // The heap's pages as 2 MiB pages where the kernel has them (transparent huge pages, which a kernel set to
 // "madvise" gives only where asked). The heap grows by all of `bytes` at once, before any block is carved
 // from it, so that no 4 KiB page is written into the range before it is marked. On the benchmark's machine a
-// one-frame dam break's frame took 278-320 ms instead of 453-464 (docs/frame-cost.md, session 47).
+// one-frame dam break's frame took 325-340 ms instead of 508-550 (docs/frame-cost.md, session 47).
 static void askForHugePages(std::uint64_t bytes) {
   const auto begin = reinterpret_cast<std::uintptr_t>(sbrk(0));
   mallopt(M_TOP_PAD, int(std::min<std::uint64_t>(bytes, std::uint64_t(kTrimThreshold))));
