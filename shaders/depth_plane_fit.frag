@@ -6,8 +6,8 @@
 // view ray meets that plane (eq. 5).
 //
 // PACKED_INPUT reads each tap's depth and original normal from one RGBA32F texture (xyz the normal, w the
-// depth) that the previous iteration wrote with PACKED_OUTPUT: one fetch a tap instead of two, which llvmpipe
-// pays for per tap (PlaneFitPass).
+// depth) that the previous iteration wrote with PACKED_OUTPUT (or PACK_ONLY, which packs the layer without a
+// round): one fetch a tap instead of two, which llvmpipe pays for per tap (PlaneFitPass).
 #include "lib/frame.glsl"
 #include "lib/depth_layer.glsl"
 
@@ -87,7 +87,12 @@ void main() {
   ivec2 pixel = ivec2(gl_FragCoord.xy);
   vec4 centre = surfaceAt(pixel);
   // Smoothing never creates a surface: an empty pixel stays empty.
+#ifdef PACK_ONLY
+  // No round: the layer's depth and normal packed for the first round, an empty pixel as rounds write it.
+  float depth = hasSurface(centre.w) ? centre.w : kNoSurfaceDepth;
+#else
   float depth = hasSurface(centre.w) ? smoothedDepth(pixel, centre.w) : kNoSurfaceDepth;
+#endif
 #if PACKED_OUTPUT
   outSurface = vec4(centre.xyz, depth);
 #else

@@ -215,9 +215,10 @@ TEST(GLDepthSmoothing, PlaneFitReconstructsATiltedPlane) {
   EXPECT_LT(after.normal95Degrees, before.normalMedianDegrees / 5.0);
 }
 
-// Chained rounds pass each pixel's depth and original normal packed in one texture (PlaneFitPass); one round
-// at a time reads the layer's own textures. n chained rounds must give what n single rounds give, each fed
-// the last one's depth and the original normals: 2 rounds (no middle round), 3 (the default) and 5.
+// Rounds run in one pass hand each pixel's depth and original normal to the next round packed in one
+// texture (PlaneFitPass); a pass of one round packs the layer and writes depth. n chained rounds must give
+// what n passes of one round give, each fed the last one's depth and the original normals: 2 rounds (no
+// middle round), 3 (the default) and 5.
 TEST(GLDepthSmoothing, PlaneFitRoundsChainedMatchRoundsRunOneAtATime) {
   const SheetScene scene = sheetScene(160, 120);
   const double radius = scene.sheet.radius;

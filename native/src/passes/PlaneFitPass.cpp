@@ -14,46 +14,43 @@ int planeFitTapSpacing(int imageHeight, const LiquidParameters& parameters) {
 }
 
 PlaneFitPass::PlaneFitPass(const ShaderLibrary& shaders)
-    : shaders_(shaders), clearFramebuffer_(createFramebuffer()) {
+    : shaders_(shaders),
+      packProgram_(shaders.program({"fullscreen.vert", "depth_plane_fit.frag"},
+                                   {"HALF_WINDOW 0", "PACKED_INPUT 0", "PACKED_OUTPUT 1", "PACK_ONLY 1"})),
+      clearFramebuffer_(createFramebuffer()) {
   // The default window's programs with the others, beside the first preparation.
   const int halfWindow = LiquidParameters{}.plane_fit_window / 2;
-  program(halfWindow, false, false);
-  program(halfWindow, false, true);
-  program(halfWindow, true, true);
-  program(halfWindow, true, false);
+  program(halfWindow, true);
+  program(halfWindow, false);
 }
 
-GLuint PlaneFitPass::program(int halfWindow, bool packedInput, bool packedOutput) {
-  ProgramObject& program = programs_[{halfWindow, packedInput, packedOutput}];
+GLuint PlaneFitPass::program(int halfWindow, bool packedOutput) {
+  ProgramObject& program = programs_[{halfWindow, packedOutput}];
   if (!program)
     program = shaders_.program({"fullscreen.vert", "depth_plane_fit.frag"},
-                               {"HALF_WINDOW " + std::to_string(halfWindow),
-                                std::string("PACKED_INPUT ") + (packedInput ? "1" : "0"),
+                               {"HALF_WINDOW " + std::to_string(halfWindow), "PACKED_INPUT 1",
                                 std::string("PACKED_OUTPUT ") + (packedOutput ? "1" : "0")});
   return program.id();
 }
 
-// The rounds read and write depth and normal packed except where they meet the layer (the first round reads
-// its depth and normals) and the filters' common R32F result (the last round writes depth alone). Reading
-// each tap once took the dam break's smoothing from 154-160 to 134-142 ms (close-up) and 37-40 to 33-36 ms
-// (oblique), bit-identical (docs/frame-cost.md, session 47).
+// The rounds read and write depth and normal packed: a pass without a round packs the layer's depth and
+// normals first, and the last round writes the filters' common R32F depth alone. Reading each tap once took
+// the dam break's smoothing from 154-160 to 134-142 ms (close-up) and 37-40 to 33-36 ms (oblique) with the
+// first round still reading the layer, and packing first took 7-12 % more, bit-identical (docs/frame-cost.md,
+// session 47).
 SmoothedDepth PlaneFitPass::run(const Texture2D& eyeDepth, const Texture2D& originalNormal,
                                 float particleRadius, const LiquidParameters& parameters,
                                 DepthPingPong& targets) {
   const int halfWindow = parameters.plane_fit_window / 2;
   const int iterations = parameters.smoothing_iterations;
   const int tapSpacing = planeFitTapSpacing(eyeDepth.height, parameters);
-  const auto use = [&](bool packedInput, bool packedOutput) {
-    const GLuint id = program(halfWindow, packedInput, packedOutput);
+  const auto use = [&](bool packedOutput) {
+    const GLuint id = program(halfWindow, packedOutput);
     glUseProgram(id);
     glUniform1i(uniformLocation(id, "tapSpacing"), tapSpacing);
     glUniform1f(uniformLocation(id, "sigma"), parameters.plane_fit_sigma * particleRadius);
   };
-  glBindTextureUnit(1, originalNormal.id());
-  if (iterations <= 1) {
-    use(false, false);
-    return {targets.drawRepeatedly(eyeDepth, iterations)};
-  }
+  if (iterations <= 0) return {eyeDepth};
   for (Texture2D& texture : packed_)
     ensureTexture(texture, GL_RGBA32F, eyeDepth.width, eyeDepth.height);
   // Drawn over tiles, a round leaves the pixels outside them as they are: they must read as no surface.
@@ -61,12 +58,13 @@ SmoothedDepth PlaneFitPass::run(const Texture2D& eyeDepth, const Texture2D& orig
   if (targets.tiles())
     for (const Texture2D& texture : packed_)
       clearColorTargets(clearFramebuffer_.id(), {&texture}, noSurface);
-  use(false, true);
+  glUseProgram(packProgram_.id());
+  glBindTextureUnit(1, originalNormal.id());
   const Texture2D* current = &targets.drawInto(eyeDepth, packed_[0]);
-  use(true, true);
-  for (int round = 1; round < iterations - 1; ++round)
+  use(true);
+  for (int round = 0; round < iterations - 1; ++round)
     current = &targets.drawInto(*current, current == &packed_[0] ? packed_[1] : packed_[0]);
-  use(true, false);
+  use(false);
   return {targets.draw(*current)};
 }
 

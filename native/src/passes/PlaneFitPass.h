@@ -2,7 +2,7 @@
 
 #include <array>
 #include <map>
-#include <tuple>
+#include <utility>
 
 #include "framedata/SmoothedDepth.h"
 #include "gl/GlObjects.h"
@@ -32,12 +32,13 @@ class PlaneFitPass {
                     const LiquidParameters& parameters, DepthPingPong& targets);
 
  private:
-  /// The program of a window 2 halfWindow + 1 taps wide reading (and writing) depth and normals apart or
-  /// packed, built at its first use.
-  GLuint program(int halfWindow, bool packedInput, bool packedOutput);
+  /// The program of a round in a window 2 halfWindow + 1 taps wide that reads packed depth and normals and
+  /// writes them packed (or depth alone), built at its first use.
+  GLuint program(int halfWindow, bool packedOutput);
 
   const ShaderLibrary& shaders_;
-  std::map<std::tuple<int, bool, bool>, ProgramObject> programs_;
+  std::map<std::pair<int, bool>, ProgramObject> programs_;
+  ProgramObject packProgram_;        // packs the layer's depth and normals for the first round
   std::array<Texture2D, 2> packed_;  // RGBA32F: the original normal in xyz, a round's depth in w
   FramebufferObject clearFramebuffer_;
 };
