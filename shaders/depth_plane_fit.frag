@@ -5,18 +5,14 @@
 // normals as the plane's normal (eq. 3) through the weighted mean position (eq. 4), and moves to where its
 // view ray meets that plane (eq. 5).
 //
-// PACKED_INPUT reads each tap's depth and original normal from one RGBA32F texture (xyz the normal, w the
-// depth) that the previous iteration wrote with PACKED_OUTPUT (or PACK_ONLY, which packs the layer without a
-// round): one fetch a tap instead of two, which llvmpipe pays for per tap (PlaneFitPass).
+// Each tap's depth and original normal come from one RGBA32F texture (xyz the normal, w the depth) that
+// depth_plane_fit_pack.frag or the round before wrote: one fetch a tap instead of two, which llvmpipe pays
+// for per tap (PlaneFitPass). PACKED_OUTPUT writes the same for the next round; the last round writes the
+// depth alone.
 #include "lib/frame.glsl"
 #include "lib/depth_layer.glsl"
 
-#if PACKED_INPUT
-layout(binding = 0) uniform sampler2D currentSurface;  // xyz: ñ_j in eq. 3; w: this iteration's depth
-#else
-layout(binding = 0) uniform sampler2D currentEyeDepth;  // this iteration's depth: z in eq. 2, p_j
-layout(binding = 1) uniform sampler2D originalNormal;   // world normals before smoothing: ñ_j in eq. 3
-#endif
+layout(binding = 0) uniform sampler2D currentSurface;  // xyz: ñ_j in eq. 3; w: this iteration's depth, p_j
 
 // (s - 1) / 2, a constant of each program (PlaneFitPass): llvmpipe unrolls the window's loops, which took the
 // dam break's smoothing from 34-37 to 31-32.5 ms (docs/frame-cost.md, session 42).
@@ -39,15 +35,9 @@ const float kMinimumNormalAgreement = 1e-4;
 
 // A pixel's original normal (xyz) and current depth (w); outside the image, no surface.
 vec4 surfaceAt(ivec2 pixel) {
-#if PACKED_INPUT
   if (any(lessThan(pixel, ivec2(0))) || any(greaterThanEqual(pixel, ivec2(frame.viewportSize.xy))))
     return vec4(0.0, 0.0, 0.0, kNoSurfaceDepth);
   return texelFetch(currentSurface, pixel, 0);
-#else
-  float depth = layerDepthAt(currentEyeDepth, pixel);
-  // The normal is read only where there is a surface, as the taps without one never use it.
-  return hasSurface(depth) ? vec4(texelFetch(originalNormal, pixel, 0).xyz, depth) : vec4(0.0, 0.0, 0.0, depth);
-#endif
 }
 
 // The centre pixel's depth after this iteration (its own where no plane can be fitted).
@@ -87,12 +77,7 @@ void main() {
   ivec2 pixel = ivec2(gl_FragCoord.xy);
   vec4 centre = surfaceAt(pixel);
   // Smoothing never creates a surface: an empty pixel stays empty.
-#ifdef PACK_ONLY
-  // No round: the layer's depth and normal packed for the first round, an empty pixel as rounds write it.
-  float depth = hasSurface(centre.w) ? centre.w : kNoSurfaceDepth;
-#else
   float depth = hasSurface(centre.w) ? smoothedDepth(pixel, centre.w) : kNoSurfaceDepth;
-#endif
 #if PACKED_OUTPUT
   outSurface = vec4(centre.xyz, depth);
 #else

@@ -27,8 +27,8 @@ std::string transparentHugePagesMode();
 /// heap, where the first frame's blocks find them: a page the kernel maps this way costs a fraction of one
 /// faulted in at its first write (0.67 against 11.8 µs on the benchmark's VM). The range asks for transparent
 /// huge pages first (MADV_HUGEPAGE), which took the first frame's passes, preparation and readback a third
-/// faster on that VM. Half the memory available at
-/// most; nothing where the kernel cannot (before Linux 5.14), under AddressSanitizer or when `bytes` is 0.
+/// faster on that VM. Half the memory available at most; nothing where the kernel cannot (before Linux
+/// 5.14), under AddressSanitizer or when `bytes` is 0.
 class HeapPopulation {
  public:
   explicit HeapPopulation(std::uint64_t bytes);

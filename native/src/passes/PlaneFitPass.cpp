@@ -15,8 +15,7 @@ int planeFitTapSpacing(int imageHeight, const LiquidParameters& parameters) {
 
 PlaneFitPass::PlaneFitPass(const ShaderLibrary& shaders)
     : shaders_(shaders),
-      packProgram_(shaders.program({"fullscreen.vert", "depth_plane_fit.frag"},
-                                   {"HALF_WINDOW 0", "PACKED_INPUT 0", "PACKED_OUTPUT 1", "PACK_ONLY 1"})),
+      packProgram_(shaders.program({"fullscreen.vert", "depth_plane_fit_pack.frag"})),
       clearFramebuffer_(createFramebuffer()) {
   // The default window's programs with the others, beside the first preparation.
   const int halfWindow = LiquidParameters{}.plane_fit_window / 2;
@@ -28,12 +27,12 @@ GLuint PlaneFitPass::program(int halfWindow, bool packedOutput) {
   ProgramObject& program = programs_[{halfWindow, packedOutput}];
   if (!program)
     program = shaders_.program({"fullscreen.vert", "depth_plane_fit.frag"},
-                               {"HALF_WINDOW " + std::to_string(halfWindow), "PACKED_INPUT 1",
+                               {"HALF_WINDOW " + std::to_string(halfWindow),
                                 std::string("PACKED_OUTPUT ") + (packedOutput ? "1" : "0")});
   return program.id();
 }
 
-// The rounds read and write depth and normal packed: a pass without a round packs the layer's depth and
+// The rounds read and write depth and normal packed: depth_plane_fit_pack.frag packs the layer's depth and
 // normals first, and the last round writes the filters' common R32F depth alone. Reading each tap once took
 // the dam break's smoothing from 154-160 to 134-142 ms (close-up) and 37-40 to 33-36 ms (oblique) with the
 // first round still reading the layer, and packing first took 7-12 % more, bit-identical (docs/frame-cost.md,
