@@ -20,6 +20,7 @@ void recordPreparation(const LiquidPreparation& liquid, const FoamPreparation& f
   stats.foam.surfaceParticles = foam.surface;
   stats.foam.bubbleParticles = foam.bubble;
   stats.foam.culled = foam.culled;
+  stats.foam.subPixel = foam.subPixel;
 }
 
 void recordLighting(std::size_t sceneLights, const LightingPreparation& lighting, bool lightPasses,

@@ -92,6 +92,7 @@ nlohmann::json FrameStats::toJson() const {
         {"culled", foam.culled},
         {"hidden_behind_solids", foam.hiddenBehindSolids},
         {"hidden_under_liquid", foam.hiddenUnderLiquid},
+        {"sub_pixel", foam.subPixel},
         {"foam_pixels", foam.foamPixels},
         {"occlusion_estimates", foam.occlusionEstimates},
         {"ao_samples_per_pixel", foam.aoSamplesPerPixel},

@@ -160,6 +160,7 @@ TEST(FoamPreparation, CullsToTheViewAndCountsTypes) {
   particles.append({50, 0, 0}, 0.1f, ParticleKind::Spray, 0.0f, glm::vec3(0));  // beside the view
   FoamParameters parameters;
   parameters.lifetime_frames = 16.0f;
+  parameters.cull_sub_pixel = false;  // at 64 x 32 pixels these sprites are a pixel across or less
   const FoamPreparation foam = prepareFoam(particles, camera, parameters);
   EXPECT_EQ(foam.spray, 1u);
   EXPECT_EQ(foam.bubble, 1u);

@@ -205,6 +205,8 @@ TEST(GLFoam, HiddenFoamIsLeftOutAndChangesNoLayer) {
              ParticleKind::Bubble);
   appendFoam(particles, liquid_test::block({-0.7f, -0.3f, 2.3f}, {-0.5f, 0.3f, 2.3f}, 0.05f), radius,
              ParticleKind::Spray);
+  // The hidden foam's test alone: sub-pixel sprites would be left out before it, and not counted by it.
+  scene.parameters.foam.cull_sub_pixel = false;
   const RenderResult culled = renderer().renderParticles(scene, particles, 1);
   scene.parameters.foam.cull_hidden = false;
   const RenderResult drawn = renderer().renderParticles(scene, particles, 1);
@@ -230,6 +232,54 @@ TEST(GLFoam, HiddenFoamIsLeftOutAndChangesNoLayer) {
   for (float alpha : culled.layer("foam_bubble")->pixels)
     visible = std::max<double>(visible, alpha);
   EXPECT_GT(visible, 0.02);  // the shallow bubbles show: the test looks at foam that is drawn
+}
+
+// foam.cull_sub_pixel: foam of every size from a tenth of a pixel to a few pixels, spread at random over the
+// view at several depths (over and under a liquid surface, so the attenuation and the bubbles count too).
+// The sprites that hold no pixel's centre are not drawn, and every foam layer and the composite stay exactly
+// what drawing every particle gives.
+TEST(GLFoam, SubPixelFoamIsLeftOutAndChangesNoLayer) {
+  TempDirectory directory;
+  const int size = 65;
+  writeBackgroundExr(
+      directory.path() / "with_liquid.exr", size, size, [](int, int) { return glm::vec3(0.1f, 0.2f, 0.3f); },
+      [](int, int) { return 4.5f; });
+  Scene scene = sceneLookingDown(size);  // a pixel is 0.0412 units wide at eye depth 5 (z = 0)
+  scene.background.image = directory.path() / "with_liquid.exr";
+  scene.background.liquidDepth = directory.path() / "with_liquid.exr";
+  std::mt19937 random(11);
+  std::uniform_real_distribution<float> across(-1.0f, 1.0f), height(-0.3f, 1.5f), radius(0.004f, 0.08f);
+  Particles particles;
+  const ParticleKind kinds[] = {ParticleKind::Spray, ParticleKind::Foam, ParticleKind::Bubble};
+  for (int i = 0; i < 3000; ++i)
+    particles.append({across(random), across(random), height(random)}, radius(random), kinds[i % 3], 0.0f,
+                     glm::vec3(0.0f));
+  const RenderResult culled = renderer().renderParticles(scene, particles, 1);
+  scene.parameters.foam.cull_sub_pixel = false;
+  const RenderResult drawn = renderer().renderParticles(scene, particles, 1);
+  expectFiniteFoam(culled);
+  const FoamFrameStats& counts = culled.stats.foam;
+  EXPECT_GT(counts.subPixel, 300u);
+  EXPECT_LT(counts.subPixel, 2700u);
+  EXPECT_EQ(drawn.stats.foam.subPixel, 0u);
+  EXPECT_EQ(
+      counts.sprayParticles + counts.surfaceParticles + counts.bubbleParticles,
+      drawn.stats.foam.sprayParticles + drawn.stats.foam.surfaceParticles + drawn.stats.foam.bubbleParticles);
+  for (const char* layer : {"composite", "foam", "foam_spray", "foam_surface", "foam_bubble", "foam_shadow",
+                            "foam_irradiance", "foam_thickness"}) {
+    const std::vector<float>& a = culled.layer(layer)->pixels;
+    const std::vector<float>& b = drawn.layer(layer)->pixels;
+    ASSERT_EQ(a.size(), b.size()) << layer;
+    std::size_t differing = 0;
+    for (std::size_t i = 0; i < a.size(); ++i)
+      differing += a[i] != b[i];
+    EXPECT_EQ(differing, 0u) << layer;
+  }
+  double thickness = 0.0;
+  for (float value : culled.layer("foam_thickness")->pixels)
+    thickness = std::max<double>(thickness, value);
+  EXPECT_GT(thickness, 0.0);  // foam is drawn: the comparison is not of two empty frames
+  std::printf("[ measured ] %zu of 3000 sprites hold no pixel centre\n", counts.subPixel);
 }
 
 // Surface foam in a hemispherical bowl of radius 0.3 (rim at z = 0, bottom at z = -0.3) in a flat field out

@@ -3,6 +3,7 @@
 #include <cstddef>
 #include <vector>
 
+#include <glm/vec2.hpp>
 #include <glm/vec4.hpp>
 
 #include "spindrift/Camera.h"
@@ -28,6 +29,9 @@ struct FoamPreparation {
   std::size_t surface = 0;
   std::size_t bubble = 0;
   std::size_t culled = 0;  ///< Foam particles outside the view frustum.
+  /// In view (and counted by type above) but left out: their sprites hold no pixel's centre
+  /// (foam.cull_sub_pixel).
+  std::size_t subPixel = 0;
 };
 
 /// The radius the foam paper draws particle `index` (its place among the frame's foam particles) with:
@@ -37,6 +41,12 @@ float foamDrawnRadius(float radius, ParticleKind kind, std::size_t index, const 
 /// The normalised age l of a particle with `lifeFrames` frames of life left: 1 - life / lifetime_frames,
 /// clamped to [0, 1]; 0 (no fade) when the life is unknown (0) or lifetime_frames is 0.
 float foamNormalisedAge(float lifeFrames, const FoamParameters& parameters);
+
+/// Whether a sprite, the ellipse of semi-axes `radiusPixels` (x, y) about `windowCentre` (window coordinates,
+/// pixel centres at +0.5) that a disc of its drawn radius projects to, holds the centre of any pixel: where
+/// the sprite passes rasterise a fragment. Conservative: an ellipse grown by 1 % and 0.01 px that holds one
+/// counts, so the shaders' own rounding never makes a fragment where this found none.
+bool foamSpriteHoldsAPixelCentre(const glm::vec2& windowCentre, const glm::vec2& radiusPixels);
 
 /// Culls the Spray, Bubble and Foam particles to the view and packs them (foam paper 2.1).
 FoamPreparation prepareFoam(const Particles& particles, const Camera& camera,
