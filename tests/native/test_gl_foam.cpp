@@ -30,6 +30,20 @@ void expectFiniteFoam(const RenderResult& result) {
     EXPECT_NE(result.layer(layer), nullptr) << layer;
 }
 
+// Every foam layer and the composite of two renders bit for bit the same.
+void expectFoamLayersIdentical(const RenderResult& culled, const RenderResult& drawn) {
+  for (const char* layer : {"composite", "foam", "foam_spray", "foam_surface", "foam_bubble", "foam_shadow",
+                            "foam_irradiance", "foam_thickness"}) {
+    const std::vector<float>& a = culled.layer(layer)->pixels;
+    const std::vector<float>& b = drawn.layer(layer)->pixels;
+    ASSERT_EQ(a.size(), b.size()) << layer;
+    std::size_t differing = 0;
+    for (std::size_t i = 0; i < a.size(); ++i)
+      differing += a[i] != b[i];
+    EXPECT_EQ(differing, 0u) << layer;
+  }
+}
+
 // A camera on +Z looking at the origin; odd sizes put the centre pixel's ray exactly on the view axis.
 Scene sceneLookingDown(int size, float height = 5.0f) {
   Scene scene;
@@ -219,16 +233,7 @@ TEST(GLFoam, HiddenFoamIsLeftOutAndChangesNoLayer) {
     skippedWithReason |= pass.name == "foam_visibility" && pass.reason == "foam.cull_hidden is off";
   EXPECT_TRUE(skippedWithReason);
   double visible = 0.0;
-  for (const char* layer : {"composite", "foam", "foam_spray", "foam_surface", "foam_bubble", "foam_shadow",
-                            "foam_irradiance", "foam_thickness"}) {
-    const std::vector<float>& a = culled.layer(layer)->pixels;
-    const std::vector<float>& b = drawn.layer(layer)->pixels;
-    ASSERT_EQ(a.size(), b.size()) << layer;
-    std::size_t differing = 0;
-    for (std::size_t i = 0; i < a.size(); ++i)
-      differing += a[i] != b[i];
-    EXPECT_EQ(differing, 0u) << layer;
-  }
+  expectFoamLayersIdentical(culled, drawn);
   for (float alpha : culled.layer("foam_bubble")->pixels)
     visible = std::max<double>(visible, alpha);
   EXPECT_GT(visible, 0.02);  // the shallow bubbles show: the test looks at foam that is drawn
@@ -265,16 +270,7 @@ TEST(GLFoam, SubPixelFoamIsLeftOutAndChangesNoLayer) {
   EXPECT_EQ(
       counts.sprayParticles + counts.surfaceParticles + counts.bubbleParticles,
       drawn.stats.foam.sprayParticles + drawn.stats.foam.surfaceParticles + drawn.stats.foam.bubbleParticles);
-  for (const char* layer : {"composite", "foam", "foam_spray", "foam_surface", "foam_bubble", "foam_shadow",
-                            "foam_irradiance", "foam_thickness"}) {
-    const std::vector<float>& a = culled.layer(layer)->pixels;
-    const std::vector<float>& b = drawn.layer(layer)->pixels;
-    ASSERT_EQ(a.size(), b.size()) << layer;
-    std::size_t differing = 0;
-    for (std::size_t i = 0; i < a.size(); ++i)
-      differing += a[i] != b[i];
-    EXPECT_EQ(differing, 0u) << layer;
-  }
+  expectFoamLayersIdentical(culled, drawn);
   double thickness = 0.0;
   for (float value : culled.layer("foam_thickness")->pixels)
     thickness = std::max<double>(thickness, value);
