@@ -117,9 +117,8 @@ struct FoamFrameStats {
   std::size_t culled = 0;              ///< Outside the view frustum.
   std::size_t hiddenBehindSolids = 0;  ///< In view but hidden by solids over the whole sprite: not drawn.
   std::size_t hiddenUnderLiquid = 0;   ///< Deeper under the liquid than foam.attenuation_distance: not drawn.
-  std::size_t subPixel =
-      0;  ///< In view but too small to hold a pixel's centre (foam.cull_sub_pixel): not drawn.
-  std::size_t foamPixels = 0;          ///< Pixels with foam (intensity > 0).
+  std::size_t subPixel = 0;    ///< In view, holding no pixel's centre (foam.cull_sub_pixel): not drawn.
+  std::size_t foamPixels = 0;  ///< Pixels with foam (intensity > 0).
   std::size_t occlusionEstimates = 0;  ///< SSAO estimates: foam pixels, or foam.occlusion_block blocks.
   double aoSamplesPerPixel = 0.0;      ///< Mean SSAO samples per foam pixel, all passes together.
   /// The 16 × 16 pixel tiles that the shadow, irradiance and blur shaded, of `tiles` in the frame
