@@ -1,10 +1,10 @@
 #include "passes/PlaneFitPass.h"
 
-#include "passes/FrameUniforms.h"
-
 #include <algorithm>
 #include <cmath>
 #include <string>
+
+#include "passes/FrameUniforms.h"
 
 namespace spindrift {
 
