@@ -1,6 +1,6 @@
 #version 450 core
 // The foam SSAO's sample set (paper 2.4.1): Halton points in [-1, 1]^3 with their lengths; FoamOcclusionPass
-// makes it once. Points with length above 1 lie outside the sphere and are skipped where they are used.
+// makes it once and keeps the points inside the unit sphere (length at most 1), which the paper uses.
 #include "lib/foam_functions.glsl"
 
 layout(local_size_x = 64) in;

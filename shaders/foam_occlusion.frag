@@ -13,9 +13,15 @@ layout(binding = 6) uniform sampler2D irradianceMap;
 // Per pixel: foam opacity, foam depth where opaque, liquid depth, solid depth (foam_occluders.frag).
 layout(binding = 7) uniform sampler2D occluders;
 
-// The Halton samples in [-1, 1]^3 (xyz) with their length (w), made once by FoamOcclusionPass.
+// The Halton samples in [-1, 1]^3 (xyz) with their length (w) that lie inside the unit sphere, in the
+// sequence's order, and how many of the sequence's first n samples those are, [n]: made once by
+// FoamOcclusionPass. A pass that takes n samples of the sequence uses the first insideAmongFirst[n] of these;
+// the others lie outside the sphere, which the paper skips.
 layout(std430, binding = 0) readonly buffer HaltonSamples {
   vec4 haltonSamples[];
+};
+layout(std430, binding = 2) readonly buffer HaltonInsideCounts {
+  uint insideAmongFirst[];
 };
 // 0: foam pixels, 1: SSAO samples taken (nu summed over passes), 2: estimates made, for the frame's stats.
 layout(std430, binding = 1) buffer OcclusionCounters {
@@ -99,10 +105,9 @@ void main() {
   // runs for every pixel whether or not the condition holds, so inside the passes' loop its environment
   // lookups cost every pass (docs/frame-cost.md, session 40).
   if (!useIrradianceMap) {
-    int count = samplesWithin(searchRadius * initialRadiusFactor * pixelsPerSearchRadius);
-    for (int i = 0; i < count; ++i) {
+    int inside = int(insideAmongFirst[samplesWithin(searchRadius * initialRadiusFactor * pixelsPerSearchRadius)]);
+    for (int i = 0; i < inside; ++i) {
       vec4 unit = haltonSamples[i];
-      if (unit.w > 1.0 || unit.w == 0.0) continue;  // outside the unit sphere
       // The sample's direction, turned into the normal's hemisphere, weighted by its cosine.
       vec3 direction = unit.xyz / unit.w;
       if (dot(direction, cameraNormal) < 0.0) direction = -direction;
@@ -116,9 +121,9 @@ void main() {
     int count = samplesWithin(screenRadius);
     samplesTaken += uint(count);
     float worldRadius = passRadius * worldPerSearchRadius;
-    for (int i = 0; i < count; ++i) {
+    int inside = int(insideAmongFirst[count]);
+    for (int i = 0; i < inside; ++i) {
       vec4 unit = haltonSamples[i];
-      if (unit.w > 1.0 || unit.w == 0.0) continue;  // outside the unit sphere
       vec3 samplePosition = position + worldRadius * unit.xyz;
       float sampleDepth = -samplePosition.z;
       if (sampleDepth <= getNearClip()) continue;

@@ -13,6 +13,17 @@ constexpr int kIrradianceMapHeight = 32;
 
 }  // namespace
 
+SamplesInsideSphere samplesInsideUnitSphere(const std::vector<glm::vec4>& cube) {
+  SamplesInsideSphere kept;
+  kept.insideAmongFirst.reserve(cube.size() + 1);
+  for (const glm::vec4& point : cube) {
+    kept.insideAmongFirst.push_back(std::uint32_t(kept.inside.size()));
+    if (!(point.w > 1.0f || point.w == 0.0f)) kept.inside.push_back(point);
+  }
+  kept.insideAmongFirst.push_back(std::uint32_t(kept.inside.size()));
+  return kept;
+}
+
 FoamOcclusionPass::FoamOcclusionPass(const ShaderLibrary& shaders)
     : program_(shaders.program({"fullscreen.vert", "foam_occlusion.frag"})),
       irradianceMapProgram_(shaders.program({"foam_irradiance_map.comp"})),
@@ -21,15 +32,30 @@ FoamOcclusionPass::FoamOcclusionPass(const ShaderLibrary& shaders)
       emptyVertexArray_(createVertexArray()),
       framebuffer_(createFramebuffer()),
       haltonSamples_(createBuffer()),
+      haltonInsideCounts_(createBuffer()),
       counters_(createBuffer()) {
   // The samples are the same for every pixel and frame (a constant seed): made once, by the shader library's
   // own Halton code, so what the tests check is what the pass uses.
   const ProgramObject generator = shaders.program({"foam_halton_samples.comp"});
-  glNamedBufferStorage(haltonSamples_.id(), GLsizeiptr(kMaximumSamples * 4 * sizeof(float)), nullptr, 0);
+  const BufferObject generated = createBuffer();
+  const GLsizeiptr generatedBytes = GLsizeiptr(kMaximumSamples * sizeof(glm::vec4));
+  glNamedBufferStorage(generated.id(), generatedBytes, nullptr, 0);
   glUseProgram(generator.id());
-  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, haltonSamples_.id());
+  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, generated.id());
   glDispatchCompute(kMaximumSamples / 64, 1, 1);
-  glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+  glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
+  std::vector<glm::vec4> cube(kMaximumSamples);
+  glGetNamedBufferSubData(generated.id(), 0, generatedBytes, cube.data());
+  // About half of the cube's points lie outside the unit sphere, and the paper skips them. A loop that skips
+  // them in the shader still runs their iterations on llvmpipe, every lane of a group of eight alike, so the
+  // pass reads the kept points alone (the drop's foam_occlusion 28-29 -> 17-18 ms, its layers bit-identical).
+  SamplesInsideSphere kept = samplesInsideUnitSphere(cube);
+  const std::size_t keptCount = std::max<std::size_t>(kept.inside.size(), 1);  // a buffer may not be empty
+  kept.inside.resize(keptCount);
+  glNamedBufferStorage(haltonSamples_.id(), GLsizeiptr(keptCount * sizeof(glm::vec4)), kept.inside.data(), 0);
+  glNamedBufferStorage(haltonInsideCounts_.id(),
+                       GLsizeiptr(kept.insideAmongFirst.size() * sizeof(std::uint32_t)),
+                       kept.insideAmongFirst.data(), 0);
   glNamedBufferStorage(counters_.id(), 3 * sizeof(std::uint32_t), nullptr, GL_DYNAMIC_STORAGE_BIT);
   checkGlError("making the foam's SSAO samples");
 }
@@ -113,6 +139,7 @@ FoamOcclusionData FoamOcclusionPass::run(const FoamSurfaceData& surface, const F
   glBindTextureUnit(7, occluders_.id());
   glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, haltonSamples_.id());
   glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, counters_.id());
+  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 2, haltonInsideCounts_.id());
   // Blocks of pixels are estimated over the whole (smaller) target; single pixels in the foam's tiles only.
   drawFullscreen(emptyVertexArray_.id(), block > 1 ? nullptr : tiles);
   checkGlError("estimating the foam's shadow and irradiance");

@@ -1,6 +1,9 @@
 #pragma once
 
 #include <cstdint>
+#include <vector>
+
+#include <glm/glm.hpp>
 
 #include "framedata/BackgroundData.h"
 #include "framedata/FoamIntensityData.h"
@@ -13,6 +16,16 @@
 #include "spindrift/Parameters.h"
 
 namespace spindrift {
+
+/// The foam SSAO's samples that the paper uses, those inside the unit sphere, taken from Halton points in
+/// [-1, 1]^3 with their length in w: a point is kept unless its length is above 1 or 0 (as the shader skipped
+/// them). `insideAmongFirst[n]` is how many of the first n points are kept (n from 0 to all of them), so that
+/// a pass taking n samples of the sequence loops over exactly its kept ones, in the same order.
+struct SamplesInsideSphere {
+  std::vector<glm::vec4> inside;
+  std::vector<std::uint32_t> insideAmongFirst;
+};
+SamplesInsideSphere samplesInsideUnitSphere(const std::vector<glm::vec4>& cube);
 
 /// Multi-pass screen-space ambient occlusion with Halton samples, turned into the shadow zeta, and the
 /// irradiance from the environment by cosine-weighted sample directions or an irradiance map (foam
@@ -40,7 +53,8 @@ class FoamOcclusionPass {
   ProgramObject occludersProgram_;
   VertexArrayObject emptyVertexArray_;
   FramebufferObject framebuffer_;
-  BufferObject haltonSamples_;
+  BufferObject haltonSamples_;       // the samples inside the unit sphere, in the sequence's order
+  BufferObject haltonInsideCounts_;  // [n]: how many of the sequence's first n samples are inside
   BufferObject counters_;
   Texture2D irradianceMap_;
   Texture2D occluders_;  // what the samples read, one texel per pixel (foam_occluders.frag)
