@@ -33,12 +33,9 @@ const float kMinimumRayPlaneCosine = 1e-2;
 // two sides of a thin sheet): there is no plane to fit.
 const float kMinimumNormalAgreement = 1e-4;
 
-// A pixel's original normal (xyz) and current depth (w); outside the image, no surface.
-vec4 surfaceAt(ivec2 pixel) {
-  if (any(lessThan(pixel, ivec2(0))) || any(greaterThanEqual(pixel, ivec2(frame.viewportSize.xy))))
-    return vec4(0.0, 0.0, 0.0, kNoSurfaceDepth);
-  return texelFetch(currentSurface, pixel, 0);
-}
+// A pixel's original normal (xyz) and current depth (w); outside the image, no surface: the packed textures'
+// border (PlaneFitPass), which took the test of every tap's position out of the window's 81 taps.
+vec4 surfaceAt(ivec2 pixel) { return texelAt(currentSurface, pixel); }
 
 // The centre pixel's depth after this iteration (its own where no plane can be fitted).
 float smoothedDepth(ivec2 pixel, float centreDepth) {

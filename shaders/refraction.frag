@@ -71,11 +71,11 @@ vec2 bodyDepths(int body, vec4 packedDepths) {
   return depths;
 }
 // A body's front and back depth at a pixel.
-vec2 texelDepths(int body, ivec2 pixel) { return bodyDepths(body, texelFetch(layerDepths, pixel, 0)); }
+vec2 texelDepths(int body, ivec2 pixel) { return bodyDepths(body, texelAt(layerDepths, pixel)); }
 float frontDepth(int body, ivec2 pixel) { return texelDepths(body, pixel).x; }
 float backDepth(int body, ivec2 pixel) { return texelDepths(body, pixel).y; }
 vec4 normalTexel(int body, bool back, ivec2 pixel) {
-  return texelFetch(layerNormals, ivec3(pixel, body * 2 + (back ? 1 : 0)), 0);
+  return texelAt(layerNormals, ivec3(pixel, body * 2 + (back ? 1 : 0)));
 }
 
 // Bilinear weights of the four texels around a window position, and the first of them.
@@ -135,7 +135,7 @@ float insideDistanceBetween(vec2 depths, float solidDepth, float z, out bool bac
 float insideDistance(int body, vec2 fragCoord, float z, bool interpolated, out bool back) {
   ivec2 pixel = ivec2(fragCoord);
   vec2 depths = interpolated ? interpolatedDepths(body, fragCoord) : texelDepths(body, pixel);
-  return insideDistanceBetween(depths, texelFetch(backgroundEyeDepth, pixel, 0).r, z, back);
+  return insideDistanceBetween(depths, texelAt(backgroundEyeDepth, pixel).r, z, back);
 }
 
 struct Crossing {
@@ -174,7 +174,7 @@ float crossingFunction(int kind, int body, vec3 origin, vec3 direction, float t,
   vec3 position = origin + t * direction;
   vec2 fragCoord = clamp(fragCoordFromCamera(position), vec2(0.0), frame.viewportSize.xy - 1.0);
   float z = -position.z;
-  float solidDepth = texelFetch(backgroundEyeDepth, ivec2(fragCoord), 0).r;
+  float solidDepth = texelAt(backgroundEyeDepth, ivec2(fragCoord)).r;
   if (kind == kBehindSolid) return z - solidDepth;
   vec2 depths = interpolated ? interpolatedDepths(body, fragCoord) : texelDepths(body, ivec2(fragCoord));
   return kind == kBehindFront ? behindFront(depths.x, z) : insideBody(depths, solidDepth, z);
@@ -212,7 +212,7 @@ Crossing crossingAt(int body, vec3 origin, vec3 direction, float t) {
   crossing.t = t;
   crossing.fragCoord = clamp(fragCoordFromCamera(origin + t * direction), vec2(0.0), frame.viewportSize.xy - 1.0);
   vec2 depths = interpolatedDepths(body, crossing.fragCoord);
-  float solidDepth = texelFetch(backgroundEyeDepth, ivec2(crossing.fragCoord), 0).r;
+  float solidDepth = texelAt(backgroundEyeDepth, ivec2(crossing.fragCoord)).r;
   insideDistanceBetween(depths, solidDepth, rayEyeDepth(origin, direction, t), crossing.back);
   // A solid that the body's drawn back lies on (within solidContactDistance, the bottom's undulation), or
   // that lies in front of it, ends the path there.
@@ -263,7 +263,7 @@ Crossing findExit(vec3 origin, vec3 direction, int body) {
     vec3 position = origin + t * direction;
     ivec2 texel = texelOf(position);
     vec2 depths = texelDepths(body, texel);
-    float solidDepth = texelFetch(backgroundEyeDepth, texel, 0).r;
+    float solidDepth = texelAt(backgroundEyeDepth, texel).r;
     f = insideBody(depths, solidDepth, -position.z);
     if (f < 0.0 && depths.x >= kNoSurfaceDepth * 0.5 && rayEyeDepth(origin, direction, t) > solidDepth) {
       // Where the ray is, a solid stands in front of it and the body has no layers: the solid hides the
@@ -317,8 +317,8 @@ Crossing findEntry(vec3 origin, vec3 direction, out SolidHit solid) {
       vec3 position = origin + t * direction;
       ivec2 texel = texelOf(position);
       float z = -position.z;
-      float behindSolid = z - texelFetch(backgroundEyeDepth, texel, 0).r;
-      vec4 packedDepths = texelFetch(layerDepths, texel, 0);
+      float behindSolid = z - texelAt(backgroundEyeDepth, texel).r;
+      vec4 packedDepths = texelAt(layerDepths, texel);
       if (behindSolid >= 0.0 && !solid.found) solid = SolidHit(true, solidPreviousT, solidPreviousF, t, behindSolid);
       solidPreviousT = t;
       solidPreviousF = behindSolid;
@@ -362,13 +362,13 @@ vec3 colourBehind(vec3 origin, vec3 direction, SolidHit solid, out vec2 backgrou
     travelled = tHit;
     vec2 hit = clamp(fragCoordFromCamera(origin + tHit * direction), vec2(0.0), frame.viewportSize.xy - 1.0);
     backgroundTexel = vec2(ivec2(hit)) + 0.5;
-    return texelFetch(backgroundColor, ivec2(hit), 0).rgb;
+    return texelAt(backgroundColor, ivec2(hit)).rgb;
   }
   if (direction.z < 0.0) {
     vec2 vanishing = fragCoordFromCamera(direction * getFarClip());
-    if (onScreen(vanishing) && texelFetch(backgroundEyeDepth, ivec2(vanishing), 0).r >= kNoSurfaceDepth * 0.5) {
+    if (onScreen(vanishing) && texelAt(backgroundEyeDepth, ivec2(vanishing)).r >= kNoSurfaceDepth * 0.5) {
       backgroundTexel = vec2(ivec2(vanishing)) + 0.5;
-      return texelFetch(backgroundColor, ivec2(vanishing), 0).rgb;
+      return texelAt(backgroundColor, ivec2(vanishing)).rgb;
     }
   }
   vec3 worldDirection = mat3(frame.worldFromCamera) * direction;
@@ -408,7 +408,7 @@ vec3 colourAlong(vec3 origin, vec3 direction, float pixelsPerStep, out vec2 back
 void main() {
   ivec2 pixel = ivec2(gl_FragCoord.xy);
   vec3 viewDirection = normalize(cameraRayFromFragCoord(gl_FragCoord.xy));
-  vec4 drawnDepths = texelFetch(layerDepths, pixel, 0);
+  vec4 drawnDepths = texelAt(layerDepths, pixel);
   float splashDepth = hasSplash ? drawnDepths.x : kNoSurfaceDepth;
   float aggregateDepth = hasAggregate ? drawnDepths.z : kNoSurfaceDepth;
   float firstDepth = min(splashDepth, aggregateDepth);
@@ -450,7 +450,7 @@ void main() {
     // layer, the surface seen from below, unless a solid comes first: then the pixel is that solid, absorbed.
     body = firstBody = kAggregate;
     float surfaceDepth = backDepth(kAggregate, pixel);
-    float solidDepth = texelFetch(backgroundEyeDepth, pixel, 0).r;
+    float solidDepth = texelAt(backgroundEyeDepth, pixel).r;
     float endDepth = min(min(surfaceDepth, solidDepth), getFarClip());
     pathInLiquid = endDepth / -viewDirection.z;
     throughput = exp(-absorptionPerUnitLength * pathInLiquid);
@@ -458,7 +458,7 @@ void main() {
     outThickness = pathInLiquid;
     if (!(surfaceDepth < solidDepth && surfaceDepth < getFarClip())) {
       bool seesSolid = solidDepth < getFarClip();
-      vec3 seen = seesSolid ? texelFetch(backgroundColor, pixel, 0).rgb : vec3(0.0);
+      vec3 seen = seesSolid ? texelAt(backgroundColor, pixel).rgb : vec3(0.0);
       vec4 ownUv = vec4(gl_FragCoord.xy * frame.viewportSize.zw, 1.0, 0.0);
       imageStore(refractionUvImage, pixel, seesSolid ? ownUv : vec4(0.0));
       imageStore(transmittanceImage, pixel, vec4(seesSolid ? throughput : vec3(0.0), 0.0));
@@ -578,7 +578,7 @@ void main() {
   vec2 finalTexel = hiddenEndTexel;
   vec3 finalColour = vec3(0.0);
   if (hiddenEndTexel.x >= 0.0)
-    finalColour = texelFetch(backgroundColor, ivec2(hiddenEndTexel), 0).rgb;
+    finalColour = texelAt(backgroundColor, ivec2(hiddenEndTexel)).rgb;
   else if (dot(throughput, throughput) > 0.0) {
     // A path whose search for a second body found none has marched this very ray already. One colourBehind
     // for both: llvmpipe would run a ternary's two calls, and so two secant refinements, for every pixel.

@@ -14,6 +14,18 @@ layout(std140, binding = 0) uniform FrameBlock {
 // What depth and normal outputs hold where there is no surface: Blender's "nothing here" depth.
 const float kNoSurfaceDepth = 1e10;
 
+// A texel by its integer position, through the sampler: on llvmpipe (Mesa 22.3) textureLod with nearest
+// filtering costs less than texelFetch (the plane fit 29-30 -> 21 ms, the refraction 34 -> 31 ms on the dam
+// break; docs/frame-cost.md, session 49). Every texture the passes make filters NEAREST (gl/GlObjects.cpp), so
+// a position inside it gives exactly its texel, as texelFetch does. Outside it the texture's wrap mode
+// answers (clamp to edge, or the border where a pass sets one) where texelFetch's result is undefined.
+vec4 texelAt(sampler2D image, ivec2 texel) {
+  return textureLod(image, (vec2(texel) + 0.5) / vec2(textureSize(image, 0)), 0.0);
+}
+vec4 texelAt(sampler2DArray images, ivec3 texel) {
+  return textureLod(images, vec3((vec2(texel.xy) + 0.5) / vec2(textureSize(images, 0).xy), float(texel.z)), 0.0);
+}
+
 float getNearClip() { return frame.clipPlanes.x; }
 float getFarClip() { return frame.clipPlanes.y; }
 vec3 getCameraWorldPosition() { return frame.worldFromCamera[3].xyz; }

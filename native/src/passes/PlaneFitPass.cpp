@@ -50,10 +50,15 @@ SmoothedDepth PlaneFitPass::run(const Texture2D& eyeDepth, const Texture2D& orig
     glUniform1f(uniformLocation(id, "sigma"), parameters.plane_fit_sigma * particleRadius);
   };
   if (iterations <= 0) return {eyeDepth};
-  for (Texture2D& texture : packed_)
-    ensureTexture(texture, GL_RGBA32F, eyeDepth.width, eyeDepth.height);
-  // Drawn over tiles, a round leaves the pixels outside them as they are: they must read as no surface.
+  // The taps beyond the image read the border, no surface, as a test of each tap's position did.
   const float noSurface[4] = {0.0f, 0.0f, 0.0f, 1e10f};  // kNoSurfaceDepth in w
+  for (Texture2D& texture : packed_) {
+    ensureTexture(texture, GL_RGBA32F, eyeDepth.width, eyeDepth.height);
+    glTextureParameteri(texture.id(), GL_TEXTURE_WRAP_S, GL_CLAMP_TO_BORDER);
+    glTextureParameteri(texture.id(), GL_TEXTURE_WRAP_T, GL_CLAMP_TO_BORDER);
+    glTextureParameterfv(texture.id(), GL_TEXTURE_BORDER_COLOR, noSurface);
+  }
+  // Drawn over tiles, a round leaves the pixels outside them as they are: they must read as no surface.
   if (targets.tiles())
     for (const Texture2D& texture : packed_)
       clearColorTargets(clearFramebuffer_.id(), {&texture}, noSurface);
