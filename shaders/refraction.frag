@@ -441,7 +441,6 @@ void main() {
   // Where the last search for a second body passed behind the solids, when it found no body.
   SolidHit solidBehind;
   solidBehind.found = false;
-  solidBehind.found = false;
   bool searchedBehind = false;
   int body, firstBody;
   vec3 position, normal;

@@ -15,8 +15,8 @@ layout(std140, binding = 0) uniform FrameBlock {
 const float kNoSurfaceDepth = 1e10;
 
 // A texel by its integer position, through the sampler: on llvmpipe (Mesa 22.3) textureLod with nearest
-// filtering costs less than texelFetch (the plane fit 29-30 -> 21 ms, the refraction 34 -> 31 ms on the dam
-// break; docs/frame-cost.md, session 49). Every texture the passes make filters NEAREST (gl/GlObjects.cpp), so
+// filtering costs less than texelFetch (the plane fit 29-31 -> 24-25 ms, the refraction 37-38 -> 32-34 ms on
+// the dam break; docs/frame-cost.md, session 49). Every texture the passes make filters NEAREST (gl/GlObjects.cpp), so
 // a position inside it gives exactly its texel, as texelFetch does. Outside it the texture's wrap mode
 // answers (clamp to edge, or the border where a pass sets one) where texelFetch's result is undefined.
 vec4 texelAt(sampler2D image, ivec2 texel) {
