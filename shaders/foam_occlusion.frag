@@ -1,10 +1,12 @@
 #version 450 core
 // Foam pass 6 (paper 2.4): the shadow zeta from multi-pass screen-space ambient occlusion with Halton samples,
-// and the irradiance I from the environment, per foam pixel, or per block of foam.occlusion_block pixels a
-// side, estimated at one of its foam pixels (foam_occlusion_upsample.frag spreads it to the rest).
+// and the irradiance I from the environment and the scene's lights, per foam pixel, or per block of
+// foam.occlusion_block pixels a side, estimated at one of its foam pixels (foam_occlusion_upsample.frag
+// spreads it to the rest).
 #include "lib/frame.glsl"
 #include "lib/environment.glsl"
 #include "lib/foam_environment.glsl"
+#include "lib/foam_lamps.glsl"
 
 layout(binding = 0) uniform sampler2D foamDepth;  // eye depth, h
 layout(binding = 1) uniform sampler2D foamNormal;
@@ -167,5 +169,6 @@ void main() {
     irradiance = texture(irradianceMap, equirectangularUvFromDirection(worldNormal)).rgb;
   else
     irradiance = irradianceSamples > 0 ? irradiance / float(irradianceSamples) : vec3(0.0);
+  irradiance += foamLampIrradiance((frame.worldFromCamera * vec4(position, 1.0)).xyz, worldNormal);
   outIrradiance = vec4(irradiance, 1.0);
 }

@@ -96,6 +96,7 @@ nlohmann::json FrameStats::toJson() const {
         {"foam_pixels", foam.foamPixels},
         {"occlusion_estimates", foam.occlusionEstimates},
         {"ao_samples_per_pixel", foam.aoSamplesPerPixel},
+        {"lights", foam.lights},
         {"tiles_shaded", foam.tilesShaded},
         {"tiles", foam.tiles}}},
       {"light",

@@ -494,8 +494,8 @@ RenderResult Renderer::renderPrepared(const Scene& scene, const Particles& parti
         }));
       const PixelTiles* withFoam = foamTiles ? &*foamTiles : nullptr;
       const FoamOcclusionData foamOcclusion = timed(Pass::FoamOcclusion, [&] {
-        return pipeline.foamOcclusion.run(foamSurface, foamIntensity, sceneDepth, background, foamParameters,
-                                          withFoam, width, height);
+        return pipeline.foamOcclusion.run(foamSurface, foamIntensity, sceneDepth, background, scene.lights,
+                                          foamParameters, withFoam, width, height);
       });
       foamLayer.emplace(timed(Pass::FoamBlur, [&] {
         return pipeline.foamBlur.run(foamSurface, foamThickness, foamIntensity, foamOcclusion, foamParameters,
@@ -516,7 +516,10 @@ RenderResult Renderer::renderPrepared(const Scene& scene, const Particles& parti
       stats.liquid.tilesShaded = pipeline.liquidTiles.markedTiles();
       stats.liquid.tiles = std::size_t(pixelTilesAcross(width)) * std::size_t(pixelTilesDown(height));
     }
-    if (foamLayer) recordFoamOcclusion(pipeline.foamOcclusion.statistics(), stats.foam);
+    if (foamLayer) {
+      recordFoamOcclusion(pipeline.foamOcclusion.statistics(), stats.foam);
+      stats.foam.lights = foamParameters.lit_by_lights ? scene.lights.size() : 0;
+    }
     if (plan.runs(Pass::FoamTiles)) {
       stats.foam.tilesShaded = pipeline.foamTiles.markedTiles();
       stats.foam.tiles = std::size_t(pixelTilesAcross(width)) * std::size_t(pixelTilesDown(height));

@@ -406,6 +406,83 @@ TEST(GLFoam, RedEnvironmentTintsFoamFacingIt) {
   }
 }
 
+// foam.lit_by_lights: each light adds E cos(theta) / (2 pi) to the irradiance I, E its irradiance facing it
+// (a sun's strength, a point's or spot's power over 4 pi d^2), theta the angle between the foam's normal and
+// the way to the light, so that I_final = C_IrrScale I (C_IrrScale 2) gains a white diffuse surface's
+// radiance E cos(theta) / pi. One sphere of foam under the camera's axis: the centre pixel's fragment lies at
+// (0, 0, 1) with normal +Z, estimated alone (occlusion_block 1) and left unblurred (blur_radius_factor 0), so
+// the gain there is exact up to the irradiance's half floats.
+TEST(GLFoam, LightsAddTheirDirectIrradianceToTheFoams) {
+  const auto render = [](const std::vector<Light>& lights, bool litByLights = true) {
+    Scene scene = sceneLookingDown(65);
+    scene.background.color = glm::vec3(0.2f, 0.25f, 0.3f);
+    scene.parameters.foam.occlusion_block = 1;
+    scene.parameters.foam.blur_radius_factor = 0.0f;
+    scene.parameters.foam.lit_by_lights = litByLights;
+    scene.lights = lights;
+    Particles particles;
+    appendFoam(particles, {glm::vec3(0.0f)}, 1.0f, ParticleKind::Foam);
+    const RenderResult result = renderer().renderParticles(scene, particles, 1);
+    expectFiniteFoam(result);
+    return result;
+  };
+  const auto sun = [](const glm::vec3& travel, float strength, const glm::vec3& color = glm::vec3(1.0f)) {
+    Light light;
+    light.direction = glm::normalize(travel);
+    light.strength = strength;
+    light.color = color;
+    return light;
+  };
+  const RenderResult unlit = render({});
+  EXPECT_EQ(unlit.stats.foam.lights, 0u);
+  const auto gain = [&](const RenderResult& lit, int channel) {
+    return centre(lit, "foam_irradiance", channel) - centre(unlit, "foam_irradiance", channel);
+  };
+  constexpr double kPi = 3.14159265358979;
+  constexpr double kTolerance = 2e-3;  // RGBA16F
+  struct Case {
+    const char* name;
+    std::vector<Light> lights;
+    glm::dvec3 expected;  // E cos(theta) / pi per channel
+  };
+  Light point;
+  point.type = Light::Type::Point;
+  point.position = {0.0f, 0.0f, 3.0f};  // 2 above the fragment
+  point.strength = 40.0f;
+  Light spotAtIt = point, spotAway = point;
+  spotAtIt.type = spotAway.type = Light::Type::Spot;
+  spotAtIt.direction = {0.0f, 0.0f, -1.0f};
+  spotAway.direction = {1.0f, 0.0f, 0.0f};
+  const double pointGain = 40.0 / (4.0 * kPi * 4.0) / kPi;
+  const double theta = glm::radians(60.0);
+  std::vector<Case> cases = {
+      {"sun straight down", {sun({0, 0, -1}, 1.5f)}, glm::dvec3(1.5 / kPi)},
+      {"sun 60 degrees off the normal",
+       {sun({float(std::sin(theta)), 0.0f, -float(std::cos(theta))}, 1.5f)},
+       glm::dvec3(1.5 * 0.5 / kPi)},
+      {"red sun", {sun({0, 0, -1}, 1.5f, {1.0f, 0.0f, 0.0f})}, {1.5 / kPi, 0.0, 0.0}},
+      {"sun from below the foam", {sun({0, 0, 1}, 1.5f)}, glm::dvec3(0.0)},
+      {"sun of no strength", {sun({0, 0, -1}, 0.0f)}, glm::dvec3(0.0)},
+      {"point light 2 above", {point}, glm::dvec3(pointGain)},
+      {"spot pointing at the foam", {spotAtIt}, glm::dvec3(pointGain)},
+      {"spot pointing away", {spotAway}, glm::dvec3(0.0)},
+      {"two suns add", {sun({0, 0, -1}, 0.5f), sun({0, 0, -1}, 1.0f)}, glm::dvec3(1.5 / kPi)},
+  };
+  for (const Case& c : cases) {
+    const RenderResult lit = render(c.lights);
+    EXPECT_EQ(lit.stats.foam.lights, c.lights.size()) << c.name;
+    for (int channel = 0; channel < 3; ++channel)
+      EXPECT_NEAR(gain(lit, channel), c.expected[channel], kTolerance) << c.name << ", channel " << channel;
+    std::printf("[ measured ] %s: irradiance gain (%.4f, %.4f, %.4f), expected (%.4f, %.4f, %.4f)\n", c.name,
+                gain(lit, 0), gain(lit, 1), gain(lit, 2), c.expected.x, c.expected.y, c.expected.z);
+  }
+  // A light that adds nothing changes no foam layer; foam.lit_by_lights false ignores the lights.
+  expectFoamLayersIdentical(render({sun({0, 0, 1}, 1.5f)}), unlit);
+  const RenderResult ignored = render({sun({0, 0, -1}, 1.5f)}, false);
+  EXPECT_EQ(ignored.stats.foam.lights, 0u);
+  expectFoamLayersIdentical(ignored, unlit);
+}
+
 TEST(GLFoam, NoFoamInViewSkipsFoamPasses) {
   Scene scene = sceneLookingDown(33);
   Particles particles;

@@ -1,6 +1,9 @@
 #include "passes/FoamOcclusionPass.h"
 
 #include <algorithm>
+#include <cmath>
+
+#include <glm/trigonometric.hpp>
 
 #include "passes/FrameUniforms.h"
 
@@ -60,6 +63,27 @@ FoamOcclusionPass::FoamOcclusionPass(const ShaderLibrary& shaders)
   checkGlError("making the foam's SSAO samples");
 }
 
+void FoamOcclusionPass::bindLamps(GLuint program, const std::vector<Light>& lights) {
+  // Laid out as FoamLamp (std430: three vec4s).
+  std::vector<glm::vec4> lamps;
+  for (const Light& light : lights) {
+    lamps.emplace_back(light.direction, float(int(light.type)));  // The order of the shader's types.
+    lamps.emplace_back(light.position, light.strength);
+    lamps.emplace_back(light.color, std::cos(glm::radians(0.5f * light.spotAngleDegrees)));
+  }
+  const std::size_t count = lamps.size() / 3;
+  lamps.resize(std::max<std::size_t>(count, 1) * 3);  // a buffer may not be empty
+  if (lamps.size() > lampCapacity_) {
+    lamps_ = createBuffer();
+    glNamedBufferStorage(lamps_.id(), GLsizeiptr(lamps.size() * sizeof(glm::vec4)), nullptr,
+                         GL_DYNAMIC_STORAGE_BIT);
+    lampCapacity_ = lamps.size();
+  }
+  glNamedBufferSubData(lamps_.id(), 0, GLsizeiptr(lamps.size() * sizeof(glm::vec4)), lamps.data());
+  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 3, lamps_.id());
+  glUniform1i(uniformLocation(program, "foamLampCount"), GLint(count));
+}
+
 void FoamOcclusionPass::bindEnvironment(GLuint program, const BackgroundData& background) const {
   glBindTextureUnit(5, background.environment ? background.environment->id() : 0);
   glUniform1i(uniformLocation(program, "hasEnvironment"), background.environment ? 1 : 0);
@@ -68,8 +92,8 @@ void FoamOcclusionPass::bindEnvironment(GLuint program, const BackgroundData& ba
 
 FoamOcclusionData FoamOcclusionPass::run(const FoamSurfaceData& surface, const FoamIntensityData& intensity,
                                          const FoamSceneDepth& scene, const BackgroundData& background,
-                                         const FoamParameters& parameters, const PixelTiles* tiles, int width,
-                                         int height) {
+                                         const std::vector<Light>& lights, const FoamParameters& parameters,
+                                         const PixelTiles* tiles, int width, int height) {
   const bool useIrradianceMap = parameters.irradiance == "irradiance_map";
   if (useIrradianceMap) {
     ensureTexture(irradianceMap_, GL_RGBA16F, kIrradianceMapWidth, kIrradianceMapHeight);
@@ -132,6 +156,7 @@ FoamOcclusionData FoamOcclusionPass::run(const FoamSurfaceData& surface, const F
   glUniform1i(uniformLocation(program, "useIrradianceMap"), useIrradianceMap ? 1 : 0);
   glUniform1i(uniformLocation(program, "blockSize"), block);
   bindEnvironment(program, background);
+  bindLamps(program, parameters.lit_by_lights ? lights : std::vector<Light>{});
   glBindTextureUnit(0, surface.depthAndSearchRadius.id());
   glBindTextureUnit(1, surface.normal.id());
   glBindTextureUnit(2, intensity.intensity.id());

@@ -14,6 +14,7 @@
 #include "gl/GlObjects.h"
 #include "gl/ShaderLibrary.h"
 #include "spindrift/Parameters.h"
+#include "spindrift/Scene.h"
 
 namespace spindrift {
 
@@ -37,15 +38,18 @@ class FoamOcclusionPass {
 
   explicit FoamOcclusionPass(const ShaderLibrary& shaders);
   /// With `tiles` (marking every tile with a foam pixel) the full-resolution shadow and irradiance are
-  /// shaded in those tiles only, the rest cleared to their no-foam values.
+  /// shaded in those tiles only, the rest cleared to their no-foam values. `lights` add their direct
+  /// irradiance to the environment's where foam.lit_by_lights is on.
   FoamOcclusionData run(const FoamSurfaceData& surface, const FoamIntensityData& intensity,
                         const FoamSceneDepth& scene, const BackgroundData& background,
-                        const FoamParameters& parameters, const PixelTiles* tiles, int width, int height);
+                        const std::vector<Light>& lights, const FoamParameters& parameters,
+                        const PixelTiles* tiles, int width, int height);
   /// The counters of the last run (waits for the GPU).
   FoamOcclusionStatistics statistics() const;
 
  private:
   void bindEnvironment(GLuint program, const BackgroundData& background) const;
+  void bindLamps(GLuint program, const std::vector<Light>& lights);
 
   ProgramObject program_;
   ProgramObject irradianceMapProgram_;
@@ -56,6 +60,8 @@ class FoamOcclusionPass {
   BufferObject haltonSamples_;       // the samples inside the unit sphere, in the sequence's order
   BufferObject haltonInsideCounts_;  // [n]: how many of the sequence's first n samples are inside
   BufferObject counters_;
+  BufferObject lamps_;  // the lights that light the foam (shaders/lib/foam_lamps.glsl's FoamLamp each)
+  std::size_t lampCapacity_ = 0;
   Texture2D irradianceMap_;
   Texture2D occluders_;  // what the samples read, one texel per pixel (foam_occluders.frag)
   Texture2D blockShadow_;
