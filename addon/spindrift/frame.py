@@ -79,9 +79,10 @@ def collect(scene, depsgraph, frame, camera, *, mode="OVER", occluders=True, qua
             particle_sets.extend(sets)
 
     values = parameter_values(export.primary_object(scene), quality)
-    # Lamps light the background under the liquid (liquid_shadow, caustics); with the liquid in the render
-    # (FOAM_ONLY) Cycles has lit it already.
-    lights = export.scene_lights(depsgraph, for_render=for_render) if mode == "OVER" else []
+    # Lamps light the foam (foam.lit_by_lights) and, under OVER, the background under the liquid
+    # (liquid_shadow, caustics); with the liquid in the render (FOAM_ONLY) Cycles has lit that already, and
+    # no liquid particle is handed, so the light passes are skipped (no light sees the liquid).
+    lights = export.scene_lights(depsgraph, for_render=for_render)
     document = scene_json.scene_document(camera, frame, sources, {"color": export.world_color(scene)},
                                          values["liquid"], values["foam"], lights)
     kwargs = {}

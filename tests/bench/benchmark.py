@@ -132,8 +132,31 @@ def prepare_example(arguments, example, plan, absorption_rgb):
             # Cycles' sweep is timed again in every run, so its times and Spindrift's share the host's state.
             "--retime-sweep",
             *(["--full-references"] if plan.get("users_render") else []))
+    if plan.get("users_render"):
+        render_whitewater_references(arguments, example, plan, absorption_rgb, references)
     log(f"{example}: references ready ({time.perf_counter() - started:.0f} s)")
     return references
+
+
+def render_whitewater_references(arguments, example, plan, absorption_rgb, references):
+    """The user's render with the example's whitewater as white spheres (references.py --whitewater), where
+    missing: read with Spindrift's loader from the scene file the first references.py run wrote."""
+    if all(os.path.isfile(os.path.join(references, camera, users_render.WHITEWATER_REFERENCE))
+           for camera in plan["cameras"]):
+        return
+    scene = os.path.join(references, plan["cameras"][0], "scene.json")
+    frame = json.load(open(scene))["frame"]
+    ply = os.path.join(references, f"whitewater_{frame:04d}.ply")
+    exported = subprocess.run([runs.EXPORT_PARTICLES, scene, str(frame), ply, "whitewater"], check=True,
+                              capture_output=True, text=True)
+    if exported.stdout.startswith("0 "):
+        log(f"{example}: no whitewater, no reference with it")
+        return
+    blender(arguments, os.path.join(runs.REPOSITORY, "tests", "bench", "references.py"),
+            "--example", os.path.join(runs.REPOSITORY, "examples", example), "--output", references,
+            "--cameras", ",".join(plan["cameras"]), "--width", str(plan["width"]), "--height", str(plan["height"]),
+            "--background-spp", str(plan["background_spp"]), "--reference-spp", str(plan["reference_spp"]),
+            "--absorption-rgb", ",".join(map(str, absorption_rgb)), "--full-references", "--whitewater", ply)
 
 
 def machine_description():

@@ -31,6 +31,13 @@ screen-space surface. With --full-references, what a user's render shows besides
 - scene_sun.json: scene.json with the scene's sun (as the Blender add-on exports it) over that background;
 - for --sweep-camera, cycles_full_spp_NNNN.exr and cycles_full_timings.json, the sweep with the shadow.
 
+With --whitewater PLY (the frame's spray, foam and bubbles, `spindrift_export_particles ... whitewater`), what
+the user's render shows when it renders Mantaflow's whitewater as well (tests/bench/foam_light.py):
+
+- reference_full_whitewater.exr: reference_full.exr with every whitewater particle a white diffuse sphere
+  (albedo WHITEWATER_ALBEDO) of the particle's radius, as Blender renders a point cloud; the spheres cast
+  shadows and the ones under the water are seen through it.
+
 With --sun-factor, the sun's light on the floor under the water as Cycles finds it (tests/bench/sun_report.py
 compares it with Spindrift's and with an exact trace), both with the world's light off:
 
@@ -81,6 +88,9 @@ def parse_arguments():
                         help="render the sweep again even where it exists, for this run's times")
     parser.add_argument("--full-references", action="store_true",
                         help="also the references with the water's shadow and what Spindrift needs for them")
+    parser.add_argument("--whitewater", default="",
+                        help="with --full-references, also reference_full_whitewater.exr with this PLY's "
+                             "whitewater (spindrift_export_particles ... whitewater) as white spheres")
     parser.add_argument("--sun-factor", action="store_true",
                         help="also the floor lit by the lamps alone, without and under the water")
     parser.add_argument("--absorption-rgb", default="0.9,0.3,0.15",
@@ -135,6 +145,62 @@ def add_liquid_mesh(example, cache_directory, frame, absorption_rgb):
     liquid.data.materials.append(make_water_material(absorption_rgb))
     log(f"liquid mesh of frame {frame}: {len(world)} vertices, {len(triangles)} triangles")
     return liquid
+
+
+# A white diffuse material, as whitewater is usually rendered (foam scatters most of the light it gets).
+WHITEWATER_ALBEDO = 0.8
+
+
+def read_ply_rows(path):
+    """The float rows of a binary little-endian PLY of float properties (spindrift_export_particles)."""
+    with open(path, "rb") as handle:
+        data = handle.read()
+    header, body = data.split(b"end_header\n", 1)
+    lines = header.decode("ascii").split("\n")
+    count = int(next(line for line in lines if line.startswith("element vertex")).split()[2])
+    columns = sum(line.startswith("property float") for line in lines)
+    values = struct.unpack(f"<{count * columns}f", body[:count * columns * 4])
+    return [values[i * columns:(i + 1) * columns] for i in range(count)]
+
+
+def add_whitewater(path):
+    """The whitewater of `path` (x, y, z, radius, type rows) as spheres of their radius: a mesh of points that
+    geometry nodes turn into a point cloud, which Cycles renders as spheres. Hidden until a render shows it."""
+    rows = read_ply_rows(path)
+    mesh = bpy.data.meshes.new("Whitewater")
+    mesh.vertices.add(len(rows))
+    mesh.vertices.foreach_set("co", [c for row in rows for c in row[:3]])
+    radius = mesh.attributes.new("radius", 'FLOAT', 'POINT')
+    radius.data.foreach_set("value", [row[3] for row in rows])
+    mesh.update()
+    whitewater = bpy.data.objects.new("Whitewater", mesh)
+    bpy.context.scene.collection.objects.link(whitewater)
+    material = bpy.data.materials.new("Whitewater")
+    material.use_nodes = True
+    surface = material.node_tree.nodes["Principled BSDF"]
+    surface.inputs["Base Color"].default_value = (WHITEWATER_ALBEDO, WHITEWATER_ALBEDO, WHITEWATER_ALBEDO, 1)
+    surface.inputs["Roughness"].default_value = 1.0
+    surface.inputs["Specular"].default_value = 0.0
+    group = bpy.data.node_groups.new("WhitewaterPoints", 'GeometryNodeTree')
+    group.inputs.new('NodeSocketGeometry', "Geometry")
+    group.outputs.new('NodeSocketGeometry', "Geometry")
+    nodes, links = group.nodes, group.links
+    to_points = nodes.new('GeometryNodeMeshToPoints')
+    named = nodes.new('GeometryNodeInputNamedAttribute')
+    named.data_type = 'FLOAT'
+    named.inputs["Name"].default_value = "radius"
+    set_material = nodes.new('GeometryNodeSetMaterial')
+    set_material.inputs["Material"].default_value = material
+    links.new(nodes.new('NodeGroupInput').outputs["Geometry"], to_points.inputs["Mesh"])
+    # The node has an output per data type, all named "Attribute"; the float one is enabled.
+    radius_output = next(output for output in named.outputs if output.enabled and output.type == 'VALUE')
+    links.new(radius_output, to_points.inputs["Radius"])
+    links.new(to_points.outputs["Points"], set_material.inputs["Geometry"])
+    links.new(set_material.outputs["Geometry"], nodes.new('NodeGroupOutput').inputs["Geometry"])
+    whitewater.modifiers.new("Points", 'NODES').node_group = group
+    whitewater.hide_render = True
+    log(f"whitewater: {len(rows)} particles")
+    return whitewater
 
 
 def make_water_material(absorption_rgb):
@@ -252,7 +318,7 @@ def set_water_bounces(scene):
     scene.cycles.volume_bounces = 0
 
 
-def render_camera(arguments, example, camera, domain, liquid, definition, example_directory):
+def render_camera(arguments, example, camera, domain, liquid, definition, example_directory, whitewater=None):
     scene = bpy.context.scene
     directory = os.path.join(arguments.output, definition["name"])
     os.makedirs(directory, exist_ok=True)
@@ -309,6 +375,12 @@ def render_camera(arguments, example, camera, domain, liquid, definition, exampl
     if definition["name"] == arguments.sweep_camera and arguments.sweep_spp:
         sweep(directory, definition["name"], arguments.sweep_spp, "cycles_full_spp", "cycles_full_timings.json",
               arguments.retime_sweep)
+    if whitewater and missing("reference_full_whitewater.exr"):
+        set_visible([whitewater], True)
+        seconds = render(os.path.join(directory, "reference_full_whitewater.exr"), arguments.reference_spp)
+        set_visible([whitewater], False)
+        log(f"{definition['name']}: reference with the water's shadow and the whitewater "
+            f"({arguments.reference_spp} spp) in {seconds:.1f} s")
     liquid.visible_shadow = False
 
 
@@ -374,9 +446,10 @@ def main():
         absorption = [float(c) for c in arguments.absorption_rgb.split(",")]
         liquid = add_liquid_mesh(example, os.path.join(example_directory, "cache"), example.LAYOUT.showcase_frame,
                                  absorption)
+        whitewater = add_whitewater(arguments.whitewater) if arguments.whitewater else None
         configure_cycles(example, arguments.output)
         for definition in cameras:
-            render_camera(arguments, example, camera, domain, liquid, definition, example_directory)
+            render_camera(arguments, example, camera, domain, liquid, definition, example_directory, whitewater)
     log("done")
 
 

@@ -157,11 +157,13 @@ def users_render_table(users, cameras):
         at_equal = cycles_time_at_error(cycles, row["mae"]["full"]) if row["label"].startswith("Spindrift") else None
         ratio = f"{at_equal * 1e3 / row['frame_ms']:.3g}×" if at_equal else "–"
         per_camera = ", ".join(number(row["per_camera"][camera]["full"]) for camera in cameras)
+        whitewater = number(row["mae"]["whitewater"]) if "whitewater" in row["mae"] else "–"
         rows.append([row["label"], number(row["frame_ms"], 4), number(row["mae"]["no_shadow"]),
-                     number(row["mae"]["full"]), per_camera, ratio])
+                     number(row["mae"]["full"]), whitewater, per_camera, ratio])
     rows += [[f"Cycles {p['spp']} spp, the water casting its shadow", number(p["time_s"] * 1e3, 4), "",
-              number(p["mae"]), "", ""] for p in cycles]
+              number(p["mae"]), "", "", ""] for p in cycles]
     return table(["renderer", "frame ms", "MAE, no-shadow reference", "MAE, the user's render",
+                  "MAE, the user's render with its whitewater",
                   f"the user's render, per camera ({', '.join(cameras)})",
                   "Cycles' time at equal MAE (the user's render)"], rows)
 
@@ -273,8 +275,11 @@ def write(results, output, quick):
                       "as a user's render of the example does, beside the reference above, where it casts none "
                       "(`tests/bench/users_render.py`). *The sun with light passes*: the example's sun in the "
                       "scene file, as the Blender add-on exports it, over a background render with Cycles' light "
-                      "passes, so that Spindrift's shadow, caustics and sky occlusion apply. Errors are the mean "
-                      "over the cameras; Cycles' sweep and the times are the first camera's.", "",
+                      "passes, so that Spindrift's shadow, caustics and sky occlusion apply. *With its "
+                      "whitewater*: the same render with the example's spray, foam and bubbles as white diffuse "
+                      "spheres of their radius, the only reference with foam (docs/foam.md, \"Lit by the scene's "
+                      "lights\"). Errors are the mean over the cameras; Cycles' sweep and the times are the first "
+                      "camera's.", "",
                       users_render_table(data["users_render"], plan["cameras"])]
         marching = raymarch_table(data)
         if marching:

@@ -9,6 +9,10 @@ For every camera, each renderer is scored against both references (references.py
 - VTK's fluid mapper (the plan's first filter; the renders sweep.vtk_points made), which has no light model;
 - on the first camera, Cycles' sample sweep rendered with the water's shadow, timed as the main sweep is.
 
+A third reference, where the example has whitewater, is the user's render with it: every spray, foam and bubble
+particle a white diffuse sphere of its radius (references.py --whitewater; tests/bench/foam_light.py). The
+others have no foam, so Spindrift's foam counts as error against them.
+
 Times are Spindrift's frame (`total_ms`, median of the plan's repeats on the first camera).
 """
 
@@ -22,7 +26,10 @@ import sweep
 
 COMPOSITE = {"composite": ["composite.R", "composite.G", "composite.B"]}
 CYCLES = {"composite": ["Combined.R", "Combined.G", "Combined.B"]}
-REFERENCES = {"no_shadow": "reference.exr", "full": "reference_full.exr"}
+WHITEWATER_REFERENCE = "reference_full_whitewater.exr"
+# The user's render with the example's whitewater as white diffuse spheres (references.py --whitewater) is
+# scored where the example has it: the only reference in which foam is anything but error.
+REFERENCES = {"no_shadow": "reference.exr", "full": "reference_full.exr", "whitewater": WHITEWATER_REFERENCE}
 SPINDRIFT_VARIANTS = [("Spindrift, no lights", "scene.json"),
                       ("Spindrift, the sun with light passes", "scene_sun.json")]
 
@@ -31,11 +38,12 @@ def scores(camera_directory, test_exr=None, composite=None):
     """Image MAE against each reference."""
     names = COMPOSITE if composite is None else {"composite_array": composite}
     return {key: runs.frame_errors(test_exr, camera_directory, 1.0, names, reference=name)["mae"]
-            for key, name in REFERENCES.items()}
+            for key, name in REFERENCES.items() if os.path.isfile(os.path.join(camera_directory, name))}
 
 
 def mean_scores(per_camera):
-    return {key: float(np.mean([camera[key] for camera in per_camera])) for key in REFERENCES}
+    return {key: float(np.mean([camera[key] for camera in per_camera])) for key in REFERENCES
+            if all(key in camera for camera in per_camera)}
 
 
 def compare(example, references, plan, vtk_rows, work):

@@ -221,6 +221,18 @@ def case_foam_only_workflow(scene):
     expected = foam[..., :3] + (1 - foam[..., 3:4]) * render[..., :3]
     difference = float(np.abs(composite[..., :3] - expected).max())
     check(difference < 2e-3, f"the composite is the foam over the render (max difference {difference:.2e})")
+    # The scene's sun lights the foam (foam.lit_by_lights) and nothing else: no liquid particle sees it.
+    check(record["stats"]["foam"]["lights"] == 1, f"the sun lights the foam ({record['stats']['foam']})")
+    skipped = {entry["name"]: entry["reason"] for entry in record["stats"]["skipped"]}
+    check(skipped.get("lit_background") == "no light sees the liquid", f"the light passes are skipped ({skipped})")
+    sun = bpy.data.objects["Sun"]
+    sun.hide_render = True
+    bpy.ops.render.render()
+    unlit = read_exr_layers(layers_path(scene))["foam"]
+    sun.hide_render = False
+    shown = (foam[..., 3] > 0.05) & (unlit[..., 3] > 0.05)
+    lit_mean, unlit_mean = (float((f[..., :3].mean(axis=2) / f[..., 3])[shown].mean()) for f in (foam, unlit))
+    check(lit_mean > unlit_mean + 0.05, f"the sunlit foam is brighter ({lit_mean:.3f} against {unlit_mean:.3f})")
 
 
 CASES = {name[len("case_"):]: function for name, function in globals().items() if name.startswith("case_")}
