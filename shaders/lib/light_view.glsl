@@ -10,9 +10,7 @@ layout(std140, binding = 2) uniform LightViewBlock {
   vec4 tanHalfFov;
 } lightView;
 
-const int kSun = 0;
-const int kSpot = 1;
-const int kPoint = 2;
+#include "lib/lamp.glsl"
 
 uniform int lightType;
 uniform vec3 lightDirection;  // sun and spot: the way the light travels
@@ -45,16 +43,11 @@ bool insideLightView(vec2 texel) {
 }
 
 // The unit direction the light travels in when it reaches a world point.
-vec3 lightTravelAt(vec3 world) { return lightType == kSun ? lightDirection : normalize(world - lightPosition); }
+vec3 lightTravelAt(vec3 world) { return lampTravelAt(lightType, lightDirection, lightPosition, world); }
 
-// Irradiance the light would give a surface facing it at a world point, without the liquid (W/m^2): a sun's
-// strength, or a spot's or point's power spread over the sphere (Blender's convention), zero outside a cone.
+// Irradiance the light would give a surface facing it at a world point, without the liquid (W/m^2).
 float lightIrradianceAt(vec3 world) {
-  if (lightType == kSun) return lightStrength;
-  vec3 offset = world - lightPosition;
-  float distanceSquared = max(dot(offset, offset), 1e-8);
-  if (lightType == kSpot && dot(offset, lightDirection) < spotCosine * sqrt(distanceSquared)) return 0.0;
-  return lightStrength / (12.566370614 * distanceSquared);  // 4 pi
+  return lampIrradianceAt(lightType, lightDirection, lightPosition, lightStrength, spotCosine, world);
 }
 
 uniform vec3 lightColor;

@@ -121,8 +121,7 @@ struct FoamFrameStats {
   std::size_t foamPixels = 0;  ///< Pixels with foam (intensity > 0).
   std::size_t occlusionEstimates = 0;  ///< SSAO estimates: foam pixels, or foam.occlusion_block blocks.
   double aoSamplesPerPixel = 0.0;      ///< Mean SSAO samples per foam pixel, all passes together.
-  std::size_t lights =
-      0;  ///< The scene's lights that lit the foam (foam.lit_by_lights; 0 when no foam shows).
+  std::size_t lights = 0;              ///< The scene's lights that lit the foam (foam.lit_by_lights).
   /// The 16 × 16 pixel tiles that the shadow, irradiance and blur shaded, of `tiles` in the frame
   /// (foam.skip_empty_tiles; both 0 when it is off).
   std::size_t tilesShaded = 0;
