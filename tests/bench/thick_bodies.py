@@ -5,11 +5,11 @@ Run inside Blender (tests/bench/thick_report.py does this when a render is missi
     blender -b --factory-startup --python-exit-code 1 --python tests/bench/thick_bodies.py -- \
         --output build/bench/thick [--width 480 --height 270 --samples 128]
 
-Four frames of compact water a metre across over the dam-break example's checker floor, lit by a sun and a
-sky: a block resting on the floor, a ball floating just above it, and a pool in a tank seen from above and
-from the side. The water is an exact mesh (a box, a sphere), so the references measure Spindrift's light,
-not a simulation's surface; Spindrift gets a lattice of particles filling the same shapes. For every frame it
-writes into OUTPUT/FRAME/:
+Six frames of compact water a metre across over the dam-break example's checker floor, lit by a sun and a
+sky: a block resting on the floor, a ball floating just above it, a pool in a tank seen from above, from the
+side and from inside (the camera under its surface), and the block seen from five times as far. The water is
+an exact mesh (a box, a sphere), so the references measure Spindrift's light, not a simulation's surface;
+Spindrift gets a lattice of particles filling the same shapes. For every frame it writes into OUTPUT/FRAME/:
 
 - background.exr: everything but the water, with planar depth and Cycles' light passes (DiffDir, DiffInd,
   DiffCol, GlossDir, GlossInd, GlossCol), which Spindrift's lit background uses;
@@ -72,6 +72,13 @@ FRAMES = {
                    "camera": ((1.3, -1.9, 3.2), (0.0, 0.0, 0.2), 30.0)},
     "pool_side": {"shape": ("box", (-0.8, -0.8, -0.02), (0.8, 0.8, 0.45)), "tank": True,
                   "camera": ((2.8, -0.6, 1.0), (0.0, 0.0, 0.3), 35.0)},
+    # The camera in the pool, a quarter metre under its surface, looking across it and a little up: the surface
+    # seen from below (the sky through Snell's window, the pool mirrored beyond it) and the tank's far walls.
+    "underwater": {"shape": ("box", (-0.8, -0.8, -0.02), (0.8, 0.8, 0.45)), "tank": True,
+                   "camera": ((0.55, -0.6, 0.2), (-0.5, 0.55, 0.36), 18.0)},
+    # The block five times as far: about 45 pixels across, its particles under a pixel and a half.
+    "far": {"shape": ("box", (-0.5, -0.5, -0.02), (0.5, 0.5, 0.8)), "tank": False,
+            "camera": ((11.5, -12.5, 8.5), (0.0, 0.0, 0.35), 35.0)},
 }
 TANK_WALL = 0.08
 TANK_HEIGHT = 0.6
