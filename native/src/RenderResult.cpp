@@ -76,6 +76,7 @@ nlohmann::json FrameStats::toJson() const {
         {"exits_off_screen", liquid.exitsOffScreen},
         {"exits_behind_solids", liquid.exitsBehindSolids},
         {"camera_in_liquid", liquid.cameraInLiquid},
+        {"front_layer_skipped", liquid.frontLayerSkipped},
         {"second_body_orders",
          {{"splash_splash", liquid.orders[0]},
           {"splash_aggregate", liquid.orders[1]},

@@ -36,6 +36,7 @@
 #include "prep/FoamPreparation.h"
 #include "prep/FrameLiquidCache.h"
 #include "prep/HiddenInterior.h"
+#include "prep/LayerOrder.h"
 #include "prep/LightViews.h"
 #include "prep/LiquidPreparation.h"
 #include "prep/MantaflowSurface.h"
@@ -334,6 +335,18 @@ RenderResult Renderer::renderPrepared(const Scene& scene, const Particles& parti
   stats.prepareMilliseconds = millisecondsSince(prepareStart);
   recordPreparation(liquid, foam, stats);
   stats.liquid.cameraInLiquid = cameraInLiquid;
+  // The aggregates' front layer feeds the refraction's first surface alone. Under water the body starts at
+  // the near plane and a path that leaves it is followed into splashes only, so no pass reads that layer: it
+  // is neither drawn nor smoothed (docs/liquid.md, "A camera under water"). A ray-marched surface replaces it
+  // after it is drawn.
+  if (raymarch) {
+    stats.liquid.frontLayerSkipped = "not smoothed: the ray-marched surface replaces it";
+  } else if (cameraInLiquid) {
+    keepBackLayerOnly(liquid.aggregates, liquid.aggregateLayers);
+    stats.liquid.frontLayerSkipped =
+        "not drawn: the camera is under water, where the body starts at the near plane";
+  }
+  const bool smoothFront = stats.liquid.frontLayerSkipped.empty();
   const LayerSelection& layers = impl_->layers;
   FrameContents contents{liquid.splashes.size(),     liquid.aggregates.size(),   foam.instances.size(),
                          liquidParameters.smoothing, extras.occluders.size(),    extras.liquidMesh != nullptr,
@@ -408,13 +421,12 @@ RenderResult Renderer::renderPrepared(const Scene& scene, const Particles& parti
     const PixelTiles* withLiquid = liquidTiles ? &*liquidTiles : nullptr;
     if (plan.runs(Pass::Smoothing)) {
       aggregates.emplace(timed(Pass::Smoothing, [&] {
-        return SurfaceLayers{
-            // A ray-marched surface replaces the front layer: only the back layer is smoothed then.
-            raymarch ? aggregates->front
-                     : pipeline.frontSmoothing.run(aggregates->front, radius, false, liquidParameters,
-                                                   withLiquid, width, height),
-            pipeline.backSmoothing.run(aggregates->back, radius, true, liquidParameters, withLiquid, width,
-                                       height)};
+        return SurfaceLayers{smoothFront
+                                 ? pipeline.frontSmoothing.run(aggregates->front, radius, false,
+                                                               liquidParameters, withLiquid, width, height)
+                                 : aggregates->front,
+                             pipeline.backSmoothing.run(aggregates->back, radius, true, liquidParameters,
+                                                        withLiquid, width, height)};
       }));
       intermediate.keep(*aggregates, "aggregate_smoothed");
     }

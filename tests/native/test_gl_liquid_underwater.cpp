@@ -67,6 +67,7 @@ float surfaceHeightFromAbove() {
   const RenderResult result = liquid_test::renderer().renderParticles(scene, pool(), 1);
   liquid_test::expectAllChannelsFinite(result);
   EXPECT_FALSE(result.stats.liquid.cameraInLiquid);
+  EXPECT_EQ(result.stats.liquid.frontLayerSkipped, "");  // drawn and smoothed above water
   const Camera& camera = scene.camera;
   const glm::vec3 eye = camera.position();
   std::vector<float> heights;
@@ -157,6 +158,9 @@ TEST(GLLiquidUnderwater, SurfaceFromBelowStandsWhereItDoesFromAbove) {
   const RenderResult result = liquid_test::renderer().renderParticles(scene, pool(), 1);
   liquid_test::expectAllChannelsFinite(result);
   EXPECT_TRUE(result.stats.liquid.cameraInLiquid);
+  // No pass reads the aggregates' front layer under water; all that follows holds without it.
+  EXPECT_EQ(result.stats.liquid.frontLayerSkipped.rfind("not drawn", 0), 0u)
+      << result.stats.liquid.frontLayerSkipped;
   // Every pixel looks through water.
   const ImageLayer& liquid = *result.layer("liquid");
   int uncovered = 0;

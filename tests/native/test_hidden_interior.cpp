@@ -20,6 +20,7 @@
 #include "LiquidTestScenes.h"
 #include "prep/Anisotropy.h"
 #include "prep/HiddenInterior.h"
+#include "prep/LayerOrder.h"
 #include "prep/LiquidPreparation.h"
 #include "spindrift/FrameInputs.h"
 #include "spindrift/Scene.h"
@@ -440,6 +441,31 @@ TEST(GLHiddenInterior, EveryLayerIsBitIdenticalBehindAWallInTheBackgroundsDepth)
   EXPECT_GE(liquid.hiddenBehindSolids + liquid.hiddenInteriorDropped + liquid.occludedDropped, behind);
   // Most are not even shaped: the solids hide their whole reach (prep/LiquidPreparation.cpp).
   EXPECT_GT(liquid.hiddenBehindSolids, behind / 2);
+}
+
+TEST(LayerOrder, KeepingTheBackLayerOnlyLeavesItsEllipsoidsInTheirOrder) {
+  // Five ellipsoids told apart by their centres' x, [front only | both | back only] as 2, 2, 1.
+  std::vector<EllipsoidInstance> ellipsoids(5);
+  for (std::size_t i = 0; i < ellipsoids.size(); ++i)
+    ellipsoids[i].centreAndBoundingRadius = glm::vec4(float(i), 0.0f, 0.0f, 1.0f);
+  LayerSplit split{2, 1};
+  EXPECT_EQ(keepBackLayerOnly(ellipsoids, split), 2u);
+  ASSERT_EQ(ellipsoids.size(), 3u);
+  for (std::size_t i = 0; i < ellipsoids.size(); ++i)
+    EXPECT_EQ(ellipsoids[i].centreAndBoundingRadius.x, float(i + 2));
+  EXPECT_EQ(split.frontOnly, 0u);
+  EXPECT_EQ(split.backOnly, 3u);  // the front layer draws none of them
+
+  // Degenerate: no ellipsoids; every one in the front layer only.
+  std::vector<EllipsoidInstance> none;
+  LayerSplit empty{0, 0};
+  EXPECT_EQ(keepBackLayerOnly(none, empty), 0u);
+  EXPECT_TRUE(none.empty());
+  EXPECT_EQ(empty.backOnly, 0u);
+  std::vector<EllipsoidInstance> frontOnly(4);
+  LayerSplit allFront{4, 0};
+  EXPECT_EQ(keepBackLayerOnly(frontOnly, allFront), 4u);
+  EXPECT_TRUE(frontOnly.empty());
 }
 
 }  // namespace

@@ -82,6 +82,10 @@ struct LiquidFrameStats {
   std::size_t exitsBehindSolids = 0;
   /// The camera is inside the aggregated body: the frame is seen from under water.
   bool cameraInLiquid = false;
+  /// Empty where the aggregates' front depth layer was drawn and smoothed; else what was left out of it and
+  /// why: not drawn under water (no pass reads it: the body starts at the near plane), not smoothed under a
+  /// ray-marched surface (which replaces it).
+  std::string frontLayerSkipped;
   /// Rays with a second body, by order: splash>splash, splash>aggregate, aggregate>splash,
   /// aggregate>aggregate.
   std::size_t orders[4] = {0, 0, 0, 0};

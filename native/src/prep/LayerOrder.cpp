@@ -1,5 +1,7 @@
 #include "prep/LayerOrder.h"
 
+#include <cstddef>
+
 namespace spindrift {
 
 LayerSplit orderByLayers(std::vector<EllipsoidInstance>& ellipsoids, const std::vector<char>& inFront,
@@ -14,6 +16,13 @@ LayerSplit orderByLayers(std::vector<EllipsoidInstance>& ellipsoids, const std::
   ellipsoids.insert(ellipsoids.end(), both.begin(), both.end());
   ellipsoids.insert(ellipsoids.end(), backOnly.begin(), backOnly.end());
   return split;
+}
+
+std::size_t keepBackLayerOnly(std::vector<EllipsoidInstance>& ellipsoids, LayerSplit& split) {
+  const std::size_t leftOut = split.frontOnly;
+  ellipsoids.erase(ellipsoids.begin(), ellipsoids.begin() + std::ptrdiff_t(leftOut));
+  split = LayerSplit{0, ellipsoids.size()};
+  return leftOut;
 }
 
 }  // namespace spindrift

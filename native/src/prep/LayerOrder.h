@@ -13,4 +13,8 @@ namespace spindrift {
 LayerSplit orderByLayers(std::vector<EllipsoidInstance>& ellipsoids, const std::vector<char>& inFront,
                          const std::vector<char>& inBack);
 
+/// Leaves only the back layer's ellipsoids, in their order, the front layer drawing none: for a view whose
+/// front layer no pass reads (the camera under water). Returns how many were left out (front layer only).
+std::size_t keepBackLayerOnly(std::vector<EllipsoidInstance>& ellipsoids, LayerSplit& split);
+
 }  // namespace spindrift
