@@ -62,12 +62,16 @@ def build(arguments):
     scene.world = world
 
     bpy.ops.mesh.primitive_plane_add(size=200)
+    # Lambert's diffuse (the Diffuse BSDF at roughness 0), not the Principled BSDF: its rough diffuse brightens
+    # light that arrives at grazing angles, which the sky does above the water and not below it.
     floor_material = bpy.data.materials.new("Floor")
     floor_material.use_nodes = True
-    bsdf = floor_material.node_tree.nodes["Principled BSDF"]
-    bsdf.inputs["Base Color"].default_value = (arguments.albedo, arguments.albedo, arguments.albedo, 1.0)
-    bsdf.inputs["Specular"].default_value = 0.0
-    bsdf.inputs["Roughness"].default_value = 1.0
+    nodes = floor_material.node_tree.nodes
+    nodes.remove(nodes["Principled BSDF"])
+    diffuse = nodes.new("ShaderNodeBsdfDiffuse")
+    diffuse.inputs["Color"].default_value = (arguments.albedo, arguments.albedo, arguments.albedo, 1.0)
+    diffuse.inputs["Roughness"].default_value = 0.0
+    floor_material.node_tree.links.new(diffuse.outputs["BSDF"], nodes["Material Output"].inputs["Surface"])
     bpy.context.object.data.materials.append(floor_material)
 
     # The floor lies inside the water (no coplanar faces).

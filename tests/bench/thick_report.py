@@ -358,6 +358,8 @@ def main():
         vtk, _, _, _ = runs.run_vtk(scene_variant(directory, False, True), ply, os.path.join(directory, "vtk.npz"), 1,
                                     "narrow_range", ABSORPTION_RGB)
         results[frame]["VTK fluid mapper"] = score(vtk, directory, water, shadowed)
+        if results[frame]["in_water"]:
+            results[frame]["under_water_ratios"] = under_water_ratios(directory, composites["sun, light passes"])
         results[frame][NOISE_FLOOR] = score(rgb(os.path.join(directory, "reference_full_seed2.exr")), directory,
                                             water, shadowed)
         strip([rgb(os.path.join(directory, "reference_full.exr")), composites["no lights (before)"],
@@ -368,6 +370,29 @@ def main():
         json.dump({"results": results, "timings": timings, "renderer": renderer}, handle, indent=1)
     loads = (load_before, os.getloadavg()[0])
     write_page(results, timings, renderer, arguments.samples, arguments.background_samples, loads)
+
+
+def ratios(values):
+    return " / ".join(f"{value:.2f}" for value in values)
+
+
+def under_water_ratios(directory, test):
+    """Per channel, the mean of `test` over the full reference's, where a camera in a box of water sees the
+    floor and where it sees the walls straight through the water (no surface in between)."""
+    with open(os.path.join(directory, "scene.json")) as handle, \
+            open(os.path.join(directory, "shape.json")) as shape_file:
+        scene, shape = json.load(handle), json.load(shape_file)["shape"]
+    origin, directions = camera_rays(scene)
+    forward = -np.array(scene["camera"]["world_from_camera"]).reshape(4, 4)[:3, 2]
+    depth = metrics.read_channels(os.path.join(directory, "background.exr"), ["Depth.Z"])[..., 0]
+    point = origin + (depth / (directions @ forward))[..., None] * directions
+    low, high = np.array(shape[1]), np.array(shape[2])
+    floor = (np.abs(point[..., 2]) < 0.01) & np.all(np.abs(point[..., :2]) < high[:2] - 0.02, axis=-1)
+    on_side = np.any(np.abs(np.abs(point[..., :2]) - high[:2]) < 0.01, axis=-1)
+    walls = on_side & (point[..., 2] > 0.02) & (point[..., 2] < high[2] - 0.05)
+    full = rgb(os.path.join(directory, "reference_full.exr"))
+    return {name: (test[mask].mean(axis=0) / full[mask].mean(axis=0)).tolist()
+            for name, mask in (("floor", floor), ("walls", walls))}
 
 
 def number(value):
@@ -416,9 +441,13 @@ def write_page(results, timings, renderer, samples, background_samples, loads):
         if results[frame]["in_water"]:
             lines += ["The camera is in the water: every pixel is scored, and there is no floor outside it. Cycles "
                       "renders what lies under water, lit from above it, darker than geometric optics does: a "
-                      "floor under a flat surface, lit by a uniform sky, 0.41–0.54 of the dry floor where optics "
-                      "gives 1.03–1.50 (`tests/bench/cycles_underwater_sky.py`; docs/liquid.md, \"A camera under "
-                      "water\").", ""]
+                      "Lambertian floor under a flat surface, lit by a uniform sky, 0.42–0.54 of the dry floor where "
+                      "optics gives 1.03–1.50 (albedo 0.2 and 0.8; `tests/bench/cycles_underwater_sky.py`): 1/n² "
+                      "(light that enters the water keeps its radiance instead of gaining n²) times about 0.73 "
+                      "(docs/liquid.md, \"A camera under water\"). Spindrift's image (with the sun and light "
+                      "passes) over Cycles' (n² is 1.77), R/G/B, where the camera sees the pool's floor: "
+                      f"{ratios(results[frame]['under_water_ratios']['floor'])}; its walls: "
+                      f"{ratios(results[frame]['under_water_ratios']['walls'])}.", ""]
     lines += ["## Light passes", "", "Spindrift's `liquid_shadow`, `caustics` and `liquid_sky` (red channel, black 0, white 1) "
               "and its composite, with the sun and Cycles' light passes:", ""]
     lines += [f"![{frame}: light passes](images/light_{frame}_passes.png)" for frame in FRAMES]
