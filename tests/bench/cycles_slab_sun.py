@@ -40,16 +40,7 @@ def parse_arguments():
 
 
 def build(arguments):
-    bpy.ops.wm.read_factory_settings(use_empty=True)
-    scene = bpy.context.scene
-    scene.render.engine = 'CYCLES'
-    scene.cycles.device = 'CPU'
-    scene.cycles.samples = arguments.samples
-    scene.cycles.use_denoising = False
-    scene.cycles.use_adaptive_sampling = False
-    references.set_water_bounces(scene)
-    scene.cycles.sample_clamp_indirect = arguments.clamp_indirect
-    scene.render.resolution_x = scene.render.resolution_y = 96
+    scene = references.empty_cycles_scene(arguments.samples, arguments.clamp_indirect, 96)
     world = bpy.data.worlds.new("Black")
     world.use_nodes = True
     world.node_tree.nodes["Background"].inputs["Strength"].default_value = 0.0

@@ -44,17 +44,8 @@ def parse_arguments():
 
 
 def build(arguments):
-    bpy.ops.wm.read_factory_settings(use_empty=True)
-    scene = bpy.context.scene
-    scene.render.engine = 'CYCLES'
-    scene.cycles.device = 'CPU'
-    scene.cycles.samples = arguments.samples
-    scene.cycles.use_denoising = False
-    scene.cycles.use_adaptive_sampling = False
-    references.set_water_bounces(scene)
+    scene = references.empty_cycles_scene(arguments.samples, 0.0, 64)
     scene.cycles.diffuse_bounces = 64  # the light between the floor and the surface's underside, all of it
-    scene.cycles.sample_clamp_indirect = 0.0
-    scene.render.resolution_x = scene.render.resolution_y = 64
     world = bpy.data.worlds.new("White")
     world.use_nodes = True
     world.node_tree.nodes["Background"].inputs["Color"].default_value = (1.0, 1.0, 1.0, 1.0)

@@ -318,6 +318,23 @@ def set_water_bounces(scene):
     scene.cycles.volume_bounces = 0
 
 
+def empty_cycles_scene(samples, clamp_indirect, size):
+    """An empty scene (Blender's factory settings) that Cycles renders on the CPU at `size` x `size` pixels
+    with exactly `samples` samples a pixel, no denoising, the water's bounces and Cycles' indirect clamp at
+    `clamp_indirect` (0: off): the small experiments that measure Cycles against closed-form optics."""
+    bpy.ops.wm.read_factory_settings(use_empty=True)
+    scene = bpy.context.scene
+    scene.render.engine = 'CYCLES'
+    scene.cycles.device = 'CPU'
+    scene.cycles.samples = samples
+    scene.cycles.use_denoising = False
+    scene.cycles.use_adaptive_sampling = False
+    set_water_bounces(scene)
+    scene.cycles.sample_clamp_indirect = clamp_indirect
+    scene.render.resolution_x = scene.render.resolution_y = size
+    return scene
+
+
 def render_camera(arguments, example, camera, domain, liquid, definition, example_directory, whitewater=None):
     scene = bpy.context.scene
     directory = os.path.join(arguments.output, definition["name"])
