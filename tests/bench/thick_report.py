@@ -172,15 +172,19 @@ def rgb(path):
     return metrics.read_channels(path, ["Combined.R", "Combined.G", "Combined.B"])
 
 
+def contains(shape, point):
+    """Whether a point lies inside the water's exact shape (shape.json's: a box or a sphere)."""
+    if shape[0] == "box":
+        return bool(np.all(np.array(shape[1]) < point) and np.all(point < np.array(shape[2])))
+    return bool(np.linalg.norm(point - np.array(shape[1])) < shape[2])
+
+
 def camera_in_water(directory):
     """Whether the frame's camera lies inside the water's exact shape."""
     with open(os.path.join(directory, "scene.json")) as handle, \
             open(os.path.join(directory, "shape.json")) as shape_file:
-        origin, _ = camera_rays(json.load(handle))
-        shape = json.load(shape_file)["shape"]
-    if shape[0] == "box":
-        return bool(np.all(np.array(shape[1]) < origin) and np.all(origin < np.array(shape[2])))
-    return bool(np.linalg.norm(origin - np.array(shape[1])) < shape[2])
+        world_from_camera = np.array(json.load(handle)["camera"]["world_from_camera"]).reshape(4, 4)
+        return contains(json.load(shape_file)["shape"], world_from_camera[:3, 3])
 
 
 def regions(directory):
@@ -266,8 +270,7 @@ def first_path_length(scene, shape, ior=1.33):
     ratio = 1 / ior
     k = 1 - ratio * ratio * (1 - cosine * cosine)
     inside = ratio * directions + (ratio * cosine - np.sqrt(np.maximum(k, 0)))[..., None] * normal
-    if (kind == "box" and np.all(low < origin) and np.all(origin < high)) or \
-            (kind != "box" and np.linalg.norm(origin - centre) < radius):
+    if contains(shape, origin):
         # The camera in the water: every ray starts in it, unbent.
         hit = np.ones(directions.shape[:-1], bool)
         entry, inside = np.broadcast_to(origin, directions.shape), directions
