@@ -1,8 +1,10 @@
-// libFuzzer harness: the background image reader (colour and depth) through OpenImageIO. The first byte
-// chooses the file's extension, the rest is the file. OpenImageIO and its codecs are not instrumented; what
-// is checked is Spindrift's use of them: sizes, data and display windows, channel lookup, alpha, resampling.
+// libFuzzer harness: the background image reader (colour, depth and Cycles' light passes) through OpenEXR and
+// OpenImageIO. The first byte chooses the file's extension, the rest is the file. OpenImageIO and its codecs
+// are not instrumented; what is checked is Spindrift's use of them: sizes, data and display windows, channel
+// lookup, alpha, resampling.
 #include <cmath>
 #include <cstdint>
+#include <optional>
 
 #include "FuzzInput.h"
 #include "io/ImageFiles.h"
@@ -29,20 +31,26 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   const std::string name = std::string("input.") + kExtensions[data[0] % 5];
   const std::filesystem::path path = fuzz::writeInput(data + 1, size - 1, name);
   try {
-    const spindrift::FloatImage color = spindrift::readColorImage(path);
-    checkImage(color, 4);
+    // What the renderer reads from a background: colour, depth and light passes, each image decoded once.
+    const spindrift::BackgroundFile file = spindrift::readBackgroundFile(path, true);
+    checkImage(file.color, 4);
     // The resampling a background goes through when the camera's size differs.
-    const spindrift::FloatImage smaller =
-        spindrift::resizeImage(color, 1 + color.width / 3, 1 + color.height / 3, false);
-    checkImage(smaller, 4);
-  } catch (const spindrift::Error&) {
-  }
-  try {
-    if (const std::optional<spindrift::FloatImage> depth = spindrift::readDepthImage(path)) {
-      checkImage(*depth, 1);
-      checkImage(spindrift::resizeImage(*depth, depth->width * 2, depth->height * 2, true), 1);
+    checkImage(spindrift::resizeImage(file.color, 1 + file.color.width / 3, 1 + file.color.height / 3, false),
+               4);
+    if (file.depth) {
+      checkImage(*file.depth, 1);
+      checkImage(spindrift::resizeImage(*file.depth, file.depth->width * 2, file.depth->height * 2, true), 1);
     }
+    if (file.lightPasses)
+      for (const spindrift::FloatImage& pass : *file.lightPasses)
+        checkImage(pass, 4);
   } catch (const spindrift::Error&) {
+    // A file without colour may still be a depth image of its own (a scene's background.depth).
+    try {
+      if (const std::optional<spindrift::FloatImage> depth = spindrift::readDepthImage(path))
+        checkImage(*depth, 1);
+    } catch (const spindrift::Error&) {
+    }
   }
   return 0;
 }

@@ -5,6 +5,7 @@
 #include <fstream>
 #include <memory>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include <OpenEXR/ImfChannelList.h>
@@ -31,9 +32,22 @@ PixelWindow windowOf(const Imath::Box2i& box) {
   return {box.min.x, box.min.y, (long long)box.max.x - box.min.x + 1, (long long)box.max.y - box.min.y + 1};
 }
 
+// The rows decoded at once: the whole data window while its decoded channels fit `bandBytes`, else bands of a
+// multiple of 256 rows. Every scanline compression's block of rows divides 256 (DWAB's is 256), so no block
+// is decoded twice, and a band is many blocks, which OpenEXR decodes on its threads.
+constexpr long long kBandRowMultiple = 256;
+
+long long rowsDecodedAtOnce(std::uint64_t rowFloats, long long dataRows, std::uint64_t bandBytes) {
+  const std::uint64_t rowBytes = std::max<std::uint64_t>(1, rowFloats * sizeof(float));
+  if (rowBytes * std::uint64_t(dataRows) <= bandBytes) return std::max(1LL, dataRows);
+  const long long multiples = std::max<long long>(1, (long long)(bandBytes / rowBytes) / kBandRowMultiple);
+  return std::min(dataRows, multiples * kBandRowMultiple);
+}
+
 class ExrReader final : public ImageReader {
  public:
-  explicit ExrReader(const std::filesystem::path& path) : path_(path) {
+  ExrReader(const std::filesystem::path& path, std::uint64_t decodeBandBytes)
+      : path_(path), decodeBandBytes_(decodeBandBytes) {
     useEveryCoreForOpenExrUnlessTheHostChose();
     try {
       file_ = std::make_unique<Imf::MultiPartInputFile>(path.c_str());
@@ -55,55 +69,84 @@ class ExrReader final : public ImageReader {
   ColorEncoding colorEncoding(int) const override { return {}; }
 
   FloatImage readChannels(int image, const std::vector<int>& channels, float missingValue) override {
+    return std::move(readChannelSets(image, {ChannelSet{channels, missingValue}}).front());
+  }
+
+  std::vector<FloatImage> readChannelSets(int image, const std::vector<ChannelSet>& sets) override {
     const Imf::Header& header = file_->header(image);
     if (header.hasType() && Imf::isDeepData(header.type())) fail(path_, "deep images are not supported");
     const ImageWindows windows =
         checkedWindows(path_, windowOf(header.dataWindow()), windowOf(header.displayWindow()));
 
-    // Each channel the caller names is read once (grey is asked for as R, G and B) into `block`, over the
-    // data window.
+    // Each channel any set names is decoded once (grey is asked for as R, G and B), a band of rows at a
+    // time into `block`, and placed into every set that names it.
     std::vector<int> distinct;
-    for (int channel : channels)
-      if (channel >= 0 && std::find(distinct.begin(), distinct.end(), channel) == distinct.end())
-        distinct.push_back(channel);
-    const std::uint64_t dataPixels = std::uint64_t(windows.data.width) * std::uint64_t(windows.data.height);
+    std::size_t setChannels = 0;
+    for (const ChannelSet& set : sets) {
+      setChannels += set.channels.size();
+      for (int channel : set.channels)
+        if (channel >= 0 && std::find(distinct.begin(), distinct.end(), channel) == distinct.end())
+          distinct.push_back(channel);
+    }
+    const std::uint64_t rowFloats = std::uint64_t(windows.data.width) * std::uint64_t(distinct.size());
+    const long long rowsPerBand = rowsDecodedAtOnce(rowFloats, windows.data.height, decodeBandBytes_);
     const std::uint64_t displayPixels =
         std::uint64_t(windows.display.width) * std::uint64_t(windows.display.height);
-    requireMemory((dataPixels * distinct.size() + displayPixels * channels.size()) * sizeof(float),
+    requireMemory((rowFloats * std::uint64_t(rowsPerBand) + displayPixels * setChannels) * sizeof(float),
                   path_.string() + ": a " + std::to_string(windows.display.width) + "x" +
                       std::to_string(windows.display.height) + " image");
-    std::vector<float> block(dataPixels * distinct.size());
-    if (!distinct.empty()) {
-      Imf::FrameBuffer frameBuffer;
-      const std::size_t pixelStride = distinct.size() * sizeof(float);
-      for (std::size_t slot = 0; slot < distinct.size(); ++slot) {
-        const std::string& name = channelNames_[std::size_t(image)].at(std::size_t(distinct[slot]));
-        const Imf::Channel& channel = header.channels()[name];
-        if (channel.xSampling != 1 || channel.ySampling != 1)
-          fail(path_, "channel " + name + " is subsampled, which is not supported");
-        frameBuffer.insert(name,
-                           Imf::Slice::Make(Imf::FLOAT, block.data() + slot, header.dataWindow(), pixelStride,
-                                            pixelStride * std::size_t(windows.data.width)));
-      }
-      try {
-        Imf::InputPart part(*file_, image);
-        part.setFrameBuffer(frameBuffer);
-        part.readPixels(header.dataWindow().min.y, header.dataWindow().max.y);
-      } catch (const Error&) {
-        throw;
-      } catch (const std::exception& error) {
-        fail(path_, "cannot read pixels: " + oneLine(error.what()));
-      }
+    std::vector<FloatImage> images;
+    std::vector<std::vector<int>> slots;
+    for (const ChannelSet& set : sets) {
+      images.push_back(emptyDisplayImage(windows, int(set.channels.size())));
+      std::vector<int>& setSlots = slots.emplace_back();
+      for (int channel : set.channels)
+        setSlots.push_back(
+            channel < 0 ? -1 : int(std::find(distinct.begin(), distinct.end(), channel) - distinct.begin()));
     }
-    std::vector<int> slots;
-    for (int channel : channels)
-      slots.push_back(
-          channel < 0 ? -1 : int(std::find(distinct.begin(), distinct.end(), channel) - distinct.begin()));
-    return placeInDisplayWindow(windows, block, int(distinct.size()), slots, missingValue);
+    const auto place = [&](const float* block, long long firstRow, long long rows) {
+      for (std::size_t s = 0; s < sets.size(); ++s)
+        placeRowsInDisplayWindow(windows, block, int(distinct.size()), firstRow, rows, slots[s],
+                                 sets[s].missingValue, &images[s]);
+    };
+    if (distinct.empty()) {
+      place(nullptr, 0, windows.data.height);
+      return images;
+    }
+    std::vector<float> block(rowFloats * std::uint64_t(rowsPerBand));
+    const Imath::Box2i& dataWindow = header.dataWindow();
+    const std::size_t pixelStride = distinct.size() * sizeof(float);
+    try {
+      Imf::InputPart part(*file_, image);
+      for (long long firstRow = 0; firstRow < windows.data.height; firstRow += rowsPerBand) {
+        const long long rows = std::min(rowsPerBand, windows.data.height - firstRow);
+        const int firstY = dataWindow.min.y + int(firstRow), lastY = firstY + int(rows) - 1;
+        // The slices' origin is the band's first row: `block` holds the band alone.
+        const Imath::Box2i band(Imath::V2i(dataWindow.min.x, firstY), Imath::V2i(dataWindow.max.x, lastY));
+        Imf::FrameBuffer frameBuffer;
+        for (std::size_t slot = 0; slot < distinct.size(); ++slot) {
+          const std::string& name = channelNames_[std::size_t(image)].at(std::size_t(distinct[slot]));
+          const Imf::Channel& channel = header.channels()[name];
+          if (channel.xSampling != 1 || channel.ySampling != 1)
+            fail(path_, "channel " + name + " is subsampled, which is not supported");
+          frameBuffer.insert(name, Imf::Slice::Make(Imf::FLOAT, block.data() + slot, band, pixelStride,
+                                                    pixelStride * std::size_t(windows.data.width)));
+        }
+        part.setFrameBuffer(frameBuffer);
+        part.readPixels(firstY, lastY);
+        place(block.data(), firstRow, rows);
+      }
+    } catch (const Error&) {
+      throw;
+    } catch (const std::exception& error) {
+      fail(path_, "cannot read pixels: " + oneLine(error.what()));
+    }
+    return images;
   }
 
  private:
   std::filesystem::path path_;
+  std::uint64_t decodeBandBytes_;
   std::unique_ptr<Imf::MultiPartInputFile> file_;
   std::vector<std::vector<std::string>> channelNames_;
 };
@@ -117,8 +160,8 @@ bool isExrFile(const std::filesystem::path& path) {
   return file.gcount() == 4 && magic[0] == 0x76 && magic[1] == 0x2f && magic[2] == 0x31 && magic[3] == 0x01;
 }
 
-std::unique_ptr<ImageReader> openExrImage(const std::filesystem::path& path) {
-  return std::make_unique<ExrReader>(path);
+std::unique_ptr<ImageReader> openExrImage(const std::filesystem::path& path, std::uint64_t decodeBandBytes) {
+  return std::make_unique<ExrReader>(path, decodeBandBytes);
 }
 
 }  // namespace spindrift

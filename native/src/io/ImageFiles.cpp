@@ -5,6 +5,7 @@
 #include <cmath>
 #include <memory>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "io/ExrHeaderCheck.h"
@@ -95,70 +96,177 @@ void toLinearPremultiplied(const ColorEncoding& encoding, FloatImage* rgba) {
   }
 }
 
-}  // namespace
-
-FloatImage readColorImage(const std::filesystem::path& path) {
-  std::unique_ptr<ImageReader> input = openImage(path);
-  for (int subimage = 0; subimage < input->imageCount(); ++subimage) {
-    std::array<int, 4> rgba;
-    if (!findColorChannels(input->channelNames(subimage), &rgba)) continue;
-    FloatImage image = input->readChannels(subimage, {rgba.begin(), rgba.end()}, 1.0f);
-    toLinearPremultiplied(input->colorEncoding(subimage), &image);
-    return image;
+// Sets of channels asked of one open file, read image by image with one readChannelSets call each, so
+// that an OpenEXR part is decoded once however many of the readers below take channels from it.
+class ChannelRequests {
+ public:
+  // The index of the set's image among read()'s results.
+  std::size_t add(int image, ChannelSet set) {
+    requests_.push_back({image, std::move(set)});
+    return requests_.size() - 1;
   }
-  fail(path, "no colour channels (looked for a *Combined* layer, R G B, or grey)");
-}
 
-std::optional<FloatImage> readDepthImage(const std::filesystem::path& path) {
-  std::unique_ptr<ImageReader> input = openImage(path);
-  for (int subimage = 0; subimage < input->imageCount(); ++subimage) {
-    const ChannelNames& names = input->channelNames(subimage);
-    const auto depth = std::find_if(names.begin(), names.end(), isDepthChannel);
-    if (depth == names.end()) continue;
-    return input->readChannels(subimage, {int(depth - names.begin())}, 0.0f);
+  std::vector<FloatImage> read(ImageReader& input) const {
+    std::vector<FloatImage> images(requests_.size());
+    std::vector<bool> done(requests_.size(), false);
+    for (std::size_t first = 0; first < requests_.size(); ++first) {
+      if (done[first]) continue;
+      std::vector<std::size_t> members;
+      std::vector<ChannelSet> sets;
+      for (std::size_t k = first; k < requests_.size(); ++k)
+        if (!done[k] && requests_[k].image == requests_[first].image) {
+          members.push_back(k);
+          sets.push_back(requests_[k].set);
+          done[k] = true;
+        }
+      std::vector<FloatImage> read = input.readChannelSets(requests_[first].image, sets);
+      for (std::size_t m = 0; m < members.size(); ++m)
+        images[members[m]] = std::move(read[m]);
+    }
+    return images;
+  }
+
+ private:
+  struct Request {
+    int image;
+    ChannelSet set;
+  };
+  std::vector<Request> requests_;
+};
+
+// The colour of the first subimage that has colour channels (alpha 1 where it has none).
+struct ColorRequest {
+  std::size_t set;
+  ColorEncoding encoding;
+};
+
+std::optional<ColorRequest> requestColor(const ImageReader& input, ChannelRequests& requests) {
+  for (int subimage = 0; subimage < input.imageCount(); ++subimage) {
+    std::array<int, 4> rgba;
+    if (!findColorChannels(input.channelNames(subimage), &rgba)) continue;
+    return ColorRequest{requests.add(subimage, {{rgba.begin(), rgba.end()}, 1.0f}),
+                        input.colorEncoding(subimage)};
   }
   return std::nullopt;
 }
 
-std::optional<std::array<FloatImage, 3>> readLightPasses(const std::filesystem::path& path) {
-  std::unique_ptr<ImageReader> input = openImage(path);
-  const char* passNames[6] = {"DiffDir", "DiffInd", "DiffCol", "GlossDir", "GlossInd", "GlossCol"};
-  for (int subimage = 0; subimage < input->imageCount(); ++subimage) {
-    const ChannelNames& spec = input->channelNames(subimage);
-    std::array<FloatImage, 6> passes;
+// The first depth channel of any subimage.
+std::optional<std::size_t> requestDepth(const ImageReader& input, ChannelRequests& requests) {
+  for (int subimage = 0; subimage < input.imageCount(); ++subimage) {
+    const ChannelNames& names = input.channelNames(subimage);
+    const auto depth = std::find_if(names.begin(), names.end(), isDepthChannel);
+    if (depth == names.end()) continue;
+    return requests.add(subimage, {{int(depth - names.begin())}, 0.0f});
+  }
+  return std::nullopt;
+}
+
+// Cycles' six light passes, in this order, each as RGB with alpha 0, from the first subimage that has all
+// six.
+constexpr std::array<const char*, 6> kLightPassNames = {"DiffDir",  "DiffInd",  "DiffCol",
+                                                        "GlossDir", "GlossInd", "GlossCol"};
+
+std::optional<std::array<std::size_t, 6>> requestLightPasses(const ImageReader& input,
+                                                             ChannelRequests& requests) {
+  for (int subimage = 0; subimage < input.imageCount(); ++subimage) {
+    const ChannelNames& spec = input.channelNames(subimage);
+    std::array<std::array<int, 4>, 6> channels;
     bool complete = true;
-    for (int pass = 0; pass < 6 && complete; ++pass) {
-      std::array<int, 4> rgba{-1, -1, -1, -1};
+    for (std::size_t pass = 0; pass < kLightPassNames.size() && complete; ++pass) {
       complete = false;
+      const std::string suffix = kLightPassNames[pass];
       for (const std::string& name : spec) {
         const std::string layer = layerOf(name);
-        const std::string suffix = passNames[pass];
         if (layer.size() >= suffix.size() &&
             layer.compare(layer.size() - suffix.size(), suffix.size(), suffix) == 0 &&
-            findRgba(spec, layer + ".", &rgba)) {
+            findRgba(spec, layer + ".", &channels[pass])) {
           complete = true;
           break;
         }
       }
-      if (complete) passes[pass] = input->readChannels(subimage, {rgba[0], rgba[1], rgba[2], -1}, 0.0f);
     }
     if (!complete) continue;
-    std::array<FloatImage, 3> light{passes[0], passes[3], passes[1]};
-    for (std::size_t i = 0; i < light[0].pixels.size(); ++i) {
-      if (i % 4 == 3) {
-        // DiffDir alone (its mean over R, G, B): the light that the lamps' share is measured against.
-        light[0].pixels[i] =
-            (passes[0].pixels[i - 3] + passes[0].pixels[i - 2] + passes[0].pixels[i - 1]) / 3.0f;
-        continue;
-      }
-      light[0].pixels[i] = passes[2].pixels[i] * passes[0].pixels[i];
-      light[1].pixels[i] = passes[5].pixels[i] * passes[3].pixels[i];
-      light[2].pixels[i] =
-          passes[2].pixels[i] * passes[1].pixels[i] + passes[5].pixels[i] * passes[4].pixels[i];
-    }
-    return light;
+    std::array<std::size_t, 6> sets;
+    for (std::size_t pass = 0; pass < sets.size(); ++pass)
+      sets[pass] =
+          requests.add(subimage, {{channels[pass][0], channels[pass][1], channels[pass][2], -1}, 0.0f});
+    return sets;
   }
   return std::nullopt;
+}
+
+// Direct diffuse (DiffCol x DiffDir, alpha DiffDir's mean), direct glossy and indirect light from the six.
+std::array<FloatImage, 3> combineLightPasses(const std::vector<FloatImage>& images,
+                                             const std::array<std::size_t, 6>& sets) {
+  const FloatImage& diffDir = images[sets[0]];
+  const FloatImage& diffInd = images[sets[1]];
+  const FloatImage& diffCol = images[sets[2]];
+  const FloatImage& glossDir = images[sets[3]];
+  const FloatImage& glossInd = images[sets[4]];
+  const FloatImage& glossCol = images[sets[5]];
+  std::array<FloatImage, 3> light{diffDir, glossDir, diffInd};
+  for (std::size_t i = 0; i < light[0].pixels.size(); ++i) {
+    if (i % 4 == 3) {
+      // DiffDir alone (its mean over R, G, B): the light that the lamps' share is measured against.
+      light[0].pixels[i] = (diffDir.pixels[i - 3] + diffDir.pixels[i - 2] + diffDir.pixels[i - 1]) / 3.0f;
+      continue;
+    }
+    light[0].pixels[i] = diffCol.pixels[i] * diffDir.pixels[i];
+    light[1].pixels[i] = glossCol.pixels[i] * glossDir.pixels[i];
+    light[2].pixels[i] = diffCol.pixels[i] * diffInd.pixels[i] + glossCol.pixels[i] * glossInd.pixels[i];
+  }
+  return light;
+}
+
+[[noreturn]] void failWithoutColor(const std::filesystem::path& path) {
+  fail(path, "no colour channels (looked for a *Combined* layer, R G B, or grey)");
+}
+
+}  // namespace
+
+FloatImage readColorImage(const std::filesystem::path& path) {
+  std::unique_ptr<ImageReader> input = openImage(path);
+  ChannelRequests requests;
+  const std::optional<ColorRequest> color = requestColor(*input, requests);
+  if (!color) failWithoutColor(path);
+  FloatImage image = std::move(requests.read(*input)[color->set]);
+  toLinearPremultiplied(color->encoding, &image);
+  return image;
+}
+
+std::optional<FloatImage> readDepthImage(const std::filesystem::path& path) {
+  std::unique_ptr<ImageReader> input = openImage(path);
+  ChannelRequests requests;
+  const std::optional<std::size_t> depth = requestDepth(*input, requests);
+  if (!depth) return std::nullopt;
+  return std::move(requests.read(*input)[*depth]);
+}
+
+std::optional<std::array<FloatImage, 3>> readLightPasses(const std::filesystem::path& path) {
+  std::unique_ptr<ImageReader> input = openImage(path);
+  ChannelRequests requests;
+  const std::optional<std::array<std::size_t, 6>> passes = requestLightPasses(*input, requests);
+  if (!passes) return std::nullopt;
+  return combineLightPasses(requests.read(*input), *passes);
+}
+
+BackgroundFile readBackgroundFile(const std::filesystem::path& path, bool withDepth) {
+  return readBackgroundFile(*openImage(path), path, withDepth);
+}
+
+BackgroundFile readBackgroundFile(ImageReader& input, const std::filesystem::path& path, bool withDepth) {
+  ChannelRequests requests;
+  const std::optional<ColorRequest> color = requestColor(input, requests);
+  if (!color) failWithoutColor(path);
+  const std::optional<std::size_t> depth = withDepth ? requestDepth(input, requests) : std::nullopt;
+  const std::optional<std::array<std::size_t, 6>> passes = requestLightPasses(input, requests);
+  std::vector<FloatImage> images = requests.read(input);
+  BackgroundFile file;
+  file.color = std::move(images[color->set]);
+  toLinearPremultiplied(color->encoding, &file.color);
+  if (depth) file.depth = std::move(images[*depth]);
+  if (passes) file.lightPasses = combineLightPasses(images, *passes);
+  return file;
 }
 
 FloatImage resizeImage(const FloatImage& image, int width, int height, bool nearest) {

@@ -9,6 +9,8 @@
 
 namespace spindrift {
 
+class ImageReader;
+
 /// Reads an image's colour as RGBA (alpha 1 where the file has none; grey repeated to RGB). In a multilayer
 /// EXR the first layer named like "Combined" (Blender's "ViewLayer.Combined.R" ...) is taken; otherwise the
 /// plain R, G, B, A channels. Colour comes back as Blender's Combined pass is: linear (sRGB and gamma encoded
@@ -27,6 +29,19 @@ std::optional<FloatImage> readDepthImage(const std::filesystem::path& path);
 /// diffuse image's alpha holds DiffDir itself (the mean of its R, G, B), the light before the surface's
 /// colour. Nothing when any of the six is missing.
 std::optional<std::array<FloatImage, 3>> readLightPasses(const std::filesystem::path& path);
+
+/// What the renderer reads from a background file: readColorImage, readDepthImage (when `withDepth`) and
+/// readLightPasses of the one file, each of its images decoded once (an OpenEXR file read by the three in
+/// turn, the light passes pass by pass, was decoded eight times: docs/frame-cost.md, session 52). Throws as
+/// readColorImage does.
+struct BackgroundFile {
+  FloatImage color;
+  std::optional<FloatImage> depth;
+  std::optional<std::array<FloatImage, 3>> lightPasses;
+};
+BackgroundFile readBackgroundFile(const std::filesystem::path& path, bool withDepth);
+/// The same from a file already open (`path` names it in errors).
+BackgroundFile readBackgroundFile(ImageReader& input, const std::filesystem::path& path, bool withDepth);
 
 /// Resamples to a new size: bilinear for colour, nearest for depth (`nearest`), so depth edges stay sharp.
 FloatImage resizeImage(const FloatImage& image, int width, int height, bool nearest);

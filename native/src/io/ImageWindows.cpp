@@ -26,27 +26,39 @@ ImageWindows checkedWindows(const std::filesystem::path& path, const PixelWindow
   return {data, display};
 }
 
-FloatImage placeInDisplayWindow(const ImageWindows& windows, const std::vector<float>& block,
-                                int blockChannels, const std::vector<int>& slots, float missingValue) {
+FloatImage emptyDisplayImage(const ImageWindows& windows, int channels) {
+  FloatImage image;
+  image.width = int(windows.display.width);
+  image.height = int(windows.display.height);
+  image.channels = channels;
+  image.pixels.assign(std::size_t(image.width) * std::size_t(image.height) * std::size_t(channels), 0.0f);
+  return image;
+}
+
+void placeRowsInDisplayWindow(const ImageWindows& windows, const float* block, int blockChannels,
+                              long long firstRow, long long rows, const std::vector<int>& slots,
+                              float missingValue, FloatImage* image) {
   const PixelWindow& data = windows.data;
   const PixelWindow& display = windows.display;
-  FloatImage image;
-  image.width = int(display.width);
-  image.height = int(display.height);
-  image.channels = int(slots.size());
-  image.pixels.assign(std::size_t(image.width) * std::size_t(image.height) * slots.size(), 0.0f);
-  for (long long dataY = 0; dataY < data.height; ++dataY) {
-    const long long y = data.y + dataY - display.y;
+  for (long long row = 0; row < rows; ++row) {
+    const long long y = data.y + firstRow + row - display.y;
     if (y < 0 || y >= display.height) continue;
     for (long long dataX = 0; dataX < data.width; ++dataX) {
       const long long x = data.x + dataX - display.x;
       if (x < 0 || x >= display.width) continue;
-      const float* source = &block[std::size_t(dataY * data.width + dataX) * std::size_t(blockChannels)];
-      float* target = &image.pixels[std::size_t(y * display.width + x) * slots.size()];
+      const float* source = block + std::size_t(row * data.width + dataX) * std::size_t(blockChannels);
+      float* target = &image->pixels[std::size_t(y * display.width + x) * slots.size()];
       for (std::size_t c = 0; c < slots.size(); ++c)
         target[c] = slots[c] < 0 ? missingValue : source[slots[c]];
     }
   }
+}
+
+FloatImage placeInDisplayWindow(const ImageWindows& windows, const std::vector<float>& block,
+                                int blockChannels, const std::vector<int>& slots, float missingValue) {
+  FloatImage image = emptyDisplayImage(windows, int(slots.size()));
+  placeRowsInDisplayWindow(windows, block.data(), blockChannels, 0, windows.data.height, slots, missingValue,
+                           &image);
   return image;
 }
 

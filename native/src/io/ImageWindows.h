@@ -32,4 +32,13 @@ ImageWindows checkedWindows(const std::filesystem::path& path, const PixelWindow
 FloatImage placeInDisplayWindow(const ImageWindows& windows, const std::vector<float>& block,
                                 int blockChannels, const std::vector<int>& slots, float missingValue);
 
+/// An image of the display window's size with `channels` channels, every pixel 0.
+FloatImage emptyDisplayImage(const ImageWindows& windows, int channels);
+
+/// Places `rows` rows of the data window, from row `firstRow` on (counted from its top), into `image` (from
+/// emptyDisplayImage) as placeInDisplayWindow places the whole block: `block` holds those rows alone.
+void placeRowsInDisplayWindow(const ImageWindows& windows, const float* block, int blockChannels,
+                              long long firstRow, long long rows, const std::vector<int>& slots,
+                              float missingValue, FloatImage* image);
+
 }  // namespace spindrift

@@ -37,19 +37,24 @@ BackgroundImages BackgroundCache::load(const Background& background, int frame, 
     environment_.reset();
     liquidEyeDepth_.reset();
     lightPasses_.reset();
+    // The depth is the colour's file's own unless the scene names another; a file read once for both.
+    const bool depthInImage = !image.empty() && depth == image;
+    std::optional<FloatImage> imageDepth;
     if (!image.empty()) {
-      color_ = atSize(readColorImage(image), image, width, height, false);
-      lightPasses_ = readLightPasses(image);
+      BackgroundFile file = readBackgroundFile(image, depthInImage);
+      color_ = atSize(std::move(file.color), image, width, height, false);
+      lightPasses_ = std::move(file.lightPasses);
       if (lightPasses_)
         for (FloatImage& pass : *lightPasses_)
           pass = atSize(std::move(pass), image, width, height, false);
+      imageDepth = std::move(file.depth);
     }
     if (!depth.empty()) {
-      std::optional<FloatImage> depthImage = readDepthImage(depth);
-      if (!depthImage && background.depthExplicit)
+      if (!depthInImage) imageDepth = readDepthImage(depth);
+      if (!imageDepth && background.depthExplicit)
         throw Error(depth.string() + ": no depth channel (expected e.g. ViewLayer.Depth.Z or Z)");
       // Nearest, not bilinear: averaging depth across a silhouette would invent surfaces in mid-air.
-      if (depthImage) eyeDepth_ = atSize(std::move(*depthImage), depth, width, height, true);
+      if (imageDepth) eyeDepth_ = atSize(std::move(*imageDepth), depth, width, height, true);
     }
     if (!environment.empty()) environment_ = readColorImage(environment);
     if (!liquidDepth.empty()) {
