@@ -1,6 +1,7 @@
-// A background file read whole (readBackgroundFile) against its three readers one by one, each image of it
-// decoded once, and OpenEXR images decoded in bands of rows against all at once. Files are written here with
-// OpenEXR itself, as Blender writes its multilayer renders.
+// A background file read whole (readBackgroundFile): against the colour and depth readers and against the
+// light passes' products of the channels written; each image of it decoded once; and OpenEXR images decoded
+// in bands of rows against all at once. Files are written here with OpenEXR itself, as Blender writes its
+// multilayer renders.
 
 #include <algorithm>
 #include <array>
@@ -80,7 +81,7 @@ class BackgroundFileTest : public ::testing::Test {
   std::filesystem::path directory_;
 };
 
-TEST_F(BackgroundFileTest, ReadsWhatTheThreeReadersReadOneByOne) {
+TEST_F(BackgroundFileTest, ReadsWhatTheReadersReadAndTheLightPassesProducts) {
   const std::filesystem::path path = directory_ / "render.exr";
   const int dataX = 2, dataY = 1, width = 9, height = 6;
   writeExr(path, kBlenderChannels, dataX, dataY, 5, 4, width, height);
@@ -90,28 +91,33 @@ TEST_F(BackgroundFileTest, ReadsWhatTheThreeReadersReadOneByOne) {
   ASSERT_TRUE(file.depth);
   EXPECT_EQ(file.depth->pixels, readDepthImage(path)->pixels);
   ASSERT_TRUE(file.lightPasses);
-  const std::optional<std::array<FloatImage, 3>> passes = readLightPasses(path);
-  ASSERT_TRUE(passes);
   for (std::size_t i = 0; i < 3; ++i) {
     EXPECT_EQ((*file.lightPasses)[i].width, width);
     EXPECT_EQ((*file.lightPasses)[i].height, height);
-    EXPECT_EQ((*file.lightPasses)[i].pixels, (*passes)[i].pixels) << i;
+    EXPECT_EQ((*file.lightPasses)[i].channels, 4);
   }
 
-  // The light from the passes as the lit background takes it, at a pixel of the data window; 0 outside it.
+  // The light from the passes as the lit background takes it, at every pixel: the written channels' products
+  // inside the data window (5 x 4 at (2, 1)), 0 outside it; alpha DiffDir's mean, 0 for the other two.
+  for (long long y = 0; y < height; ++y)
+    for (long long x = 0; x < width; ++x) {
+      const bool inData = x >= dataX && x < dataX + 5 && y >= dataY && y < dataY + 4;
+      const auto at = [&](std::size_t image, std::size_t channel) {
+        return (*file.lightPasses)[image].pixels[std::size_t((y * width + x) * 4) + channel];
+      };
+      const auto written = [&](std::size_t channel) { return inData ? marker(channel, x, y) : 0.0f; };
+      for (std::size_t c = 0; c < 3; ++c) {
+        const float diffCol = written(5 + c), diffDir = written(8 + c), diffInd = written(11 + c);
+        const float glossCol = written(14 + c), glossDir = written(17 + c), glossInd = written(20 + c);
+        EXPECT_FLOAT_EQ(at(0, c), diffCol * diffDir) << x << ", " << y;
+        EXPECT_FLOAT_EQ(at(1, c), glossCol * glossDir) << x << ", " << y;
+        EXPECT_FLOAT_EQ(at(2, c), diffCol * diffInd + glossCol * glossInd) << x << ", " << y;
+      }
+      EXPECT_FLOAT_EQ(at(0, 3), (written(8) + written(9) + written(10)) / 3.0f) << x << ", " << y;
+      EXPECT_EQ(at(1, 3), 0.0f);
+      EXPECT_EQ(at(2, 3), 0.0f);
+    }
   const long long x = 4, y = 3;
-  const auto at = [&](std::size_t image, std::size_t channel) {
-    return (*file.lightPasses)[image].pixels[std::size_t((y * width + x) * 4) + channel];
-  };
-  for (std::size_t c = 0; c < 3; ++c) {
-    const float diffCol = marker(5 + c, x, y), diffDir = marker(8 + c, x, y), diffInd = marker(11 + c, x, y);
-    const float glossCol = marker(14 + c, x, y), glossDir = marker(17 + c, x, y);
-    const float glossInd = marker(20 + c, x, y);
-    EXPECT_FLOAT_EQ(at(0, c), diffCol * diffDir);
-    EXPECT_FLOAT_EQ(at(1, c), glossCol * glossDir);
-    EXPECT_FLOAT_EQ(at(2, c), diffCol * diffInd + glossCol * glossInd);
-  }
-  EXPECT_FLOAT_EQ(at(0, 3), (marker(8, x, y) + marker(9, x, y) + marker(10, x, y)) / 3.0f);
   EXPECT_EQ(file.color.pixels[0], 0.0f);
   EXPECT_EQ(file.color.pixels[std::size_t((y * width + x) * 4) + 3], marker(3, x, y));
 

@@ -242,14 +242,6 @@ std::optional<FloatImage> readDepthImage(const std::filesystem::path& path) {
   return std::move(requests.read(*input)[*depth]);
 }
 
-std::optional<std::array<FloatImage, 3>> readLightPasses(const std::filesystem::path& path) {
-  std::unique_ptr<ImageReader> input = openImage(path);
-  ChannelRequests requests;
-  const std::optional<std::array<std::size_t, 6>> passes = requestLightPasses(*input, requests);
-  if (!passes) return std::nullopt;
-  return combineLightPasses(requests.read(*input), *passes);
-}
-
 BackgroundFile readBackgroundFile(const std::filesystem::path& path, bool withDepth) {
   return readBackgroundFile(*openImage(path), path, withDepth);
 }

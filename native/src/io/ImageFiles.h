@@ -23,20 +23,19 @@ FloatImage readColorImage(const std::filesystem::path& path);
 /// depth ("Depth.Z", "ViewLayer.Depth.Z", "depth.Z", "Z"). Returns nothing when the file has no such channel.
 std::optional<FloatImage> readDepthImage(const std::filesystem::path& path);
 
-/// Reads Cycles' light passes (layers ending in DiffDir, DiffInd, DiffCol, GlossDir, GlossInd, GlossCol, as
-/// Blender writes them in a multilayer EXR) as three RGBA images: direct diffuse (DiffCol x DiffDir), direct
-/// glossy (GlossCol x GlossDir) and indirect light (DiffCol x DiffInd + GlossCol x GlossInd). The direct
-/// diffuse image's alpha holds DiffDir itself (the mean of its R, G, B), the light before the surface's
-/// colour. Nothing when any of the six is missing.
-std::optional<std::array<FloatImage, 3>> readLightPasses(const std::filesystem::path& path);
-
-/// What the renderer reads from a background file: readColorImage, readDepthImage (when `withDepth`) and
-/// readLightPasses of the one file, each of its images decoded once (an OpenEXR file read by the three in
-/// turn, the light passes pass by pass, was decoded eight times: docs/frame-cost.md, session 52). Throws as
-/// readColorImage does.
+/// What the renderer reads from a background file, each of its images decoded once (OpenEXR compresses every
+/// channel of a block of rows together; the file read by three readers in turn, the light passes pass by
+/// pass, was decoded eight times: docs/frame-cost.md, session 52). Throws as readColorImage does.
 struct BackgroundFile {
+  /// As readColorImage reads it.
   FloatImage color;
+  /// As readDepthImage reads it, when asked for (`withDepth`).
   std::optional<FloatImage> depth;
+  /// Cycles' light passes (layers ending in DiffDir, DiffInd, DiffCol, GlossDir, GlossInd, GlossCol, as
+  /// Blender writes them in a multilayer EXR) as three RGBA images: direct diffuse (DiffCol x DiffDir),
+  /// direct glossy (GlossCol x GlossDir) and indirect light (DiffCol x DiffInd + GlossCol x GlossInd). The
+  /// direct diffuse image's alpha holds DiffDir itself (the mean of its R, G, B), the light before the
+  /// surface's colour. Nothing when any of the six is missing.
   std::optional<std::array<FloatImage, 3>> lightPasses;
 };
 BackgroundFile readBackgroundFile(const std::filesystem::path& path, bool withDepth);
