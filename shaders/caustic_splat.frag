@@ -6,6 +6,9 @@
 #include "lib/light_view.glsl"
 
 layout(binding = 3) uniform sampler2D backgroundEyeDepth;
+// 1 in each pixel tile (framedata/PixelTiles.h) a splat lands in, so the lit tiles (lit_tiles.comp) need not
+// read every pixel's caustics: reading them took llvmpipe 4-10 ms on a far camera's frame.
+layout(binding = 3, r8ui) uniform writeonly uimage2D causticTiles;
 
 in vec3 gCarried;
 in float gEyeDepth;
@@ -19,4 +22,5 @@ void main() {
   if (eyeDepth >= kNoSurfaceDepth * 0.5 || abs(gEyeDepth - eyeDepth) > 0.02 * eyeDepth + 3.0 * pixelSize) discard;
   vec3 world = worldPositionFromFragCoord(gl_FragCoord.xy, eyeDepth);
   outCaustic = vec4(lightWeightAt(world) * gCarried * gConcentration, 0.0);
+  imageStore(causticTiles, ivec2(gl_FragCoord.xy) / int(frame.pixelTiles.x), uvec4(1u));
 }

@@ -15,6 +15,7 @@
 // shadow itself (SHADOW_IN_PLACE, lib/liquid_shadow.glsl) instead of reading the shadow pass's sums: one
 // full-screen pass, two targets and one rebuilt normal fewer. These are variants compiled from this source
 // (chosen by LitBackgroundPass), not switched by a uniform: llvmpipe runs both sides of a branch with masks.
+// The PLAIN variant shades the tiles where no light changes the background (lit_tiles.comp).
 #include "lib/frame.glsl"
 #include "lib/depth_layer.glsl"
 #include "lib/optics.glsl"
@@ -101,9 +102,32 @@ vec3 skyKeptAt(float eyeDepth) {
 }
 #endif
 
+// The background lit as the lights leave it: with Cycles' light passes exactly, else with directFraction.
+vec3 litColour(ivec2 pixel, vec3 background, vec3 shadow, vec3 caustics, vec3 sky, vec3 lampLight) {
+  if (hasLightPasses) {
+    vec4 diffuse = texelFetch(directDiffuse, pixel, 0);
+    float lamps = dot(lampLight, vec3(1.0 / 3.0));
+    float share = diffuse.a > 0.0 ? clamp(lamps / diffuse.a, 0.0, 1.0) : 1.0;
+    vec3 skyLost = (1.0 - share) * (1.0 - sky);
+    vec3 colour = background - diffuse.rgb * (share * (1.0 - shadow - caustics) + skyLost) -
+                  texelFetch(directGlossy, pixel, 0).rgb * (share * (1.0 - shadow) + skyLost) -
+                  texelFetch(indirectLight, pixel, 0).rgb * (1.0 - sky);
+    return max(colour, vec3(0.0));
+  }
+  // background (f (shadow + caustics) + (1 - f) sky), written as what the liquid takes from the background,
+  // so that where it takes nothing the result is the background to the bit whatever f is (the PLAIN variant's).
+  return background - background * (directFraction * (1.0 - shadow - caustics) + (1.0 - directFraction) * (1.0 - sky));
+}
+
 void main() {
   ivec2 pixel = ivec2(gl_FragCoord.xy);
   vec4 background = texelFetch(backgroundColor, pixel, 0);
+#ifdef PLAIN
+  // A tile where no light changes the background (lit_tiles.comp): what the full variant computes there, with
+  // all of the lamps' and the sky's light kept and no caustics, through the same arithmetic, so that both
+  // variants write the same bits.
+  vec3 shadow = vec3(1.0), caustics = vec3(0.0), sky = vec3(1.0), lampLight = vec3(0.0);
+#else
   float eyeDepth = texelFetch(backgroundEyeDepth, pixel, 0).r;
 #ifdef SKY_OCCLUSION_SAMPLES
   vec3 cameraNormal = hasSurface(eyeDepth) ? backgroundCameraNormal(backgroundEyeDepth, pixel, eyeDepth) : vec3(0.0);
@@ -128,20 +152,8 @@ void main() {
   bool lit = shadowWeighted.a > 0.0;
   vec3 shadow = lit ? shadowWeighted.rgb / shadowWeighted.a : vec3(1.0);
   vec3 caustics = lit ? texelFetch(causticSum, pixel, 0).rgb / shadowWeighted.a : vec3(0.0);
-  vec3 colour;
-  if (hasLightPasses) {
-    vec4 diffuse = texelFetch(directDiffuse, pixel, 0);
-    float lamps = dot(lampLight, vec3(1.0 / 3.0));
-    float share = diffuse.a > 0.0 ? clamp(lamps / diffuse.a, 0.0, 1.0) : 1.0;
-    vec3 skyLost = (1.0 - share) * (1.0 - sky);
-    colour = background.rgb - diffuse.rgb * (share * (1.0 - shadow - caustics) + skyLost) -
-             texelFetch(directGlossy, pixel, 0).rgb * (share * (1.0 - shadow) + skyLost) -
-             texelFetch(indirectLight, pixel, 0).rgb * (1.0 - sky);
-    colour = max(colour, vec3(0.0));
-  } else {
-    colour = background.rgb * (directFraction * (shadow + caustics) + (1.0 - directFraction) * sky);
-  }
-  outColor = vec4(colour, background.a);
+#endif
+  outColor = vec4(litColour(pixel, background.rgb, shadow, caustics, sky, lampLight), background.a);
   outShadow = vec4(shadow, 1.0);
   outCaustics = vec4(caustics, 1.0);
   outSky = vec4(sky, 1.0);

@@ -20,6 +20,8 @@ const char* passName(Pass pass) {
       return "caustics";
     case Pass::SkyOcclusion:
       return "sky_occlusion";
+    case Pass::LitTiles:
+      return "lit_tiles";
     case Pass::LitBackground:
       return "lit_background";
     case Pass::SplashDepthLayers:
@@ -108,6 +110,10 @@ FramePlan planFrame(const FrameContents& contents) {
     decide(Pass::Caustics, noCaustics);
     decide(Pass::SkyOcclusion, noSkyOcclusion);
   }
+  // The sky occlusion's samples say where the liquid takes sky light; without them every pixel is lit.
+  decide(Pass::LitTiles, noSkyOcclusion             ? noSkyOcclusion
+                         : !contents.skipUnlitTiles ? "light.skip_unlit_tiles is off"
+                                                    : nullptr);
   decide(Pass::LitBackground, noLight);
   decide(Pass::SplashDepthLayers, !splashes      ? "no splash particles in view"
                                   : !layersShown ? noLiquidOutput

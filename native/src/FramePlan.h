@@ -17,6 +17,7 @@ enum class Pass {
   LiquidShadow,
   Caustics,
   SkyOcclusion,
+  LitTiles,  ///< the pixel tiles where the lights change the background (light.skip_unlit_tiles)
   LitBackground,
   SplashDepthLayers,
   AggregateDepthLayers,
@@ -63,6 +64,7 @@ struct FrameContents {
   bool foamCulling = true;             ///< foam.cull_hidden.
   bool skipEmptyTiles = true;          ///< liquid.skip_empty_tiles.
   bool skipEmptyFoamTiles = true;      ///< foam.skip_empty_tiles.
+  bool skipUnlitTiles = true;          ///< light.skip_unlit_tiles.
 };
 
 /// Which passes a frame runs and, for each it does not, why. The wiring of the frame in one plain function,

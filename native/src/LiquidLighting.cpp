@@ -14,6 +14,7 @@ LiquidLighting::LiquidLighting(const ShaderLibrary& shaders)
       shadow_(shaders),
       skyOcclusion_(shaders),
       caustics_(shaders),
+      litTiles_(shaders),
       litBackground_(shaders) {}
 
 SurfaceLayers LiquidLighting::drawLight(const LightPreparation& light, const Camera& camera,
@@ -38,7 +39,7 @@ SurfaceLayers LiquidLighting::drawLight(const LightPreparation& light, const Cam
 LitBackgroundData LiquidLighting::run(const LightingPreparation& lights, const Camera& camera,
                                       const BackgroundData& background, float particleRadius,
                                       const Parameters& parameters, bool occludeSky, bool shadowPass,
-                                      PassTimer& timer) {
+                                      bool litTiles, PassTimer& timer) {
   const int width = camera.width, height = camera.height;
   caustics_.begin(width, height);
   // Without the shadow pass (FramePlan skips it for one light whose caustics carry what crosses the liquid,
@@ -77,10 +78,15 @@ LitBackgroundData LiquidLighting::run(const LightingPreparation& lights, const C
   } else {
     lamps.sums = &sums;
   }
+  std::optional<LitTiles> tiles;
+  if (litTiles && occlusion) {
+    ScopedPassTimer timed(timer, "lit_tiles");
+    tiles.emplace(litTiles_.run(background, lamps, caustics_.result(), *occlusion, width, height));
+  }
   ScopedPassTimer timed(timer, "lit_background");
   return litBackground_.run(background, lamps, caustics_.result(),
                             SkyView{*skyLayers, occlusion ? &*occlusion : nullptr, particleRadius},
-                            parameters, width, height);
+                            parameters, tiles ? &*tiles : nullptr, width, height);
 }
 
 }  // namespace spindrift

@@ -8,6 +8,7 @@
 #include "passes/CausticPass.h"
 #include "passes/LiquidShadowPass.h"
 #include "passes/LitBackgroundPass.h"
+#include "passes/LitTilePass.h"
 #include "passes/SkyOcclusionPass.h"
 #include "prep/LightViews.h"
 
@@ -22,10 +23,14 @@ class LiquidLighting {
  public:
   explicit LiquidLighting(const ShaderLibrary& shaders);
   /// `occludeSky`: the plan runs the sky occlusion (points outside the liquid lose the sky light it takes);
-  /// `shadowPass`: the plan runs the shadow pass, else the lit background finds the one light's shadow.
+  /// `shadowPass`: the plan runs the shadow pass, else the lit background finds the one light's shadow;
+  /// `litTiles`: the plan marks the tiles the lights change (which needs `occludeSky`), and the lit
+  /// background shades only those.
   LitBackgroundData run(const LightingPreparation& lights, const Camera& camera,
                         const BackgroundData& background, float particleRadius, const Parameters& parameters,
-                        bool occludeSky, bool shadowPass, PassTimer& timer);
+                        bool occludeSky, bool shadowPass, bool litTiles, PassTimer& timer);
+  /// How many tiles the last frame's lit background shaded (waits for the GPU).
+  std::uint32_t litTilesShaded() const { return litTiles_.litTiles(); }
 
  private:
   /// One light's depth layers, its shadow (`withShadowPass`) and its caustics (suns and spots, with
@@ -38,6 +43,7 @@ class LiquidLighting {
   LiquidShadowPass shadow_;
   SkyOcclusionPass skyOcclusion_;
   CausticPass caustics_;
+  LitTilePass litTiles_;
   LitBackgroundPass litBackground_;
 };
 

@@ -356,6 +356,7 @@ RenderResult Renderer::renderPrepared(const Scene& scene, const Particles& parti
   contents.foamCulling = foamParameters.cull_hidden;
   contents.skipEmptyTiles = liquidParameters.skip_empty_tiles;
   contents.skipEmptyFoamTiles = foamParameters.skip_empty_tiles;
+  contents.skipUnlitTiles = scene.parameters.light.skip_unlit_tiles;
   // Which lights see the liquid is known from its bounds; their views are prepared below, while the GL
   // thread draws the camera's surface.
   const LightsSeeing seeing = lightsSeeingTheLiquid(particles, scene.lights, liquidParameters);
@@ -451,7 +452,7 @@ RenderResult Renderer::renderPrepared(const Scene& scene, const Particles& parti
     if (plan.runs(Pass::LitBackground))
       lit.emplace(pipeline.lighting.run(lighting, camera, *unlit, radius, scene.parameters,
                                         plan.runs(Pass::SkyOcclusion), plan.runs(Pass::LiquidShadow),
-                                        pipeline.timer));
+                                        plan.runs(Pass::LitTiles), pipeline.timer));
     const BackgroundData background = lit ? lit->background : *unlit;
     const PixelTiles* withLiquid = liquidTiles ? &*liquidTiles : nullptr;
     if (plan.runs(Pass::RaymarchSurface)) {  // times its six passes itself
@@ -531,6 +532,10 @@ RenderResult Renderer::renderPrepared(const Scene& scene, const Particles& parti
     if (foamLayer) {
       recordFoamOcclusion(pipeline.foamOcclusion.statistics(), stats.foam);
       stats.foam.lights = foamParameters.lit_by_lights ? scene.lights.size() : 0;
+    }
+    if (plan.runs(Pass::LitTiles)) {
+      stats.light.tilesShaded = pipeline.lighting.litTilesShaded();
+      stats.light.tiles = std::size_t(pixelTilesAcross(width)) * std::size_t(pixelTilesDown(height));
     }
     if (plan.runs(Pass::FoamTiles)) {
       stats.foam.tilesShaded = pipeline.foamTiles.markedTiles();

@@ -77,7 +77,7 @@ def ensure_renders(samples, background_samples):
 
 
 LIGHT_PASS_NAMES = ("light_depth_layers", "liquid_shadow", "caustics", "sky_depth_layers", "sky_occlusion",
-                    "lit_background")
+                    "lit_tiles", "lit_background")
 
 
 def light_cost(stats):
@@ -456,7 +456,7 @@ def write_page(results, timings, renderer, samples, background_samples, loads):
     lines += [f"![{frame}: light passes](images/light_{frame}_passes.png)" for frame in FRAMES]
     lines += ["", "## Cost", "",
               "GPU time of the light passes (the lights' and the sky's depth layers, `liquid_shadow`, `caustics`, "
-              "`sky_occlusion`, `lit_background` with the sky light submerged points keep) against the whole frame's: in a one-frame process "
+              "`sky_occlusion`, `lit_tiles`, `lit_background` with the sky light submerged points keep) against the whole frame's: in a one-frame process "
               "(as the "
               "tables above ran; llvmpipe compiles each shader's machine code at its first draw, inside the "
               "frame) and, *steady*, in frames 3 to 6 of a `--frames 1-6` sequence (a renderer kept alive, as the "

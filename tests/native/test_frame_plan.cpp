@@ -29,7 +29,7 @@ const std::vector<std::string> kFoamPasses = {"foam_scene_depth", "foam_visibili
                                               "foam_occlusion",   "foam_blur"};
 
 const std::vector<std::string> kLightPasses = {"light_depth_layers", "liquid_shadow", "caustics",
-                                               "sky_occlusion", "lit_background"};
+                                               "sky_occlusion",      "lit_tiles",     "lit_background"};
 
 TEST(FramePlan, FullFrameRunsEveryPassInRecipeOrder) {
   FrameContents contents{100, 1000, 50, "plane_fit"};
@@ -40,12 +40,29 @@ TEST(FramePlan, FullFrameRunsEveryPassInRecipeOrder) {
   contents.causticLights = 1;
   contents.caustics = true;
   const FramePlan plan = planFrame(contents);
-  const std::vector<std::string> expected = {
-      "background",   "occluder_depth", "liquid_mesh_depth", "light_depth_layers",  "liquid_shadow",
-      "caustics",     "sky_occlusion",  "lit_background",    "splash_depth_layers", "aggregate_depth_layers",
-      "liquid_tiles", "smoothing",      "refraction",        "foam_scene_depth",    "foam_visibility",
-      "foam_depth",   "foam_thickness", "foam_intensity",    "foam_tiles",          "foam_occlusion",
-      "foam_blur",    "composite"};
+  const std::vector<std::string> expected = {"background",
+                                             "occluder_depth",
+                                             "liquid_mesh_depth",
+                                             "light_depth_layers",
+                                             "liquid_shadow",
+                                             "caustics",
+                                             "sky_occlusion",
+                                             "lit_tiles",
+                                             "lit_background",
+                                             "splash_depth_layers",
+                                             "aggregate_depth_layers",
+                                             "liquid_tiles",
+                                             "smoothing",
+                                             "refraction",
+                                             "foam_scene_depth",
+                                             "foam_visibility",
+                                             "foam_depth",
+                                             "foam_thickness",
+                                             "foam_intensity",
+                                             "foam_tiles",
+                                             "foam_occlusion",
+                                             "foam_blur",
+                                             "composite"};
   EXPECT_EQ(names(plan.passes), expected);
   EXPECT_TRUE(plan.skipped.empty());
 }
@@ -53,7 +70,7 @@ TEST(FramePlan, FullFrameRunsEveryPassInRecipeOrder) {
 TEST(FramePlan, EmptyFrameRunsBackgroundAndCompositeOnly) {
   const FramePlan plan = planFrame({0, 0, 0, "plane_fit"});
   EXPECT_EQ(names(plan.passes), (std::vector<std::string>{"background", "composite"}));
-  ASSERT_EQ(plan.skipped.size(), 20u);
+  ASSERT_EQ(plan.skipped.size(), 21u);
   EXPECT_EQ(plan.skipped.front().name, "occluder_depth");
   EXPECT_EQ(reasonFor(plan, "occluder_depth"), "no occluders");
   EXPECT_EQ(reasonFor(plan, "liquid_mesh_depth"), "no liquid mesh");
@@ -116,7 +133,7 @@ TEST(FramePlan, LightsRunTheLightPasses) {
   // One sun: the lit background finds its shadow, and its layers and caustics follow the sky's passes.
   const FramePlan oneSun = planFrame(withLights(1, 1, 1, true));
   const std::vector<std::string> oneSunOrder = {"sky_occlusion", "light_depth_layers", "caustics",
-                                                "lit_background"};
+                                                "lit_tiles", "lit_background"};
   std::vector<std::string> lightPassesRun;
   for (const std::string& pass : names(oneSun.passes))
     if (std::find(kLightPasses.begin(), kLightPasses.end(), pass) != kLightPasses.end())
@@ -134,6 +151,13 @@ TEST(FramePlan, LightsRunTheLightPasses) {
   EXPECT_TRUE(withoutSky.runs(Pass::LitBackground));
   EXPECT_TRUE(withoutSky.runs(Pass::LiquidShadow));
   EXPECT_EQ(reasonFor(withoutSky, "sky_occlusion"), "light.sky_occlusion_directions is 0");
+  // The lit tiles are found from the sky occlusion's samples: without them every pixel is lit.
+  EXPECT_EQ(reasonFor(withoutSky, "lit_tiles"), "light.sky_occlusion_directions is 0");
+  EXPECT_TRUE(twoSuns.runs(Pass::LitTiles));
+  FrameContents everyPixel = withLights(1, 1, 1, true);
+  everyPixel.skipUnlitTiles = false;
+  EXPECT_EQ(reasonFor(planFrame(everyPixel), "lit_tiles"), "light.skip_unlit_tiles is off");
+  EXPECT_TRUE(planFrame(everyPixel).runs(Pass::LitBackground));
 }
 
 // --layers: the light passes run for the light layers alone, and not when nothing reads the lit background.
@@ -186,11 +210,13 @@ TEST(FramePlan, EveryPassIsEitherRunOrSkippedExactlyOnce) {
             }
             std::sort(all.begin(), all.end());
             EXPECT_EQ(std::adjacent_find(all.begin(), all.end()), all.end());
-            EXPECT_EQ(all.size(), 22u);
+            EXPECT_EQ(all.size(), 23u);
             // A pass runs only when what it reads runs.
             if (plan.runs(Pass::LiquidTiles))
               EXPECT_TRUE(plan.runs(Pass::SplashDepthLayers) || plan.runs(Pass::AggregateDepthLayers));
             if (plan.runs(Pass::SkyOcclusion)) EXPECT_TRUE(plan.runs(Pass::LitBackground));
+            if (plan.runs(Pass::LitTiles))
+              EXPECT_TRUE(plan.runs(Pass::SkyOcclusion) && plan.runs(Pass::LitBackground));
             if (plan.runs(Pass::Smoothing)) EXPECT_TRUE(plan.runs(Pass::AggregateDepthLayers));
             if (plan.runs(Pass::FoamSceneDepth) && (splash || aggregate))
               EXPECT_TRUE(plan.runs(Pass::Refraction));

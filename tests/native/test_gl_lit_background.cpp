@@ -21,40 +21,6 @@ using namespace spindrift;
 using namespace liquid_test;
 using namespace floor_light;
 
-namespace {
-
-// A floor as Blender writes it with Cycles' light passes: Combined, Depth and constant DiffDir, DiffInd,
-// DiffCol, GlossDir, GlossInd, GlossCol (Combined = DiffCol (DiffDir + DiffInd) + GlossCol (GlossDir +
-// GlossInd)).
-void writeFloorWithLightPasses(const std::filesystem::path& path, float eyeDepth, const float passes[6][3]) {
-  const char* names[6] = {"DiffDir", "DiffInd", "DiffCol", "GlossDir", "GlossInd", "GlossCol"};
-  std::vector<std::string> channels = {"ViewLayer.Combined.R", "ViewLayer.Combined.G", "ViewLayer.Combined.B",
-                                       "ViewLayer.Combined.A", "ViewLayer.Depth.Z"};
-  for (const char* name : names)
-    for (const char* channel : {"R", "G", "B"})
-      channels.push_back(std::string("ViewLayer.") + name + "." + channel);
-  const int count = int(channels.size());
-  std::vector<float> pixels(std::size_t(kWidth) * kHeight * count);
-  for (std::size_t pixel = 0; pixel < std::size_t(kWidth) * kHeight; ++pixel) {
-    float* value = &pixels[pixel * count];
-    for (int c = 0; c < 3; ++c)
-      value[c] = passes[2][c] * (passes[0][c] + passes[1][c]) + passes[5][c] * (passes[3][c] + passes[4][c]);
-    value[3] = 1.0f;
-    value[4] = eyeDepth;
-    for (int pass = 0; pass < 6; ++pass)
-      for (int c = 0; c < 3; ++c)
-        value[5 + 3 * pass + c] = passes[pass][c];
-  }
-  auto output = OIIO::ImageOutput::create(path.string());
-  OIIO::ImageSpec spec(kWidth, kHeight, count, OIIO::TypeDesc::FLOAT);
-  spec.channelnames = channels;
-  output->open(path.string(), spec);
-  output->write_image(OIIO::TypeDesc::FLOAT, pixels.data());
-  output->close();
-}
-
-}  // namespace
-
 // The shadow and caustics scale the background's direct light only: exactly through Cycles' light passes when
 // the background has them, and with light.direct_fraction when it has none. Checked on the floor the slab
 // shadows where the camera sees no liquid in front of it.

@@ -150,6 +150,10 @@ struct LightFrameStats {
   /// Of those left out, the ones a view of a body few particles deep did not keep in any texel column
   /// (light.column_particles).
   std::size_t viewParticlesColumnThinned = 0;
+  /// Pixel tiles the lit background shaded, of `tiles`: those where a light's shadow or caustics or the sky
+  /// light the liquid takes change a pixel (light.skip_unlit_tiles); the rest keep the background.
+  std::size_t tilesShaded = 0;
+  std::size_t tiles = 0;
 };
 
 /// The cost a Renderer pays once: the GL context, made while it is constructed, and the shader programs,

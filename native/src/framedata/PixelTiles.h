@@ -9,6 +9,14 @@ namespace spindrift {
 /// the dam break's smoothing and refraction from 41 and 45 to 50 and 53 ms, drawn as two triangles each).
 constexpr int kPixelTileSize = 16;
 
+/// Tiles across and down a width × height frame.
+inline int pixelTilesAcross(int width) {
+  return (width + kPixelTileSize - 1) / kPixelTileSize;
+}
+inline int pixelTilesDown(int height) {
+  return (height + kPixelTileSize - 1) / kPixelTileSize;
+}
+
 /// The texture unit of fullscreen.vert's drawnTiles, which no fragment shader uses.
 constexpr unsigned kPixelTilesTextureUnit = 15;
 

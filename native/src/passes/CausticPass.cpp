@@ -15,6 +15,9 @@ void CausticPass::begin(int width, int height) {
   ensureTexture(causticSum_, GL_RGBA32F, width, height);
   const float nothing[4] = {0.0f, 0.0f, 0.0f, 0.0f};
   glClearTexImage(causticSum_.id(), 0, GL_RGBA, GL_FLOAT, nothing);
+  ensureTexture(causticTiles_, GL_R8UI, pixelTilesAcross(width), pixelTilesDown(height));
+  const GLubyte none = 0;
+  glClearTexImage(causticTiles_.id(), 0, GL_RED_INTEGER, GL_UNSIGNED_BYTE, &none);
 }
 
 void CausticPass::addLight(const Light& light, const SurfaceLayers& layers, const BackgroundData& background,
@@ -62,9 +65,11 @@ void CausticPass::addLight(const Light& light, const SurfaceLayers& layers, cons
   glBindTextureUnit(1, receiverLight_.id());
   glBindTextureUnit(2, receiverLightTexel_.id());
   glBindTextureUnit(3, background.eyeDepth.id());
+  glBindImageTexture(3, causticTiles_.id(), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_R8UI);
   glBindVertexArray(emptyVertexArray_.id());
   glDrawArrays(GL_TRIANGLES, 0, GLsizei(grid - 1) * GLsizei(grid - 1) * 6);
   glDisable(GL_BLEND);
+  glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
   checkGlError("splatting caustics");
 }
 

@@ -20,7 +20,7 @@ class CausticPass {
   void begin(int width, int height);
   void addLight(const Light& light, const SurfaceLayers& layers, const BackgroundData& background,
                 const LiquidParameters& liquid, const LightParameters& parameters);
-  CausticData result() const { return {causticSum_}; }
+  CausticData result() const { return {causticSum_, causticTiles_}; }
 
  private:
   ProgramObject pathsProgram_;
@@ -31,6 +31,7 @@ class CausticPass {
   Texture2D receiverLight_;
   Texture2D receiverLightTexel_;
   Texture2D causticSum_;
+  Texture2D causticTiles_;
 };
 
 }  // namespace spindrift

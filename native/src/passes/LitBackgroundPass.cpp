@@ -11,12 +11,14 @@ LitBackgroundPass::LitBackgroundPass(const ShaderLibrary& shaders)
           shaders.program({"fullscreen.vert", "lit_background.frag"}, {"SKY_OCCLUSION_SAMPLES"})),
       shadowingProgram_(shaders.program({"fullscreen.vert", "lit_background.frag"},
                                         {"SKY_OCCLUSION_SAMPLES", "SHADOW_IN_PLACE"})),
+      plainProgram_(shaders.program({"fullscreen.vert", "lit_background.frag"}, {"PLAIN"})),
       emptyVertexArray_(createVertexArray()),
       framebuffer_(createFramebuffer()) {}
 
 LitBackgroundData LitBackgroundPass::run(const BackgroundData& background, const LampLight& lamps,
                                          const CausticData& caustics, const SkyView& sky,
-                                         const Parameters& parameters, int width, int height) {
+                                         const Parameters& parameters, const LitTiles* tiles, int width,
+                                         int height) {
   for (Texture2D* target : {&color_, &liquidShadow_, &caustics_, &skyKept_})
     ensureTexture(*target, GL_RGBA32F, width, height);
   bindColorTargets(framebuffer_.id(), {&color_, &liquidShadow_, &caustics_, &skyKept_});
@@ -53,7 +55,16 @@ LitBackgroundData LitBackgroundPass::run(const BackgroundData& background, const
   glBindTextureUnit(3, background.eyeDepth.id());
   for (int i = 0; i < 3; ++i)
     glBindTextureUnit(GLuint(4 + i), hasLightPasses ? background.lightPasses[i].id() : 0);
-  drawFullscreenTriangle(emptyVertexArray_.id());
+  drawFullscreen(emptyVertexArray_.id(), tiles ? &tiles->lit : nullptr);
+  if (tiles) {
+    // The background as it is, through the lit variant's arithmetic (lit_background.frag, PLAIN).
+    const GLuint plain = plainProgram_.id();
+    glUseProgram(plain);
+    // The compiler may fold directFraction out of the plain arithmetic: a location of -1 is ignored.
+    glUniform1i(glGetUniformLocation(plain, "hasLightPasses"), hasLightPasses ? 1 : 0);
+    glUniform1f(glGetUniformLocation(plain, "directFraction"), parameters.light.direct_fraction);
+    drawFullscreen(emptyVertexArray_.id(), &tiles->plain);
+  }
   checkGlError("lighting the background");
   return {BackgroundData{color_, background.eyeDepth, background.environment, background.fallbackColor,
                          background.liquidEyeDepth, background.lightPasses},

@@ -10,22 +10,6 @@
 
 namespace spindrift {
 
-/// The sky's view of the liquid, which the lit background finds the sky light each point keeps from.
-struct SkyView {
-  const SurfaceLayers& layers;        ///< The liquid seen from straight above (LightDepthLayers).
-  const SkyOcclusionData* occlusion;  ///< The sky occlusion's samples, or null when it did not run.
-  float particleRadius;               ///< Points two radii below the drawn bottom still lie in it.
-};
-
-/// Where the lit background gets the lamps' direct light from: the shadow pass's sums over the lights, or the
-/// one light whose shadow it finds itself (its caustics on, and the sky occlusion's samples there), whose
-/// view must then be bound at binding 2 (LightDepthLayers) when `run` runs.
-struct LampLight {
-  const LiquidShadowData* sums = nullptr;
-  const Light* light = nullptr;
-  const SurfaceLayers* layers = nullptr;  ///< The one light's.
-};
-
 /// Applies the shadow and caustic sums and the sky light each point keeps (below the liquid's surface, and
 /// past other liquid) to the background (shaders/lit_background.frag): exactly through Cycles' light passes
 /// when the background has them, else with light.direct_fraction. The sky light is upsampled from the sky
@@ -34,13 +18,16 @@ struct LampLight {
 class LitBackgroundPass {
  public:
   explicit LitBackgroundPass(const ShaderLibrary& shaders);
+  /// With `tiles` (LitTilePass), the lit tiles are shaded and the others get the background as it is.
   LitBackgroundData run(const BackgroundData& background, const LampLight& lamps, const CausticData& caustics,
-                        const SkyView& sky, const Parameters& parameters, int width, int height);
+                        const SkyView& sky, const Parameters& parameters, const LitTiles* tiles, int width,
+                        int height);
 
  private:
   ProgramObject program_;            // finds what points below the surface keep (no sky occlusion)
   ProgramObject upsamplingProgram_;  // upsamples the sky occlusion's samples, which hold it
   ProgramObject shadowingProgram_;   // upsamples them and finds the one light's shadow itself
+  ProgramObject plainProgram_;       // the tiles where no light changes the background (PLAIN)
   VertexArrayObject emptyVertexArray_;
   FramebufferObject framebuffer_;
   Texture2D color_;

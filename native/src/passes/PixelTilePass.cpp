@@ -4,13 +4,6 @@
 
 namespace spindrift {
 
-int pixelTilesAcross(int width) {
-  return (width + kPixelTileSize - 1) / kPixelTileSize;
-}
-int pixelTilesDown(int height) {
-  return (height + kPixelTileSize - 1) / kPixelTileSize;
-}
-
 PixelTilePass::PixelTilePass(const ShaderLibrary& shaders)
     : program_(shaders.program({"pixel_tiles.comp"})), counter_(createBuffer()) {
   glNamedBufferStorage(counter_.id(), sizeof(std::uint32_t), nullptr,

@@ -25,8 +25,4 @@ class PixelTilePass {
   Texture2D marked_;
 };
 
-/// Tiles across and down a width × height frame.
-int pixelTilesAcross(int width);
-int pixelTilesDown(int height);
-
 }  // namespace spindrift
