@@ -15,7 +15,8 @@
 // shadow itself (SHADOW_IN_PLACE, lib/liquid_shadow.glsl) instead of reading the shadow pass's sums: one
 // full-screen pass, two targets and one rebuilt normal fewer. These are variants compiled from this source
 // (chosen by LitBackgroundPass), not switched by a uniform: llvmpipe runs both sides of a branch with masks.
-// The PLAIN variant shades the tiles where no light changes the background (lit_tiles.comp).
+// The PLAIN variant writes the colour of the tiles where no light changes the background (lit_tiles.comp), whose
+// other targets LitBackgroundPass clears to what the full variant writes there.
 #include "lib/frame.glsl"
 #include "lib/depth_layer.glsl"
 #include "lib/optics.glsl"
@@ -48,9 +49,11 @@ uniform bool hasLightPasses;
 uniform float directFraction;
 
 layout(location = 0) out vec4 outColor;
+#ifndef PLAIN
 layout(location = 1) out vec4 outShadow;
 layout(location = 2) out vec4 outCaustics;
 layout(location = 3) out vec4 outSky;
+#endif
 
 #ifdef SKY_OCCLUSION_SAMPLES
 layout(binding = 10) uniform sampler2D skyOcclusion;  // sky_occlusion.frag's samples
@@ -115,7 +118,7 @@ vec3 litColour(ivec2 pixel, vec3 background, vec3 shadow, vec3 caustics, vec3 sk
     return max(colour, vec3(0.0));
   }
   // background (f (shadow + caustics) + (1 - f) sky), written as what the liquid takes from the background,
-  // so that where it takes nothing the result is the background to the bit whatever f is (the PLAIN variant's).
+  // so that where it takes nothing the result is the background to the bit whatever f is (as PLAIN writes it).
   return background - background * (directFraction * (1.0 - shadow - caustics) + (1.0 - directFraction) * (1.0 - sky));
 }
 
@@ -123,10 +126,10 @@ void main() {
   ivec2 pixel = ivec2(gl_FragCoord.xy);
   vec4 background = texelFetch(backgroundColor, pixel, 0);
 #ifdef PLAIN
-  // A tile where no light changes the background (lit_tiles.comp): what the full variant computes there, with
-  // all of the lamps' and the sky's light kept and no caustics, through the same arithmetic, so that both
-  // variants write the same bits.
-  vec3 shadow = vec3(1.0), caustics = vec3(0.0), sky = vec3(1.0), lampLight = vec3(0.0);
+  // A tile where no light changes the background (lit_tiles.comp): what litColour gives there, with all of the
+  // lamps' and the sky's light kept and no caustics. Every term it takes away is then a finite value times
+  // zero, so the background comes out to the bit (clamped at zero, as litColour clamps it, with the passes).
+  outColor = vec4(hasLightPasses ? max(background.rgb, vec3(0.0)) : background.rgb, background.a);
 #else
   float eyeDepth = texelFetch(backgroundEyeDepth, pixel, 0).r;
 #ifdef SKY_OCCLUSION_SAMPLES
@@ -152,9 +155,9 @@ void main() {
   bool lit = shadowWeighted.a > 0.0;
   vec3 shadow = lit ? shadowWeighted.rgb / shadowWeighted.a : vec3(1.0);
   vec3 caustics = lit ? texelFetch(causticSum, pixel, 0).rgb / shadowWeighted.a : vec3(0.0);
-#endif
   outColor = vec4(litColour(pixel, background.rgb, shadow, caustics, sky, lampLight), background.a);
   outShadow = vec4(shadow, 1.0);
   outCaustics = vec4(caustics, 1.0);
   outSky = vec4(sky, 1.0);
+#endif
 }

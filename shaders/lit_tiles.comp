@@ -2,12 +2,13 @@
 // Marks the 16 × 16 pixel tiles (framedata/PixelTiles.h) where the lights change the background: a pixel in
 // a light's shadow or caustics, or one whose sky light the liquid takes (lit_background.frag). In every other
 // tile lit_background.frag would write the background as it is, a shadow of 1, no caustics and all of the
-// sky light; its PLAIN variant writes exactly that there without looking anything up. On a far camera's
-// frame the lit tiles were 4 % of the screen (docs/frame-cost.md, session 53).
+// sky light; LitBackgroundPass clears those targets so and its PLAIN variant writes the colour, without
+// looking anything up. On a far camera's frame the lit tiles were 5 % of the screen (docs/frame-cost.md,
+// session 53).
 //
 // A tile is lit when any sky occlusion sample its pixels upsample keeps less (or more) than all of the sky
-// light, or a caustic splat landed in it, or any of its pixels (SHADOW_IN_PLACE) has liquid in one of the four light
-// columns its shadow blends, or (else) a shadow sum that is not 1. Each test is the lit background's own
+// light, or a caustic splat landed in it, or any of its pixels has liquid in one of the four light columns its
+// shadow blends (SHADOW_IN_PLACE) or a shadow sum that is not 1 (else). Each test is the lit background's own
 // condition for a pixel to differ from the background, so the two variants together write every pixel as
 // the full pass would. One invocation per tile, which stops at its first lit pixel (pixel_tiles.comp).
 layout(local_size_x = 8, local_size_y = 8) in;
@@ -52,10 +53,13 @@ bool skyLightTaken(ivec2 first, ivec2 last) {
 }
 
 #ifdef SHADOW_IN_PLACE
-// Whether any solid point of the tile [first, last) lies inside the light's view, where its shadow is looked
-// up: the hull of the tile's pixel rays between its nearest and farthest solid, projected into the view. On a
-// far camera's frame most tiles lie outside it, and are settled by their depths alone.
-bool tileInLightView(ivec2 first, ivec2 last) {
+// Whether liquid may shadow a solid point of the tile [first, last). The tile's points lie in the hull of its
+// pixel rays between its nearest and farthest solid (a point is its depth times an affine function of its
+// pixel), so the hull's corners bound where the points fall in the light's view and how far along it they lie.
+// A point outside the view keeps its light, and one in a column whose liquid does not begin before the point
+// is not in its shadow (liquidInColumn). On a far camera's frame most tiles are settled by their corners, and
+// most of a pool's surroundings by the few columns they fall in.
+bool shadowPossible(ivec2 first, ivec2 last) {
   float nearest = kNoSurfaceDepth, farthest = 0.0;
   for (int y = first.y; y < last.y; ++y)
     for (int x = first.x; x < last.x; ++x) {
@@ -66,17 +70,29 @@ bool tileInLightView(ivec2 first, ivec2 last) {
     }
   if (!(nearest <= farthest)) return false;  // no solid in the tile: nothing to shadow
   vec2 low = vec2(1e30), high = vec2(-1e30);
+  float farthestFromLight = 0.0;
   for (int corner = 0; corner < 8; ++corner) {
-    // A point is its depth times an affine function of its pixel, so the corners' hull holds every point.
     vec2 fragCoord = vec2((corner & 1) != 0 ? float(last.x) - 0.5 : float(first.x) + 0.5,
                           (corner & 2) != 0 ? float(last.y) - 0.5 : float(first.y) + 0.5);
     vec3 world = worldPositionFromFragCoord(fragCoord, (corner & 4) != 0 ? farthest : nearest);
-    if (!(lightEyeDepthOf(world) > 0.0)) return true;  // reaches behind the light: no bound from the corners
+    float lightDepth = lightEyeDepthOf(world);
+    if (!(lightDepth > 0.0)) return true;  // reaches behind the light: no bound from the corners
     vec2 texel = lightTexelFromWorld(world);
     low = min(low, texel);
     high = max(high, texel);
+    farthestFromLight = max(farthestFromLight, lightDepth);
   }
-  return all(lessThan(low, lightView.viewportSize.xy)) && all(greaterThanEqual(high, vec2(0.0)));
+  vec2 size = lightView.viewportSize.xy;
+  if (!(all(lessThan(low, size)) && all(greaterThanEqual(high, vec2(0.0))))) return false;
+  // The columns the points can blend (lightFootprint: the texel below and the one after, clamped).
+  ivec2 lowColumn = ivec2(floor(clamp(low - 0.5, vec2(0.0), size - 1.001)));
+  ivec2 highColumn = min(ivec2(floor(clamp(high - 0.5, vec2(0.0), size - 1.001))) + 1, ivec2(size) - 1);
+  ivec2 columns = highColumn - lowColumn + 1;
+  if (columns.x * columns.y > 256) return true;  // more columns than pixels: each pixel is tested instead
+  for (int y = lowColumn.y; y <= highColumn.y; ++y)
+    for (int x = lowColumn.x; x <= highColumn.x; ++x)
+      if (texelFetch(lightFrontDepth, ivec2(x, y), 0).r < farthestFromLight) return true;
+  return false;
 }
 #endif
 
@@ -108,11 +124,11 @@ void main() {
   ivec2 last = min(first + tileSize, ivec2(frame.viewportSize.xy));
   bool lit = texelFetch(causticTiles, tile, 0).r != 0u || skyLightTaken(first, last);
 #ifdef SHADOW_IN_PLACE
-  bool shadowPossible = !lit && tileInLightView(first, last);
+  bool mayBeShadowed = !lit && shadowPossible(first, last);
 #else
-  bool shadowPossible = !lit;
+  bool mayBeShadowed = !lit;
 #endif
-  for (int y = first.y; y < last.y && shadowPossible && !lit; ++y)
+  for (int y = first.y; y < last.y && mayBeShadowed && !lit; ++y)
     for (int x = first.x; x < last.x && !lit; ++x)
       lit = lampLightChanged(ivec2(x, y));
   imageStore(litTiles, tile, uvec4(lit ? 1u : 0u));

@@ -128,22 +128,25 @@ TEST(GLLitTiles, SpotAndPointLightsAreTiledAlike) {
 
 // A floating slab under a low sun casts its shadow away from itself, where no sky light is taken (one sky
 // direction, about straight up): those tiles are lit by the shadow alone, found from the light's columns
-// (caustics on) or the shadow pass's sums (off).
+// (caustics on) or the shadow pass's sums (off). In a view of 32 texels a tile falls in few enough of the
+// light's columns that they are read instead of its pixels (lit_tiles.comp, shadowPossible).
 TEST(GLLitTiles, AShadowAwayFromItsLiquidIsShaded) {
   TempDirectory directory;
   Scene scene = floorScene(directory);
   scene.lights.push_back(sunAlong({0.9f, 0.0f, -1.0f}));
   scene.parameters.light.sky_occlusion_directions = 1;
   const Particles floating = slabParticles({-2.6f, -0.4f, 0.8f}, {-2.0f, 0.4f, 2.0f});
-  for (bool caustics : {true, false}) {
-    SCOPED_TRACE(caustics ? "caustics" : "no caustics");
-    scene.parameters.light.caustics = caustics;
-    const RenderResult tiled = expectSameBothWays(scene, floating);
-    EXPECT_LT(tiled.stats.light.tilesShaded, tiled.stats.light.tiles / 2);
-    int shadowed = 0;
-    for (int row = 0; row < kHeight; ++row)
-      for (int column = 0; column < kWidth; ++column)
-        shadowed += at(*tiled.layer("liquid_shadow"), kWidth, column, row, 0) < 0.99f;
-    EXPECT_GT(shadowed, 100);
-  }
+  for (int viewSize : {512, 32})
+    for (bool caustics : {true, false}) {
+      SCOPED_TRACE(std::to_string(viewSize) + (caustics ? " texels, caustics" : " texels, no caustics"));
+      scene.parameters.light.shadow_map_size = viewSize;
+      scene.parameters.light.caustics = caustics;
+      const RenderResult tiled = expectSameBothWays(scene, floating);
+      EXPECT_LT(tiled.stats.light.tilesShaded, tiled.stats.light.tiles / 2);
+      int shadowed = 0;
+      for (int row = 0; row < kHeight; ++row)
+        for (int column = 0; column < kWidth; ++column)
+          shadowed += at(*tiled.layer("liquid_shadow"), kWidth, column, row, 0) < 0.99f;
+      EXPECT_GT(shadowed, 100);
+    }
 }

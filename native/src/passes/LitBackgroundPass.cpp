@@ -21,6 +21,13 @@ LitBackgroundData LitBackgroundPass::run(const BackgroundData& background, const
                                          int height) {
   for (Texture2D* target : {&color_, &liquidShadow_, &caustics_, &skyKept_})
     ensureTexture(*target, GL_RGBA32F, width, height);
+  if (tiles) {
+    // What the full variant writes where no light changes the background: all of the lamps' and the sky's
+    // light kept, no caustics. The tiles it shades overwrite these; PLAIN writes the others' colour.
+    const float kept[4] = {1.0f, 1.0f, 1.0f, 1.0f}, none[4] = {0.0f, 0.0f, 0.0f, 1.0f};
+    clearColorTargets(framebuffer_.id(), {&liquidShadow_, &skyKept_}, kept);
+    clearColorTargets(framebuffer_.id(), {&caustics_}, none);
+  }
   bindColorTargets(framebuffer_.id(), {&color_, &liquidShadow_, &caustics_, &skyKept_});
   glDisable(GL_DEPTH_TEST);
   glDisable(GL_BLEND);
@@ -57,12 +64,11 @@ LitBackgroundData LitBackgroundPass::run(const BackgroundData& background, const
     glBindTextureUnit(GLuint(4 + i), hasLightPasses ? background.lightPasses[i].id() : 0);
   drawFullscreen(emptyVertexArray_.id(), tiles ? &tiles->lit : nullptr);
   if (tiles) {
-    // The background as it is, through the lit variant's arithmetic (lit_background.frag, PLAIN).
+    // The background as it is (lit_background.frag, PLAIN), into the colour alone.
+    bindColorTargets(framebuffer_.id(), {&color_});
     const GLuint plain = plainProgram_.id();
     glUseProgram(plain);
-    // The compiler may fold directFraction out of the plain arithmetic: a location of -1 is ignored.
-    glUniform1i(glGetUniformLocation(plain, "hasLightPasses"), hasLightPasses ? 1 : 0);
-    glUniform1f(glGetUniformLocation(plain, "directFraction"), parameters.light.direct_fraction);
+    glUniform1i(uniformLocation(plain, "hasLightPasses"), hasLightPasses ? 1 : 0);
     drawFullscreen(emptyVertexArray_.id(), &tiles->plain);
   }
   checkGlError("lighting the background");
