@@ -102,6 +102,18 @@ BufferObject createBuffer() {
   return BufferObject(id);
 }
 
+BufferObject createCounters(std::size_t count) {
+  BufferObject counters = createBuffer();
+  glNamedBufferStorage(counters.id(), GLsizeiptr(count * sizeof(std::uint32_t)), nullptr,
+                       GL_DYNAMIC_STORAGE_BIT | GL_MAP_READ_BIT);
+  return counters;
+}
+
+void readCounters(const BufferObject& counters, std::uint32_t* values, std::size_t count) {
+  glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);  // The shaders' atomic writes must land before the read.
+  glGetNamedBufferSubData(counters.id(), 0, GLsizeiptr(count * sizeof(std::uint32_t)), values);
+}
+
 FramebufferObject createFramebuffer() {
   GLuint id = 0;
   glCreateFramebuffers(1, &id);

@@ -4,6 +4,8 @@
 
 #include <array>
 #include <atomic>
+#include <cstddef>
+#include <cstdint>
 #include <memory>
 #include <utility>
 
@@ -102,6 +104,12 @@ void uploadTexture(Texture2D& texture, GLenum internalFormat, int width, int hei
                    const float* pixels, bool linear);
 
 BufferObject createBuffer();
+/// A buffer of `count` uint32 counters that shaders add to atomically, which the host reads back
+/// (readCounters).
+BufferObject createCounters(std::size_t count);
+/// The first `count` counters of a createCounters buffer, once the shaders' atomic writes have landed (waits
+/// for the GPU).
+void readCounters(const BufferObject& counters, std::uint32_t* values, std::size_t count);
 FramebufferObject createFramebuffer();
 VertexArrayObject createVertexArray();
 QueryObject createQuery(GLenum target);

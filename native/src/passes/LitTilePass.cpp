@@ -5,10 +5,7 @@ namespace spindrift {
 LitTilePass::LitTilePass(const ShaderLibrary& shaders)
     : program_(shaders.program({"lit_tiles.comp"})),
       shadowingProgram_(shaders.program({"lit_tiles.comp"}, {"SHADOW_IN_PLACE"})),
-      counter_(createBuffer()) {
-  glNamedBufferStorage(counter_.id(), sizeof(std::uint32_t), nullptr,
-                       GL_DYNAMIC_STORAGE_BIT | GL_MAP_READ_BIT);
-}
+      counter_(createCounters(1)) {}
 
 LitTiles LitTilePass::run(const BackgroundData& background, const LampLight& lamps,
                           const CausticData& caustics, const SkyOcclusionData& sky, int width, int height) {
@@ -40,8 +37,7 @@ LitTiles LitTilePass::run(const BackgroundData& background, const LampLight& lam
 
 std::uint32_t LitTilePass::litTiles() const {
   std::uint32_t count = 0;
-  glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
-  glGetNamedBufferSubData(counter_.id(), 0, sizeof count, &count);
+  readCounters(counter_, &count, 1);
   return count;
 }
 

@@ -5,10 +5,7 @@
 namespace spindrift {
 
 PixelTilePass::PixelTilePass(const ShaderLibrary& shaders)
-    : program_(shaders.program({"pixel_tiles.comp"})), counter_(createBuffer()) {
-  glNamedBufferStorage(counter_.id(), sizeof(std::uint32_t), nullptr,
-                       GL_DYNAMIC_STORAGE_BIT | GL_MAP_READ_BIT);
-}
+    : program_(shaders.program({"pixel_tiles.comp"})), counter_(createCounters(1)) {}
 
 PixelTiles PixelTilePass::run(const std::vector<const Texture2D*>& eyeDepths, int width, int height) {
   if (eyeDepths.size() == 0 || eyeDepths.size() > 4) throw Error("PixelTilePass: one to four layers");
@@ -32,8 +29,7 @@ PixelTiles PixelTilePass::run(const std::vector<const Texture2D*>& eyeDepths, in
 
 std::uint32_t PixelTilePass::markedTiles() const {
   std::uint32_t count = 0;
-  glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
-  glGetNamedBufferSubData(counter_.id(), 0, sizeof count, &count);
+  readCounters(counter_, &count, 1);
   return count;
 }
 

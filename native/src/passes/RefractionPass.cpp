@@ -16,9 +16,7 @@ RefractionPass::RefractionPass(const ShaderLibrary& shaders)
       packFramebuffer_(createFramebuffer()),
       emptyVertexArray_(createVertexArray()),
       framebuffer_(createFramebuffer()),
-      counters_(createBuffer()) {
-  glNamedBufferStorage(counters_.id(), kRayCounters * sizeof(std::uint32_t), nullptr,
-                       GL_DYNAMIC_STORAGE_BIT | GL_MAP_READ_BIT);
+      counters_(createCounters(kRayCounters)) {
   const float noSurface[4] = {1e10f, 0.0f, 0.0f, 0.0f};
   uploadTexture(emptyLayer_, GL_RGBA32F, 1, 1, 4, noSurface, false);
 }
@@ -152,8 +150,7 @@ void RefractionPass::clearToNoLiquid() {
 
 RefractionStatistics RefractionPass::statistics() const {
   std::uint32_t counters[kRayCounters] = {};
-  glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);  // The shader's atomic writes must land before the read.
-  glGetNamedBufferSubData(counters_.id(), 0, sizeof counters, counters);
+  readCounters(counters_, counters, kRayCounters);
   RefractionStatistics statistics;
   for (int i = 0; i < 4; ++i)
     statistics.orders[i] = counters[i];
