@@ -1,6 +1,7 @@
 #pragma once
 
 #include <cmath>
+#include <cstring>
 #include <random>
 #include <string>
 #include <vector>
@@ -70,6 +71,19 @@ inline void expectAllChannelsFinite(const spindrift::RenderResult& result) {
   for (const char* layer : {"composite", "liquid", "liquid_splash", "liquid_class", "depth", "normal",
                             "thickness", "refraction_uv", "transmittance", "reflection"})
     EXPECT_NE(result.layer(layer), nullptr) << layer;
+}
+
+// Two renders hold the same layers, every value the same to the bit (a skipped pass changes nothing).
+inline void expectSameLayers(const spindrift::RenderResult& expected, const spindrift::RenderResult& actual) {
+  EXPECT_EQ(actual.layers.size(), expected.layers.size());
+  for (const spindrift::ImageLayer& layer : expected.layers) {
+    SCOPED_TRACE(layer.name);
+    const spindrift::ImageLayer* other = actual.layer(layer.name);
+    EXPECT_TRUE(other && other->pixels.size() == layer.pixels.size());
+    if (other && other->pixels.size() == layer.pixels.size())
+      EXPECT_EQ(std::memcmp(other->pixels.data(), layer.pixels.data(), layer.pixels.size() * sizeof(float)),
+                0);
+  }
 }
 
 inline float at(const spindrift::ImageLayer& layer, int width, int column, int row, int channel) {

@@ -4,7 +4,6 @@
 // keep), and compared bit for bit. GL tests on llvmpipe, on FloorLightScenes.h's floor.
 #include <gtest/gtest.h>
 
-#include <cstring>
 #include <string>
 
 #include <glm/geometric.hpp>
@@ -43,15 +42,7 @@ RenderResult expectSameBothWays(Scene scene, const Particles& particles) {
   EXPECT_EQ(tiled.stats.light.tiles,
             std::size_t(pixelTilesAcross(kWidth)) * std::size_t(pixelTilesDown(kHeight)));
   EXPECT_GT(tiled.stats.light.tilesShaded, 0u);
-  EXPECT_EQ(tiled.layers.size(), everyPixel.layers.size());
-  for (const ImageLayer& layer : everyPixel.layers) {
-    SCOPED_TRACE(layer.name);
-    const ImageLayer* other = tiled.layer(layer.name);
-    EXPECT_TRUE(other && other->pixels.size() == layer.pixels.size());
-    if (other && other->pixels.size() == layer.pixels.size())
-      EXPECT_EQ(std::memcmp(other->pixels.data(), layer.pixels.data(), layer.pixels.size() * sizeof(float)),
-                0);
-  }
+  expectSameLayers(everyPixel, tiled);
   return tiled;
 }
 

@@ -4,7 +4,6 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
-#include <cstring>
 #include <random>
 
 #include <glm/trigonometric.hpp>
@@ -62,15 +61,7 @@ RenderResult expectSameBothWays(Scene scene, const Particles& particles) {
                                                 std::size_t(pixelTilesDown(scene.camera.height)));
   EXPECT_LE(liquidTiles.stats.liquid.tilesShaded, liquidTiles.stats.liquid.tiles);
   EXPECT_GE(liquidTiles.layers.size(), 10u);
-  EXPECT_EQ(liquidTiles.layers.size(), everyPixel.layers.size());
-  for (const ImageLayer& layer : everyPixel.layers) {
-    SCOPED_TRACE(layer.name);
-    const ImageLayer* other = liquidTiles.layer(layer.name);
-    EXPECT_TRUE(other && other->pixels.size() == layer.pixels.size());
-    if (other && other->pixels.size() == layer.pixels.size())
-      EXPECT_EQ(std::memcmp(other->pixels.data(), layer.pixels.data(), layer.pixels.size() * sizeof(float)),
-                0);
-  }
+  expectSameLayers(everyPixel, liquidTiles);
   return liquidTiles;
 }
 
