@@ -47,6 +47,16 @@ uniform mat4 domainFromWorld;
 uniform vec3 domainLow;
 uniform vec3 domainHigh;
 
+// What a solid in the liquid, lit from above it, is seen with: its lit radiance divided by n^2, from air and
+// from inside the liquid alike. This is the convention of the path tracer the layers composite over: Cycles
+// keeps a ray's radiance where it refracts, so light that enters the water reaches a submerged solid with
+// 1 / n^2 of the irradiance physics gives it (its solid angle narrows by n^2 with no gain in radiance), and
+// the sky seen through the surface from below keeps its radiance, as the crossings below keep it. Seen from
+// air the two conventions agree (physics loses the same 1 / n^2 on the way out); seen from inside the water
+// only this one makes a submerged floor and the sky in Snell's window agree with each other and with the
+// user's render (docs/liquid.md, "A camera under water").
+float submergedSolidDivisor() { return indexOfRefraction * indexOfRefraction; }
+
 layout(location = 0) out vec4 outLiquid;       // premultiplied RGBA over transparent
 layout(location = 1) out vec4 outSplash;       // the same, where the first surface is a splash
 layout(location = 2) out float outClass;       // 0 background, 1 splash, 2 aggregate
@@ -436,7 +446,6 @@ void main() {
   int secondBody = -1;
   ivec2 entryPixel = pixel;  // where the path last entered a body, for the thickness of an unseen remainder
   vec2 hiddenEndTexel = vec2(-1.0);  // the background texel that stands in for an end hidden behind a solid
-  vec2 ignoredTexel;
   float ignoredDistance = 0.0;
   // Where the last search for a second body passed behind the solids, when it found no body.
   SolidHit solidBehind;
@@ -446,7 +455,8 @@ void main() {
   vec3 position, normal;
   if (underLiquid) {
     // Under water the whole view is liquid. The path runs from the eye through liquid to the body's back
-    // layer, the surface seen from below, unless a solid comes first: then the pixel is that solid, absorbed.
+    // layer, the surface seen from below, unless a solid comes first: then the pixel is that solid, absorbed,
+    // seen as a submerged solid is.
     body = firstBody = kAggregate;
     float surfaceDepth = backDepth(kAggregate, pixel);
     float solidDepth = texelAt(backgroundEyeDepth, pixel).r;
@@ -457,6 +467,7 @@ void main() {
     outThickness = pathInLiquid;
     if (!(surfaceDepth < solidDepth && surfaceDepth < getFarClip())) {
       bool seesSolid = solidDepth < getFarClip();
+      throughput /= submergedSolidDivisor();
       vec3 seen = seesSolid ? texelAt(backgroundColor, pixel).rgb : vec3(0.0);
       vec4 ownUv = vec4(gl_FragCoord.xy * frame.viewportSize.zw, 1.0, 0.0);
       imageStore(refractionUvImage, pixel, seesSolid ? ownUv : vec4(0.0));
@@ -501,11 +512,15 @@ void main() {
       // Schlick's cosine is taken on the rarer (air) side, which is the refracted side when leaving.
       float fresnel = schlickFresnel(inside ? -dot(refracted, facing) : cosine, indexOfRefraction);
       // Under water the light reflected at the surface from below crosses the liquid to the solid it comes
-      // from; inside a body seen from outside the reflection's path in liquid is short and left out.
+      // from, a submerged one; inside a body seen from outside the reflection's path in liquid is short and
+      // left out.
       float reflectedDistance;
+      vec2 reflectedTexel;
       // Fresnel weights it by a few per cent: a coarser march than the refraction's (docs/frame-cost.md).
-      vec3 reflectedColour = colourAlong(position, reflected, reflectionStepPixels, ignoredTexel, reflectedDistance);
-      if (inside && underLiquid) reflectedColour *= exp(-absorptionPerUnitLength * reflectedDistance);
+      vec3 reflectedColour = colourAlong(position, reflected, reflectionStepPixels, reflectedTexel, reflectedDistance);
+      if (inside && underLiquid)
+        reflectedColour *= exp(-absorptionPerUnitLength * reflectedDistance) /
+                           (reflectedTexel.x >= 0.0 ? submergedSolidDivisor() : 1.0);
       colour += throughput * fresnel * reflectedColour;
       throughput *= 1.0 - fresnel;
       direction = refracted;
@@ -527,21 +542,19 @@ void main() {
       throughput *= exp(-absorptionPerUnitLength * length);
       if (exit.hidden) {
         // A path that goes on behind a solid hiding the liquid (under a tank's rim) ends on a submerged
-        // surface no view shows: it keeps 1 / n^2 of its radiance as a seen one does, and stands in for it
-        // is the background where the path was last seen in the liquid, the container behind the water
-        // (not the solid in front of the path, whose outside faces the camera).
+        // surface no view shows: it is seen as a submerged solid is, and what stands in for it is the
+        // background where the path was last seen in the liquid, the container behind the water (not the
+        // solid in front of the path, whose outside faces the camera).
         position += exit.t * direction;
-        if (!underLiquid) throughput /= indexOfRefraction * indexOfRefraction;
+        throughput /= submergedSolidDivisor();
         hiddenEndTexel = exit.fragCoord;
         break;
       }
       if (exit.found && exit.solid) {
-        // The path ends on a solid inside the liquid (a pool's floor, a stone under water). Its light leaves
-        // the liquid through the surface the path entered by, and radiance divided by the square of the index
-        // is what carries across an interface: seen from air, a submerged surface keeps 1 / n^2 of its
-        // radiance (after Fresnel). A camera in the liquid sees it in the same medium.
+        // The path ends on a solid inside the liquid (a pool's floor, a stone under water), seen from air
+        // through the surface the path entered by or, under water, from inside the liquid.
         position += exit.t * direction;
-        if (!underLiquid) throughput /= indexOfRefraction * indexOfRefraction;
+        throughput /= submergedSolidDivisor();
         break;
       }
       if (!exit.found || refractions >= maxRefractions) {
