@@ -446,11 +446,12 @@ def write_page(results, timings, renderer, samples, background_samples, loads):
                       "renders what lies under water, lit from above it, darker than geometric optics does: a "
                       "Lambertian floor under a flat surface, lit by a uniform sky, 0.42–0.54 of the dry floor where "
                       "optics gives 1.03–1.50 (albedo 0.2 and 0.8; `tests/bench/cycles_underwater_sky.py`): 1/n² "
-                      "(light that enters the water keeps its radiance instead of gaining n²) times about 0.73 "
-                      "(docs/liquid.md, \"A camera under water\"). Spindrift's image (with the sun and light "
-                      "passes) over Cycles' (n² is 1.77), R/G/B, where the camera sees the pool's floor: "
+                      "(light that enters the water keeps its radiance instead of gaining n²) times about 0.73. "
+                      "Spindrift sees a submerged solid at its lit radiance over n², from air and from under water "
+                      "alike, as Cycles does (docs/liquid.md, \"Radiance under water\"). Spindrift's image (with the "
+                      "sun and light passes) over Cycles', R/G/B, where the camera sees the pool's floor: "
                       f"{ratios(results[frame]['under_water_ratios']['floor'])}; its walls: "
-                      f"{ratios(results[frame]['under_water_ratios']['walls'])}.", ""]
+                      f"{ratios(results[frame]['under_water_ratios']['walls'])} (their sky light: docs/liquid.md).", ""]
     lines += ["## Light passes", "", "Spindrift's `liquid_shadow`, `caustics` and `liquid_sky` (red channel, black 0, white 1) "
               "and its composite, with the sun and Cycles' light passes:", ""]
     lines += [f"![{frame}: light passes](images/light_{frame}_passes.png)" for frame in FRAMES]
