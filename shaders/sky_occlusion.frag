@@ -9,10 +9,13 @@
 // length in the liquid. The liquid is the sky view's (straight down) depth layers: a point lies in it when it
 // is between the front and back layer of its column. A path ends at a solid (a point behind the background's
 // depth, as the camera sees it, by less than `solidThickness`). A point that lies in the liquid itself loses
-// the light of the liquid above it (lib/submerged_sky.glsl), which each sample multiplies in here, so that the
-// lit background only upsamples: computed at every pixel, those four columns took llvmpipe 4.8 of the lit
-// background's 11.5 ms on the pool seen from the side (docs/frame-cost.md, session 44). Its own body is not
-// counted again by the directions.
+// the light of the liquid above it (lib/submerged_sky.glsl), which each sample takes here, so that the lit
+// background only upsamples: computed at every pixel, those four columns took llvmpipe 4.8 of the lit
+// background's 11.5 ms on the pool seen from the side (docs/frame-cost.md, session 44). Such a point sees the
+// sky only through Snell's window, the cone of directions within the critical angle of straight up: those
+// directions keep what the liquid above lets through; beyond the window the surface reflects them totally,
+// so they see the surroundings along their path up to the surface and back down; below the horizon they see
+// the surroundings through the liquid (docs/liquid.md, "Sky light under water").
 // Output: (kept light per channel, the sample's eye depth) for the depth-aware upsampling.
 #include "lib/frame.glsl"
 #include "lib/depth_layer.glsl"
@@ -36,12 +39,15 @@ uniform float shortestStep;         // the march's step: two sky texels (docs/li
 uniform float submergedTolerance;   // how far below the liquid's drawn bottom a point still lies in it
 uniform float solidThickness;       // world depth behind a solid's visible surface that counts as inside it
 uniform vec3 absorptionPerUnitLength;
+uniform float windowCosine;          // cosine of the critical angle, sqrt(1 - 1 / n^2): Snell's window's edge
 
 #include "lib/submerged_sky.glsl"
 
 layout(location = 0) out vec4 outKept;
 
 const int kMaxStepsPerDirection = 32;
+// A path reflected totally at a surface it meets almost level is longer than any body: capped.
+const float kLongestReflectedPath = 10.0;
 const float kGoldenAngle = 2.39996323;
 
 // A point as the two views that judge it see it: the sky view's clip coordinates and eye depth (is it in the
@@ -95,9 +101,10 @@ mat3 basisAround(vec3 normal) {
               vec3(b, sign + normal.y * normal.y * a, -normal.y), normal);
 }
 
-// What one direction's straight path from `origin` lets through. `skipOwnBody`: the path starts in the
-// liquid, whose light loss liquid_shadow.frag counts; the stretch up to where it first leaves is skipped.
-vec3 keptAlong(vec3 origin, vec3 direction, bool skipOwnBody) {
+// What one direction's straight path from `origin` lets through: Fresnel where it crosses the liquid's
+// surface and Beer-Lambert over its length in the liquid. `startsInLiquid`: the origin lies in the liquid (a
+// submerged point), so the path's first stretch is in it, and it crosses a surface once where it leaves it.
+vec3 keptAlong(vec3 origin, vec3 direction, bool startsInLiquid) {
   vec3 toCentre = liquidBounds.xyz - origin;
   float along = dot(toCentre, direction);
   float missSquared = dot(toCentre, toCentre) - along * along;
@@ -116,22 +123,20 @@ vec3 keptAlong(vec3 origin, vec3 direction, bool skipOwnBody) {
   float stepLength = (end - start) / float(steps);
   float lengthInLiquid = 0.0;
   int crossings = 0;
-  bool wasIn = false, skipping = skipOwnBody;
+  bool wasIn = startsInLiquid, inStartingBody = startsInLiquid;
   ViewedPoint first = viewed(origin, 1.0), perUnit = viewed(direction, 0.0);
   for (int i = 0; i < steps; ++i) {
     ViewedPoint point = advanced(first, perUnit, start + (float(i) + 0.5) * stepLength);
     if (inSolid(point)) break;
-    vec2 column = skyColumn(point);
-    if (skipping) {
-      // A floor the liquid rests on lies within its drawn bottom's undulation: that gap is the body's too.
-      skipping = inLiquid(point, column, submergedTolerance);
-      if (skipping) continue;
-    }
-    bool isIn = inLiquid(point, column, 0.0);
+    // A floor the liquid rests on lies within its drawn bottom's undulation: that gap is the body's too.
+    bool isIn = inLiquid(point, skyColumn(point), inStartingBody ? submergedTolerance : 0.0);
     if (isIn) {
       lengthInLiquid += stepLength;
       crossings += wasIn ? 0 : 2;  // in and out again
+    } else if (inStartingBody) {
+      crossings += 1;  // out of the body it started in
     }
+    inStartingBody = inStartingBody && isIn;
     wasIn = isIn;
   }
   return pow(1.0 - kHemisphericalFresnel, float(crossings)) * exp(-absorptionPerUnitLength * lengthInLiquid);
@@ -150,6 +155,10 @@ void main() {
   vec3 origin = world + basis[2] * skyTexel;
   ViewedPoint here = viewed(world, 1.0);
   bool submerged = inLiquid(here, skyColumn(here), submergedTolerance);
+  // A submerged point: what its window keeps, and its depth below the surface, which a totally reflected
+  // path crosses twice.
+  vec3 window = submerged ? submergedSkyKept(world) : vec3(1.0);
+  float depth = submerged ? depthBelowSurface(world) : 0.0;
   vec3 kept = vec3(0.0);
   for (int i = 0; i < directionCount; ++i) {
     // Malley's method: points spread evenly over the unit disc (a golden-angle spiral), lifted onto the
@@ -157,7 +166,18 @@ void main() {
     float radiusSquared = (float(i) + 0.5) / float(directionCount);
     float angle = float(i) * kGoldenAngle;
     vec3 local = vec3(sqrt(radiusSquared) * vec2(cos(angle), sin(angle)), sqrt(1.0 - radiusSquared));
-    kept += keptAlong(origin, basis * local, submerged);
+    vec3 direction = basis * local;
+    if (!submerged || direction.z <= 0.0) {
+      kept += keptAlong(origin, direction, submerged);
+    } else if (direction.z > windowCosine) {
+      kept += window;
+    } else {
+      // Up to the surface and back down at the same angle: the path down from the surface, as long as the one
+      // from the point's mirror image, is the point's own mirrored path plus the depth again.
+      float upAndDown = min(2.0 * depth / direction.z, kLongestReflectedPath);
+      kept += exp(-absorptionPerUnitLength * upAndDown) *
+              keptAlong(origin, vec3(direction.xy, -direction.z), true);
+    }
   }
-  outKept = vec4(kept / float(directionCount) * submergedSkyKept(world), eyeDepth);
+  outKept = vec4(kept / float(directionCount), eyeDepth);
 }

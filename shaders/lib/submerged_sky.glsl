@@ -8,15 +8,22 @@
 const float kHemisphericalFresnel = 0.066;  // water's Fresnel reflectance averaged over a cosine-weighted sky
 const float kDiffusePathFactor = 1.194;     // mean 1 / cos of cosine-weighted sky light refracted into water
 
-// The sky light that reaches a point through one texel's column of the sky's view; light past the liquid's
-// bottom is unaffected (that point is under the liquid but not in it).
-vec3 skyThroughTexel(ivec2 texel, float pointDepth) {
+// How far down in one texel's column of the sky's view a point lies below the liquid's surface; negative where
+// it is not in that column's liquid: where the column holds none, or past the liquid's bottom (the point is
+// under the liquid but not in it).
+float depthInColumn(ivec2 texel, float pointDepth) {
   float front, back, texelSize;
-  if (!liquidInColumn(texel, pointDepth, front, back, texelSize)) return vec3(1.0);
+  if (!liquidInColumn(texel, pointDepth, front, back, texelSize)) return -1.0;
   // The drawn bottom undulates by about a particle radius; a floor the liquid rests on lies within that.
-  if (pointDepth > back + max(2.0 * texelSize, submergedTolerance)) return vec3(1.0);
-  float pathLength = pathInColumn(texel, front, back, pointDepth);
-  return (1.0 - kHemisphericalFresnel) * exp(-absorptionPerUnitLength * pathLength * kDiffusePathFactor);
+  if (pointDepth > back + max(2.0 * texelSize, submergedTolerance)) return -1.0;
+  return pathInColumn(texel, front, back, pointDepth);
+}
+
+// The sky light that reaches a point through one texel's column of the sky's view.
+vec3 skyThroughTexel(ivec2 texel, float pointDepth) {
+  float depth = depthInColumn(texel, pointDepth);
+  if (depth < 0.0) return vec3(1.0);
+  return (1.0 - kHemisphericalFresnel) * exp(-absorptionPerUnitLength * depth * kDiffusePathFactor);
 }
 
 // The same at a world point, from the four texels around it, blended bilinearly.
@@ -27,4 +34,17 @@ vec3 submergedSkyKept(vec3 world) {
   if (!columnsAround(world, base, blend, depth)) return vec3(1.0);
   return blendColumns(skyThroughTexel(base, depth), skyThroughTexel(base + ivec2(1, 0), depth),
                       skyThroughTexel(base + ivec2(0, 1), depth), skyThroughTexel(base + ivec2(1, 1), depth), blend);
+}
+
+// How far below the liquid's surface a world point lies (0 where it is not in the liquid), from the same four
+// columns, blended alike.
+float depthBelowSurface(vec3 world) {
+  ivec2 base;
+  vec2 blend;
+  float depth;
+  if (!columnsAround(world, base, blend, depth)) return 0.0;
+  vec4 depths = max(vec4(depthInColumn(base, depth), depthInColumn(base + ivec2(1, 0), depth),
+                         depthInColumn(base + ivec2(0, 1), depth), depthInColumn(base + ivec2(1, 1), depth)),
+                    0.0);
+  return mix(mix(depths.x, depths.y, blend.x), mix(depths.z, depths.w, blend.x), blend.y);
 }

@@ -1,5 +1,7 @@
 #include "passes/SkyOcclusionPass.h"
 
+#include <cmath>
+
 #include "passes/FrameUniforms.h"
 
 namespace spindrift {
@@ -37,6 +39,7 @@ SkyOcclusionData SkyOcclusionPass::run(const SurfaceLayers& skyLayers, const Lig
   glUniform1f(uniformLocation(program, "solidThickness"), 4.0f * bounds.particleRadius);
   const glm::vec3 absorption = liquid.absorption * liquid.absorption_rgb;
   glUniform3fv(uniformLocation(program, "absorptionPerUnitLength"), 1, &absorption.x);
+  glUniform1f(uniformLocation(program, "windowCosine"), std::sqrt(1.0f - 1.0f / (liquid.ior * liquid.ior)));
   glBindTextureUnit(0, background.eyeDepth.id());
   glBindTextureUnit(1, skyLayers.front.eyeDepth.id());
   glBindTextureUnit(2, skyLayers.back.eyeDepth.id());
