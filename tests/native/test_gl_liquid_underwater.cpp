@@ -6,6 +6,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <vector>
 
@@ -52,6 +53,21 @@ glm::vec3 pixelRay(const Camera& camera, int column, int row) {
   const float x = (2.0f * (column + 0.5f) / camera.width - 1.0f) * float(camera.width) / camera.height;
   const float y = 1.0f - 2.0f * (row + 0.5f) / camera.height;
   return glm::mat3(camera.worldFromCamera) * glm::vec3(x / focal, y / focal, -1.0f);
+}
+
+// A lattice of water particles and one solid quad (its corners in order) seen by a camera in the water.
+RenderResult renderUnderWater(const Scene& scene, const std::vector<glm::vec3>& lattice,
+                              const std::array<glm::vec3, 4>& quadCorners) {
+  FrameInputs inputs;
+  inputs.particles = liquid_test::particlesOf(lattice, kRadius);
+  TriangleMesh quad;
+  quad.vertices.assign(quadCorners.begin(), quadCorners.end());
+  quad.triangles = {{0, 1, 2}, {0, 2, 3}};
+  inputs.occluders.push_back(quad);
+  RenderResult result = liquid_test::renderer().renderFrame(scene, 1, inputs);
+  liquid_test::expectAllChannelsFinite(result);
+  EXPECT_TRUE(result.stats.liquid.cameraInLiquid);
+  return result;
 }
 
 float median(std::vector<float> values) {
@@ -194,16 +210,9 @@ TEST(GLLiquidUnderwater, SolidSeenThroughTheWaterIsAbsorbedOnTheWay) {
   scene.camera = Camera::lookAt(96, 72, 40.0f, {0, 0, 0}, {0, 1, 0}, {0, 0, 1});
   scene.background.color = kSky;
   scene.parameters.liquid.absorption = 2.0f;
-  FrameInputs inputs;
-  inputs.particles =
-      liquid_test::particlesOf(liquid_test::block({-1, -1, -1}, {1, 1.5f, 1}, kSpacing), kRadius);
-  TriangleMesh wall;
-  wall.vertices = {{-3, 0.5f, -3}, {3, 0.5f, -3}, {3, 0.5f, 3}, {-3, 0.5f, 3}};
-  wall.triangles = {{0, 1, 2}, {0, 2, 3}};
-  inputs.occluders.push_back(wall);
-  const RenderResult result = liquid_test::renderer().renderFrame(scene, 1, inputs);
-  liquid_test::expectAllChannelsFinite(result);
-  EXPECT_TRUE(result.stats.liquid.cameraInLiquid);
+  const RenderResult result =
+      renderUnderWater(scene, liquid_test::block({-1, -1, -1}, {1, 1.5f, 1}, kSpacing),
+                       {{{-3, 0.5f, -3}, {3, 0.5f, -3}, {3, 0.5f, 3}, {-3, 0.5f, 3}}});
   const glm::vec3 absorption = scene.parameters.liquid.absorption * scene.parameters.liquid.absorption_rgb;
   const float ior = scene.parameters.liquid.ior;
   float largestRelativeError = 0.0f;
@@ -248,16 +257,9 @@ TEST(GLLiquidUnderwater, ASubmergedFloorIsDividedByNSquaredAndTheSkyInTheWindowI
   scene.background.color = kSky;
   scene.parameters.liquid.surface_offset = 1.0f;
   scene.parameters.liquid.absorption = 2.0f;
-  FrameInputs inputs;
-  inputs.particles = liquid_test::particlesOf(
-      liquid_test::block({0.05f, 0.05f, 0.05f}, {3.95f, 3.95f, 0.95f}, kSpacing), kRadius);
-  TriangleMesh floor;
-  floor.vertices = {{-1, -1, kFloor}, {5, -1, kFloor}, {5, 5, kFloor}, {-1, 5, kFloor}};
-  floor.triangles = {{0, 1, 2}, {0, 2, 3}};
-  inputs.occluders.push_back(floor);
-  const RenderResult result = liquid_test::renderer().renderFrame(scene, 1, inputs);
-  liquid_test::expectAllChannelsFinite(result);
-  ASSERT_TRUE(result.stats.liquid.cameraInLiquid);
+  const RenderResult result =
+      renderUnderWater(scene, liquid_test::block({0.05f, 0.05f, 0.05f}, {3.95f, 3.95f, 0.95f}, kSpacing),
+                       {{{-1, -1, kFloor}, {5, -1, kFloor}, {5, 5, kFloor}, {-1, 5, kFloor}}});
 
   const glm::vec3 absorption = scene.parameters.liquid.absorption * scene.parameters.liquid.absorption_rgb;
   const float criticalDegrees = glm::degrees(std::asin(1.0f / kIor));
