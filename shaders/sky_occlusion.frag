@@ -172,8 +172,8 @@ void main() {
     } else if (direction.z > windowCosine) {
       kept += window;
     } else {
-      // Up to the surface and back down at the same angle: the path down from the surface, as long as the one
-      // from the point's mirror image, is the point's own mirrored path plus the depth again.
+      // Up to the surface (depth / cos) and, reflected, back down to the point's height (as far again), then
+      // on as the mirrored direction's own path from the point.
       float upAndDown = min(2.0 * depth / direction.z, kLongestReflectedPath);
       kept += exp(-absorptionPerUnitLength * upAndDown) *
               keptAlong(origin, vec3(direction.xy, -direction.z), true);
