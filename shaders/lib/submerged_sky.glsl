@@ -46,5 +46,5 @@ float depthBelowSurface(vec3 world) {
   vec4 depths = max(vec4(depthInColumn(base, depth), depthInColumn(base + ivec2(1, 0), depth),
                          depthInColumn(base + ivec2(0, 1), depth), depthInColumn(base + ivec2(1, 1), depth)),
                     0.0);
-  return mix(mix(depths.x, depths.y, blend.x), mix(depths.z, depths.w, blend.x), blend.y);
+  return blendColumns(vec3(depths.x), vec3(depths.y), vec3(depths.z), vec3(depths.w), blend).x;
 }
