@@ -47,6 +47,10 @@ layout(binding = 11) uniform sampler2D lightFrontNormal;
 
 uniform bool hasLightPasses;
 uniform float directFraction;
+// No lamp sees the liquid and the world's light alone lights the background (light.sky_without_lamps): the
+// liquid's shadow is then the world's, the sky light kept, so that liquid_shadow stays the multiplier of the
+// background's light a compositor applies, whatever share of it it takes as the lamps'.
+uniform bool worldAlone;
 
 layout(location = 0) out vec4 outColor;
 #ifndef PLAIN
@@ -156,7 +160,7 @@ void main() {
   vec3 shadow = lit ? shadowWeighted.rgb / shadowWeighted.a : vec3(1.0);
   vec3 caustics = lit ? texelFetch(causticSum, pixel, 0).rgb / shadowWeighted.a : vec3(0.0);
   outColor = vec4(litColour(pixel, background.rgb, shadow, caustics, sky, lampLight), background.a);
-  outShadow = vec4(shadow, 1.0);
+  outShadow = vec4(worldAlone ? sky : shadow, 1.0);
   outCaustics = vec4(caustics, 1.0);
   outSky = vec4(sky, 1.0);
 #endif

@@ -85,11 +85,15 @@ FramePlan planFrame(const FrameContents& contents) {
   // Light through the liquid onto the background: for every light that sees the liquid (LiquidLighting).
   // The lit background reaches the refraction and the composite, and the light layers themselves.
   const bool lightShown = liquidShown || contents.lightLayersWanted;
-  const char* noLight = contents.lights == 0               ? "no lights in the scene"
-                        : contents.lightsSeeingLiquid == 0 ? "no light sees the liquid"
-                        : !lightShown ? "no light layer, liquid layer, composite or foam asked for (--layers)"
-                                      : nullptr;
-  const char* noCaustics = noLight                       ? noLight
+  const char* notShown =
+      !lightShown ? "no light layer, liquid layer, composite or foam asked for (--layers)" : nullptr;
+  const char* noLamp = contents.lights == 0               ? "no lights in the scene"
+                       : contents.lightsSeeingLiquid == 0 ? "no light sees the liquid"
+                                                          : notShown;
+  // Without a lamp the world's light may still light the background: the sky's passes and the lit
+  // background run, the lamps' own passes do not (docs/liquid.md, "The world's light alone").
+  const char* noLight = contents.worldLightsAlone && !notShown ? nullptr : noLamp;
+  const char* noCaustics = noLamp                        ? noLamp
                            : !contents.caustics          ? "light.caustics is off"
                            : contents.causticLights == 0 ? "no sun or spot light sees the liquid"
                                                          : nullptr;
@@ -106,7 +110,7 @@ FramePlan planFrame(const FrameContents& contents) {
     decide(Pass::Caustics, nullptr);
   } else {
     for (Pass pass : {Pass::LightDepthLayers, Pass::LiquidShadow})
-      decide(pass, noLight);
+      decide(pass, noLamp);
     decide(Pass::Caustics, noCaustics);
     decide(Pass::SkyOcclusion, noSkyOcclusion);
   }

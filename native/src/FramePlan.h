@@ -61,6 +61,9 @@ struct FrameContents {
   bool caustics = true;                ///< light.caustics.
   int skyOcclusionDirections = 16;     ///< light.sky_occlusion_directions.
   bool lightLayersWanted = true;       ///< Any of liquid_shadow, caustics, liquid_sky (`--layers`).
+  /// Without a lamp that sees the liquid, the world's light alone still lights the background as the liquid
+  /// lets it (light.sky_without_lamps, with the background's depth, a world that is not black and liquid).
+  bool worldLightsAlone = false;
   bool foamCulling = true;             ///< foam.cull_hidden.
   bool skipEmptyTiles = true;          ///< liquid.skip_empty_tiles.
   bool skipEmptyFoamTiles = true;      ///< foam.skip_empty_tiles.

@@ -46,7 +46,9 @@ LitBackgroundData LiquidLighting::run(const LightingPreparation& lights, const C
   // beside the sky occlusion's samples) the lit background finds that light's shadow itself, one full-screen
   // pass fewer (docs/frame-cost.md, session 44). Its layers are drawn after the sky's, whose depth range
   // shares their targets, and stay bound for it.
-  const bool shadowInLitBackground = !shadowPass;
+  // The world's light alone (no lamp sees the liquid) has no shadow to find: the sums stay empty, and the
+  // lit background takes its sky light alone (LitBackgroundPass, light.direct_fraction 0).
+  const bool shadowInLitBackground = !shadowPass && !lights.lights.empty();
   if (!shadowInLitBackground) {
     shadow_.begin(width, height);
     for (const LightPreparation& light : lights.lights)
@@ -77,6 +79,7 @@ LitBackgroundData LiquidLighting::run(const LightingPreparation& lights, const C
     lamps.layers = &*lightLayers;
   } else {
     lamps.sums = &sums;
+    lamps.none = lights.lights.empty();
   }
   std::optional<LitTiles> tiles;
   if (litTiles && occlusion) {

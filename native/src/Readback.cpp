@@ -70,6 +70,10 @@ bool LayerSelection::wants(const std::string& layer) const {
   return names_.empty() || contains(names_, layer);
 }
 
+bool LayerSelection::names(const std::string& layer) const {
+  return contains(names_, layer);
+}
+
 bool LayerSelection::wantsLiquidLayers() const {
   return std::any_of(kLiquidLayers.begin(), kLiquidLayers.end(),
                      [this](const auto& name) { return wants(name); });
@@ -212,7 +216,6 @@ void IntermediateLayers::appendTo(std::vector<ImageLayer>& layers) {
 
 void readLightLayers(const LitBackgroundData* lit, bool sceneHasLights, int width, int height,
                      const LayerSelection& selection, std::vector<ImageLayer>& layers) {
-  if (!sceneHasLights) return;
   const std::vector<std::string> rgb = {"R", "G", "B"};
   const struct {
     const char* name;
@@ -221,8 +224,10 @@ void readLightLayers(const LitBackgroundData* lit, bool sceneHasLights, int widt
   } lightLayers[] = {{"liquid_shadow", lit ? &lit->liquidShadow : nullptr, 1.0f},
                      {"caustics", lit ? &lit->caustics : nullptr, 0.0f},
                      {"liquid_sky", lit ? &lit->skyKept : nullptr, 1.0f}};
+  // A frame no light lit has them only where they are named (a compositor built to read them: the add-on's
+  // with sky_without_lamps), as what leaves the background as it is.
   for (const auto& layer : lightLayers) {
-    if (!selection.wants(layer.name)) continue;
+    if (!(sceneHasLights || lit ? selection.wants(layer.name) : selection.names(layer.name))) continue;
     layers.push_back(layer.texture ? readLayer(*layer.texture, layer.name, rgb)
                                    : filledLayer(width, height, layer.name, rgb, layer.empty));
   }

@@ -26,6 +26,8 @@ class LayerSelection {
   explicit LayerSelection(const std::vector<std::string>& names);
 
   bool wants(const std::string& layer) const;
+  /// Whether the layer was named (not merely wanted as one of all).
+  bool names(const std::string& layer) const;
   bool wantsComposite() const { return wants("composite"); }
   /// Any of liquid, liquid_splash, liquid_class, depth, normal, thickness.
   bool wantsLiquidLayers() const;
@@ -79,9 +81,10 @@ class IntermediateLayers {
   std::vector<ImageLayer> kept_;
 };
 
-/// Appends liquid_shadow, caustics and liquid_sky (RGB) when the scene has lights (`sceneHasLights`): read
-/// from `lit`, or filled with 1, 0 and 1 on a frame that lit nothing, so every frame of a sequence has the
-/// same channels. Only the layers `selection` wants.
+/// Appends liquid_shadow, caustics and liquid_sky (RGB) when the scene has lights (`sceneHasLights`) or the
+/// frame lit the background (the world's light alone): read from `lit`, or filled with 1, 0 and 1 on a frame
+/// that lit nothing, so every frame of a sequence has the same channels. Only the layers `selection` wants;
+/// on a frame without either, only those it names.
 void readLightLayers(const LitBackgroundData* lit, bool sceneHasLights, int width, int height,
                      const LayerSelection& selection, std::vector<ImageLayer>& layers);
 

@@ -108,6 +108,7 @@ nlohmann::json FrameStats::toJson() const {
         {"prepare_ms", light.prepareMilliseconds},
         {"view_size", light.viewSize},
         {"views_kept", light.viewsKept},
+        {"world_alone", light.worldAlone},
         {"view_particles", light.viewParticles},
         {"view_particles_left_out", light.viewParticlesLeftOut},
         {"view_particles_column_thinned", light.viewParticlesColumnThinned},

@@ -8,6 +8,8 @@
 #include <optional>
 #include <utility>
 
+#include <glm/vector_relational.hpp>
+
 #include "FramePlan.h"
 #include "FrameStatsRecording.h"
 #include "LiquidLighting.h"
@@ -361,6 +363,13 @@ RenderResult Renderer::renderPrepared(const Scene& scene, const Particles& parti
   // thread draws the camera's surface.
   const LightsSeeing seeing = lightsSeeingTheLiquid(particles, scene.lights, liquidParameters);
   contents.lightsSeeingLiquid = seeing.lights;
+  // Without a lamp the world still lights the background where it has solids to light and liquid to take
+  // some of that light (docs/liquid.md, "The world's light alone").
+  const bool worldLit = glm::any(glm::greaterThan(backgroundImages.fallbackColor, glm::vec3(0.0f))) ||
+                        backgroundImages.environment != nullptr;
+  const bool solidsLit = backgroundImages.eyeDepth != nullptr || !extras.occluders.empty();
+  contents.worldLightsAlone = seeing.lights == 0 && scene.parameters.light.sky_without_lamps && worldLit &&
+                              solidsLit && radius > 0.0f;
   contents.causticLights = seeing.causticLights;
   contents.caustics = scene.parameters.light.caustics;
   contents.skyOcclusionDirections = scene.parameters.light.sky_occlusion_directions;
@@ -434,8 +443,9 @@ RenderResult Renderer::renderPrepared(const Scene& scene, const Particles& parti
   });
   const LightingPreparation* preparedLighting = nullptr;
   try {
-    preparedLighting = &impl_->lightingCache.forFrame(particles, camera, scene.lights, scene.parameters,
-                                                      shared, impl_->liquidCache.sameAsBefore());
+    preparedLighting =
+        &impl_->lightingCache.forFrame(particles, camera, scene.lights, contents.worldLightsAlone,
+                                       scene.parameters, shared, impl_->liquidCache.sameAsBefore());
   } catch (...) {
     surfaceDrawn.wait();  // it draws into this frame's locals
     throw;
@@ -443,6 +453,7 @@ RenderResult Renderer::renderPrepared(const Scene& scene, const Particles& parti
   const LightingPreparation& lighting = *preparedLighting;
   recordLighting(scene.lights.size(), lighting, backgroundImages.lightPasses != nullptr, stats.light);
   stats.light.viewsKept = impl_->lightingCache.kept();
+  stats.light.worldAlone = plan.runs(Pass::LitBackground) && contents.worldLightsAlone;
   surfaceDrawn.get();
 
   impl_->glThread.run([&] {
@@ -543,7 +554,7 @@ RenderResult Renderer::renderPrepared(const Scene& scene, const Particles& parti
     }
     readFrameLayers(composite ? &*composite : nullptr, liquidLayer ? &*liquidLayer : nullptr,
                     foamLayer ? &*foamLayer : nullptr, width, height, layers, result.layers);
-    readLightLayers(lit ? &*lit : nullptr, !scene.lights.empty(), width, height, layers, result.layers);
+    readLightLayers(lit ? &*lit : nullptr, !scene.lights.empty() || lit, width, height, layers, result.layers);
     intermediate.appendTo(result.layers);
     stats.readbackMilliseconds = millisecondsSince(readbackStart);
   });

@@ -26,6 +26,10 @@ Spindrift gets a lattice of particles filling the same shapes. For every frame i
 - water_mask.exr: the water alone, one sample through each pixel's centre, alpha = coverage;
 - particles.ply, shape.json (the water's exact shape) and scene.json (with the sun in `lights`), and
   timings.json.
+
+With --sky-only the sun is left out: the world alone lights the scene, as it does a Blender scene lit by its
+sky or an HDRI without lamps, and scene.json has no `lights`. Only background.exr, water_mask.exr and
+reference_full.exr are rendered (the light benchmark's "the world alone" section, `thick_report.py`).
 """
 
 import argparse
@@ -93,6 +97,7 @@ def parse_arguments():
     parser.add_argument("--height", type=int, default=270)
     parser.add_argument("--background-samples", type=int, default=16)
     parser.add_argument("--samples", type=int, default=48)
+    parser.add_argument("--sky-only", action="store_true", help="no sun: the world alone lights the scene")
     return parser.parse_args(argv)
 
 
@@ -155,7 +160,7 @@ def add_tank(shape):
         blender_scene.add_box(f"Tank{index}", Vector(box_min), Vector(box_max)).data.materials.append(material)
 
 
-def build_frame(definition, width, height):
+def build_frame(definition, width, height, sky_only=False):
     blender_scene.clear_scene()
     floor = blender_scene.add_plane("Floor", 24.0, (0.0, 0.0, 0.0))
     floor.data.materials.append(blender_scene.make_checker_material("FloorTiles", (0.62, 0.6, 0.56),
@@ -168,6 +173,9 @@ def build_frame(definition, width, height):
     layout = dam_break.LAYOUT
     sun = blender_scene.build_lighting(layout.world_color, layout.world_strength, sun_energy=SUN_STRENGTH,
                                        sun_rotation=SUN_ROTATION)
+    if sky_only:
+        bpy.data.objects.remove(sun)
+        sun = None
     scene = bpy.context.scene
     scene.render.resolution_x, scene.render.resolution_y = width, height
     bpy.context.view_layer.update()
@@ -194,7 +202,7 @@ def scene_file(camera, sun, width, height):
                        "color": list(dam_break.LAYOUT.world_radiance)},
         "lights": [{"type": "sun",
                     "direction": [scene_files.clean_number(-c) for c in sun.matrix_world.col[2][:3]],
-                    "color": list(sun.data.color), "strength": sun.data.energy}],
+                    "color": list(sun.data.color), "strength": sun.data.energy}] if sun else [],
     }
     return description
 
@@ -206,7 +214,7 @@ def main():
         definition = FRAMES[name]
         directory = os.path.join(output, name)
         os.makedirs(directory, exist_ok=True)
-        water, camera, sun = build_frame(definition, arguments.width, arguments.height)
+        water, camera, sun = build_frame(definition, arguments.width, arguments.height, arguments.sky_only)
         configure(directory, arguments.width, arguments.height)
         write_ply(os.path.join(directory, "particles.ply"), lattice(definition["shape"]))
         with open(os.path.join(directory, "shape.json"), "w", encoding="utf-8") as handle:
@@ -234,7 +242,7 @@ def main():
             scene.cycles.filter_width = 1.5
             scene.render.film_transparent = False
             references.set_visible(solids, True)
-        if missing("reference_noshadow.exr"):
+        if missing("reference_noshadow.exr") and not arguments.sky_only:
             water.visible_shadow = False
             timings["reference_noshadow"] = references.render(os.path.join(directory, "reference_noshadow.exr"),
                                                               arguments.samples)
@@ -242,7 +250,7 @@ def main():
         if missing("reference_full.exr"):
             timings["reference_full"] = references.render(os.path.join(directory, "reference_full.exr"),
                                                           arguments.samples)
-        if missing("reference_full_seed2.exr"):
+        if missing("reference_full_seed2.exr") and not arguments.sky_only:
             timings["reference_full_seed2"] = references.render(
                 os.path.join(directory, "reference_full_seed2.exr"), arguments.samples, seed=2)
         timings["samples"] = arguments.samples

@@ -293,11 +293,13 @@ TEST(GLLiquidLight, SphereFocusesTheSunWhereARayTraceDoes) {
   EXPECT_EQ(renderedNarrowest, tracedNarrowest);
 }
 
-// Without lights nothing is shadowed: the light passes are skipped, the stats say why, and the background is
-// composited as it is.
+// Without lights, and without the world's light alone (light.sky_without_lamps off), nothing is shadowed: the
+// light passes are skipped, the stats say why, and the background is composited as it is. With it, the
+// world's light alone is GLSkyOcclusion.TheWorldAloneLightsTheFloorAsItsSkyLightIsKept.
 TEST(GLLiquidLight, NoLightNoShadowPasses) {
   TempDirectory directory;
   Scene scene = floorScene(directory);
+  scene.parameters.light.sky_without_lamps = false;
   const RenderResult result =
       renderer().renderParticles(scene, slabParticles({-0.5f, -0.5f, 1.0f}, {0.5f, 0.5f, 1.3f}), 1);
   expectAllChannelsFinite(result);
@@ -310,6 +312,7 @@ TEST(GLLiquidLight, NoLightNoShadowPasses) {
   EXPECT_EQ(result.layer("caustics"), nullptr);
   EXPECT_EQ(result.stats.light.lights, 0u);
   EXPECT_FALSE(result.stats.light.caustics);
+  EXPECT_FALSE(result.stats.light.worldAlone);
   // A floor pixel far from the liquid keeps the background's colour exactly.
   EXPECT_FLOAT_EQ(at(*result.layer("composite"), kWidth, 2, 2, 0), 0.5f);
 }

@@ -185,3 +185,63 @@ TEST(GLSkyOcclusion, APointInTheLiquidSeesTheSkyThroughSnellsWindowOnly) {
     EXPECT_LT(at(withSky, kWidth, beside, row, c), 0.99) << "channel " << c;
   }
 }
+
+// A scene lit by its world alone (no lamp, light.sky_without_lamps on): the floor keeps the same hemisphere
+// integral of what a floating slab lets through as a lamp's frame finds (the test above, 16 directions), and
+// all of the floor's light is that sky light: beside the slab the composite is the background times the
+// light kept, liquid_shadow holds the same multiplier, there are no caustics, and the lamps' passes are
+// skipped. Off, or under a black world, the background is left as it is.
+TEST(GLSkyOcclusion, TheWorldAloneLightsTheFloorAsItsSkyLightIsKept) {
+  TempDirectory directory;
+  const glm::vec3 latticeLow(-1.2f, -1.2f, 1.0f), latticeHigh(1.2f, 1.2f, 1.4f);
+  const Particles slab = slabParticles(latticeLow, latticeHigh);
+  Scene scene = litFloorScene(directory, 16);
+  scene.lights.clear();
+  const RenderResult alone = renderer().renderParticles(scene, slab, 1);
+  expectAllChannelsFinite(alone);
+  EXPECT_TRUE(alone.stats.light.worldAlone);
+  std::string reason;
+  for (const char* pass : {"light_depth_layers", "liquid_shadow", "caustics"}) {
+    EXPECT_TRUE(skipped(alone, pass, &reason)) << pass;
+    EXPECT_EQ(reason, "no lights in the scene") << pass;
+  }
+  for (const char* pass : {"sky_occlusion", "lit_tiles", "lit_background"})
+    EXPECT_FALSE(skipped(alone, pass)) << pass;
+  ASSERT_NE(alone.layer("liquid_sky"), nullptr);
+  const double grown = slabTopAndBottom(alone, kCameraHeight, 1.2).first - latticeHigh.z;
+  ASSERT_GT(grown, 0.0);
+  ASSERT_LT(grown, 0.1);
+  const glm::dvec3 low = glm::dvec3(latticeLow) - grown, high = glm::dvec3(latticeHigh) + grown;
+  const int row = kHeight / 2;
+  for (const double x : {0.0, 1.5, 2.3}) {
+    const int column = columnOf(x);
+    for (int c = 0; c < 3; ++c) {
+      const double expected = keptPastBoxAlongFewDirections(
+          floorPoint(column, row), low, high, scene.parameters.liquid.absorption_rgb[c], 16);
+      EXPECT_NEAR(windowMean(*alone.layer("liquid_sky"), column, row, c), expected, 0.02)
+          << "x " << x << ", channel " << c;
+      const float sky = at(*alone.layer("liquid_sky"), kWidth, column, row, c);
+      EXPECT_FLOAT_EQ(at(*alone.layer("liquid_shadow"), kWidth, column, row, c), sky);
+      EXPECT_FLOAT_EQ(at(*alone.layer("caustics"), kWidth, column, row, c), 0.0f);
+      // Well beside the slab the camera sees the floor itself (at 1.5 it looks through the slab's edge): the
+      // background (0.5) times the light it keeps.
+      if (x > 2.0) {
+        EXPECT_LT(sky, 0.99f) << "x " << x << ", channel " << c;
+        EXPECT_NEAR(at(*alone.layer("composite"), kWidth, column, row, c), 0.5 * sky, 1e-5);
+      }
+    }
+  }
+  Scene off = scene;
+  off.parameters.light.sky_without_lamps = false;
+  Scene black = scene;
+  black.background.color = glm::vec3(0.0f);
+  for (const Scene* unlit : {&off, &black}) {
+    const RenderResult result = renderer().renderParticles(*unlit, slab, 1);
+    expectAllChannelsFinite(result);
+    EXPECT_FALSE(result.stats.light.worldAlone);
+    EXPECT_TRUE(skipped(result, "lit_background", &reason));
+    EXPECT_EQ(reason, "no lights in the scene");
+    EXPECT_EQ(result.layer("liquid_sky"), nullptr);
+    EXPECT_FLOAT_EQ(at(*result.layer("composite"), kWidth, columnOf(2.3), row, 0), 0.5f);
+  }
+}

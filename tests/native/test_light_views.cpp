@@ -90,9 +90,9 @@ TEST(LightViews, ViewsAreKeptWhileParticlesLightsAndViewSidesStayTheSame) {
   LightingAcrossFrames across;
   const auto expectFrame = [&](const Camera& camera, bool sameParticles, bool kept) {
     const LightingPreparation& prepared =
-        across.forFrame(particles, camera, lights, parameters, nullptr, sameParticles);
+        across.forFrame(particles, camera, lights, false, parameters, nullptr, sameParticles);
     EXPECT_EQ(across.kept(), kept);
-    EXPECT_TRUE(samePreparation(prepared, prepareLighting(particles, camera, lights, parameters)));
+    EXPECT_TRUE(samePreparation(prepared, prepareLighting(particles, camera, lights, false, parameters)));
   };
   expectFrame(distantCamera(), false, false);
   expectFrame(orbited, true, true);
@@ -133,13 +133,33 @@ TEST(LightViews, TheLightsSeeingTheLiquidAreCountedAsThePreparationFindsThem) {
   const LightsSeeing seeing = lightsSeeingTheLiquid(particles, lights, parameters.liquid);
   EXPECT_EQ(seeing.lights, 3u);
   EXPECT_EQ(seeing.causticLights, 2u);
-  const LightingPreparation prepared = prepareLighting(particles, distantCamera(), lights, parameters);
+  const LightingPreparation prepared = prepareLighting(particles, distantCamera(), lights, false, parameters);
   EXPECT_EQ(seeing.lights, prepared.lights.size());
   EXPECT_EQ(seeing.causticLights, causticLights(prepared));
   EXPECT_EQ(prepared.skipped.size(), 2u);
   // No liquid, or no light: none.
   EXPECT_EQ(lightsSeeingTheLiquid(Particles{}, lights, parameters.liquid).lights, 0u);
   EXPECT_EQ(lightsSeeingTheLiquid(particles, {}, parameters.liquid).lights, 0u);
+}
+
+// A scene lit by its world alone: no light's view, the sky's view all the same, as the lamps' frames have it;
+// without the world's light, nothing at all.
+TEST(LightViews, TheWorldAloneHasTheSkysViewAndNoLightsView) {
+  Particles particles;
+  for (int i = 0; i < 10; ++i)
+    for (int j = 0; j < 10; ++j)
+      particles.append({0.1f * float(i), 0.1f * float(j), 0.0f}, 0.06f, ParticleKind::Liquid, 0.0f, {});
+  const Parameters parameters;
+  const LightingPreparation alone = prepareLighting(particles, distantCamera(), {}, true, parameters);
+  EXPECT_TRUE(alone.lights.empty());
+  ASSERT_TRUE(alone.sky.has_value());
+  EXPECT_TRUE(alone.sky->view.sky);
+  const LightingPreparation withSun = prepareLighting(particles, distantCamera(), {Light{}}, false, parameters);
+  ASSERT_TRUE(withSun.sky.has_value());
+  EXPECT_EQ(alone.sky->view.camera.width, withSun.sky->view.camera.width);
+  EXPECT_EQ(alone.sky->liquid.aggregates.size(), withSun.sky->liquid.aggregates.size());
+  EXPECT_FALSE(prepareLighting(particles, distantCamera(), {}, false, parameters).sky.has_value());
+  EXPECT_FALSE(prepareLighting(Particles{}, distantCamera(), {}, true, parameters).sky.has_value());
 }
 
 }  // namespace

@@ -145,6 +145,9 @@ struct LightFrameStats {
   /// The views were the frame before's, kept with their ellipsoids: the same particles, liquid and light
   /// parameters, lights and view sides (liquid.reuse_shapes).
   bool viewsKept = false;
+  /// No lamp sees the liquid and the world's light alone lit the background as the liquid lets it: the sky's
+  /// passes ran without a lamp's (light.sky_without_lamps).
+  bool worldAlone = false;
   std::size_t viewParticles = 0;  ///< Liquid particles shaped for the lights' and the sky's views, summed.
   std::size_t viewParticlesLeftOut = 0;  ///< Of those, hidden from both layers of their view: not drawn.
   /// Of those left out, the ones a view of a body few particles deep did not keep in any texel column

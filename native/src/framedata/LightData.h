@@ -46,6 +46,8 @@ struct LampLight {
   const LiquidShadowData* sums = nullptr;
   const Light* light = nullptr;
   const SurfaceLayers* layers = nullptr;  ///< The one light's.
+  /// No lamp sees the liquid: the world's light alone lights the background, all of it sky light.
+  bool none = false;
 };
 
 /// The pixel tiles where the lights change the background and those where they do not (the lit tile pass's

@@ -165,11 +165,12 @@ LightsSeeing lightsSeeingTheLiquid(const Particles& particles, const std::vector
 }
 
 LightingPreparation prepareLighting(const Particles& particles, const Camera& camera,
-                                    const std::vector<Light>& lights, const Parameters& parameters,
-                                    FrameLiquidCache* frameCache, OcclusionWorkspace* occlusion) {
+                                    const std::vector<Light>& lights, bool worldLightsAlone,
+                                    const Parameters& parameters, FrameLiquidCache* frameCache,
+                                    OcclusionWorkspace* occlusion) {
   const auto start = std::chrono::steady_clock::now();
   LightingPreparation preparation;
-  if (lights.empty()) return preparation;
+  if (lights.empty() && !worldLightsAlone) return preparation;
   const LiquidBounds bounds = liquidBounds(particles, parameters.liquid);
   preparation.bounds = bounds;
   if (bounds.radius == 0.0f) {
@@ -232,12 +233,13 @@ LightingPreparation prepareLighting(const Particles& particles, const Camera& ca
 
 const LightingPreparation& LightingAcrossFrames::forFrame(const Particles& particles, const Camera& camera,
                                                           const std::vector<Light>& lights,
-                                                          const Parameters& parameters,
+                                                          bool worldLightsAlone, const Parameters& parameters,
                                                           FrameLiquidCache* frameCache, bool sameParticles) {
   const auto start = std::chrono::steady_clock::now();
   // The same particles and liquid parameters frame the views alike (the same bounds); the camera only sizes
   // them.
-  kept_ = previous_ && sameParticles && lights == lights_ && parameters.liquid == liquidParameters_ &&
+  kept_ = previous_ && sameParticles && lights == lights_ && worldLightsAlone == worldLightsAlone_ &&
+          parameters.liquid == liquidParameters_ &&
           parameters.light == lightParameters_ && previous_->sky &&
           lightViewSize(previous_->bounds, camera, parameters.light) == previous_->viewSize &&
           skyViewSide(previous_->bounds, camera, parameters.light) == previous_->sky->view.camera.width;
@@ -246,8 +248,9 @@ const LightingPreparation& LightingAcrossFrames::forFrame(const Particles& parti
         std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
     return *previous_;
   }
-  previous_ = prepareLighting(particles, camera, lights, parameters, frameCache, &occlusion_);
+  previous_ = prepareLighting(particles, camera, lights, worldLightsAlone, parameters, frameCache, &occlusion_);
   lights_ = lights;
+  worldLightsAlone_ = worldLightsAlone;
   liquidParameters_ = parameters.liquid;
   lightParameters_ = parameters.light;
   return *previous_;

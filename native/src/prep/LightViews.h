@@ -88,11 +88,13 @@ struct LightsSeeing {
 LightsSeeing lightsSeeingTheLiquid(const Particles& particles, const std::vector<Light>& lights,
                                    const LiquidParameters& parameters);
 
-/// Prepares each light's view (and the sky's) of the liquid. `frameCache`: the camera's, so that each
-/// particle is shaped and Mantaflow's surface built and searched once per frame (prepareLiquid);
-/// `occlusion`: memory for the lights' occlusion tests, kept from an earlier frame.
+/// Prepares each light's view (and the sky's) of the liquid. `worldLightsAlone`: the sky's view is prepared
+/// without lights too (FrameContents::worldLightsAlone). `frameCache`: the camera's, so that each particle is
+/// shaped and Mantaflow's surface built and searched once per frame (prepareLiquid); `occlusion`: memory for
+/// the lights' occlusion tests, kept from an earlier frame.
 LightingPreparation prepareLighting(const Particles& particles, const Camera& camera,
-                                    const std::vector<Light>& lights, const Parameters& parameters,
+                                    const std::vector<Light>& lights, bool worldLightsAlone,
+                                    const Parameters& parameters,
                                     FrameLiquidCache* frameCache = nullptr,
                                     OcclusionWorkspace* occlusion = nullptr);
 
@@ -105,7 +107,8 @@ class LightingAcrossFrames {
  public:
   /// prepareLighting's result for this frame: the frame before's where it holds, else prepared anew.
   const LightingPreparation& forFrame(const Particles& particles, const Camera& camera,
-                                      const std::vector<Light>& lights, const Parameters& parameters,
+                                      const std::vector<Light>& lights, bool worldLightsAlone,
+                                      const Parameters& parameters,
                                       FrameLiquidCache* frameCache, bool sameParticles);
   /// Whether forFrame kept the frame before's.
   bool kept() const { return kept_; }
@@ -113,6 +116,7 @@ class LightingAcrossFrames {
  private:
   std::optional<LightingPreparation> previous_;
   std::vector<Light> lights_;
+  bool worldLightsAlone_ = false;
   LiquidParameters liquidParameters_;  // all of them: a light's view classifies and sizes its particles too
   LightParameters lightParameters_;
   OcclusionWorkspace occlusion_;
