@@ -42,12 +42,24 @@ def render_frame(scene, depsgraph, frame, exr_path):
     inputs = frame_inputs.collect(scene, depsgraph, frame, camera, mode=mode, occluders=settings.occluders)
     collected = time.perf_counter() - started
     os.makedirs(os.path.dirname(exr_path), exist_ok=True)
-    lit = bool(inputs.document.get("lights"))
+    lit = lights_through_liquid(inputs, mode)
     exr_layers = None if settings.all_layers else compositing.frame_layers(mode, lit)
     result = renderer.render(inputs.scene_text, frame, exr_path=exr_path, layers=[], exr_layers=exr_layers,
                              crop=crop, **EXR_OPTIONS, **inputs.kwargs)
     total = time.perf_counter() - started
     return result, inputs, timing(result.get("stats", {}), collected, total)
+
+
+def lights_through_liquid(inputs, mode):
+    """Whether the frame's EXR carries the light layers the OVER group multiplies the render by: with lamps,
+    and without them where the world's light alone is taken (light.sky_without_lamps: the scene's solids are
+    handed, so the renderer has a background to light, and the world is not black). Where the renderer then
+    lights nothing the layers leave the render as it is; without lamps liquid_shadow holds the world's
+    multiplier, liquid_sky's, so the group's formula gives it whatever its lamps' share."""
+    if inputs.document.get("lights"):
+        return True
+    world = inputs.document.get("background", {}).get("color", [0.0, 0.0, 0.0])
+    return mode == "OVER" and "occluders" in inputs.kwargs and max(world) > 0.0
 
 
 def timing(stats, collect_s, total_s):

@@ -1,6 +1,6 @@
 """Blender's lamps handed to the renderer: each lamp type in the scene format's terms (docs/scene-format.md),
 the frame's EXR with the liquid's shadow where the sun's light crosses the liquid, and the compositing group
-applying the light layers. The composite itself is compared with the command line's (which gets the same
+applying the light layers; without lamps, the world's light alone, and under a black world no light at all. The composite itself is compared with the command line's (which gets the same
 lamps) by test_render_compare.py.
 
 Run: run_blender.py --zip ZIP test_lamps.py -- FIXTURE_DIR
@@ -81,10 +81,25 @@ def main():
     for name in module.compositing.LIGHT_LAYERS:
         check(image_node.outputs[name].is_linked, f"the group reads {name}")
 
+    # Without lamps the world's light alone is taken (light.sky_without_lamps): the liquid takes the sky light
+    # of the floor under and beside it, and liquid_shadow carries the same multiplier as liquid_sky.
     bpy.data.objects.remove(bpy.data.objects["Sun"])
     check(bpy.ops.spindrift.setup_compositing(mode="OVER") == {"FINISHED"}, "set up again without lamps")
     layers = read_exr_layers(module.render_layer.layer_path(scene, 5))
-    check(not set(module.compositing.LIGHT_LAYERS) & set(layers), "no light layers without lamps")
+    check(set(module.compositing.LIGHT_LAYERS) <= set(layers), f"the world's light layers ({sorted(layers)})")
+    sky = layers["liquid_sky"][..., :3]
+    check(np.array_equal(layers["liquid_shadow"][..., :3], sky), "liquid_shadow is the world's multiplier")
+    check(not layers["caustics"][..., :3].any(), "and there are no caustics")
+    darkened = float((sky.min(axis=2) < 0.95).mean())
+    check(0.001 < darkened < 0.9, f"the liquid takes sky light from part of the floor ({darkened:.1%})")
+    group = bpy.data.node_groups["Spindrift Over"]
+    check(any(node.label == "Lamps through the liquid" for node in group.nodes), "and the group applies them")
+
+    world = scene.world.node_tree.nodes["Background"]
+    world.inputs["Strength"].default_value = 0.0
+    check(bpy.ops.spindrift.setup_compositing(mode="OVER") == {"FINISHED"}, "set up again under a black world")
+    layers = read_exr_layers(module.render_layer.layer_path(scene, 5))
+    check(not set(module.compositing.LIGHT_LAYERS) & set(layers), "no light layers without any light")
     group = bpy.data.node_groups["Spindrift Over"]
     check(all(node.label != "Lamps through the liquid" for node in group.nodes), "and the group does not apply them")
     print("test_lamps: passed", flush=True)
