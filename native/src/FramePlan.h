@@ -64,10 +64,10 @@ struct FrameContents {
   /// Without a lamp that sees the liquid, the world's light alone still lights the background as the liquid
   /// lets it (light.sky_without_lamps, with the background's depth, a world that is not black and liquid).
   bool worldLightsAlone = false;
-  bool foamCulling = true;             ///< foam.cull_hidden.
-  bool skipEmptyTiles = true;          ///< liquid.skip_empty_tiles.
-  bool skipEmptyFoamTiles = true;      ///< foam.skip_empty_tiles.
-  bool skipUnlitTiles = true;          ///< light.skip_unlit_tiles.
+  bool foamCulling = true;         ///< foam.cull_hidden.
+  bool skipEmptyTiles = true;      ///< liquid.skip_empty_tiles.
+  bool skipEmptyFoamTiles = true;  ///< foam.skip_empty_tiles.
+  bool skipUnlitTiles = true;      ///< light.skip_unlit_tiles.
 };
 
 /// Which passes a frame runs and, for each it does not, why. The wiring of the frame in one plain function,

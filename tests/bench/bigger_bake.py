@@ -16,6 +16,7 @@ import statistics
 import subprocess
 
 import runs
+import sweep
 import scaling
 
 DEFAULT_COUNT = 150_000
@@ -48,7 +49,7 @@ def compare(base_scene, camera_directory, mantaflow_ply, count, repeats, absorpt
     scaling.write_ply(ply, positions, radius)
     scene = scaling.scene_with(base_scene, ply_path=ply, output_path=os.path.join(work_directory, "scene.json"))
     exr = os.path.join(work_directory, "spindrift.exr")
-    timing = runs.timed_spindrift(scene, exr, {}, repeats, work_directory)
+    timing = runs.timed_spindrift(scene, exr, sweep.AS_THE_REFERENCE, repeats, work_directory)
     errors = runs.frame_errors(exr, camera_directory, radius, runs.SPINDRIFT_CHANNELS)
     rows = [{"label": "Spindrift (defaults)", "frame_ms": timing["total_ms"],
              "steady_frame_ms": steady_frame_ms(scene, work_directory),

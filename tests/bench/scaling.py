@@ -14,6 +14,7 @@ import os
 import numpy as np
 
 import runs
+import sweep
 
 SLAB_MIN = np.array([-1.5, -0.9375, 0.0])
 SLAB_MAX = np.array([1.5, 0.9375, 0.375])
@@ -92,7 +93,7 @@ def particle_scaling(base_scene, mantaflow_ply, counts, repeats_for, work_direct
             ply = os.path.join(work_directory, f"{source}_{count}.ply")
             write_ply(ply, positions, radius)
             scene = scene_with(base_scene, ply_path=ply, output_path=os.path.join(work_directory, "scaling.json"))
-            timing = runs.timed_spindrift(scene, os.path.join(work_directory, "scaling.exr"), {},
+            timing = runs.timed_spindrift(scene, os.path.join(work_directory, "scaling.exr"), sweep.AS_THE_REFERENCE,
                                           repeats_for(count), work_directory)
             os.remove(ply)
             rows.append({"source": source, "count": count, **timing})
@@ -106,7 +107,7 @@ def resolution_scaling(base_scene, sizes, repeats_for, work_directory):
     for width, height in sizes:
         scene = scene_with(base_scene, width=width, height=height,
                            output_path=os.path.join(work_directory, "resolution.json"))
-        timing = runs.timed_spindrift(scene, os.path.join(work_directory, "resolution.exr"), {},
+        timing = runs.timed_spindrift(scene, os.path.join(work_directory, "resolution.exr"), sweep.AS_THE_REFERENCE,
                                       repeats_for(width * height), work_directory)
         rows.append({"width": width, "height": height, "pixels": width * height, **timing})
         print(f"  scaling {width}x{height}: {timing['total_ms']:.0f} ms", flush=True)

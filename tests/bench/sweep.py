@@ -31,11 +31,21 @@ def plan(quick):
             "users_render": True}
 
 
+# What the sweep's reference leaves out, left out of every run scored against it or timed beside the sweep
+# (scaling, the bigger bake): the world's light alone, which the examples' scene files, naming no lamp, would
+# otherwise take (see configurations).
+AS_THE_REFERENCE = {"light.sky_without_lamps": False}
+
+
 def configurations(quick):
     """(label, settings, foam) for every point of the sweep. The defaults (plane_fit, 3 iterations, window 9,
     4 refractions, layers split, foam on) are the centre; every other axis varies one thing from them."""
+    # The sweep's reference is Cycles with the water casting no shadow, of the sun or the sky: the sweep leaves
+    # the world's light alone untaken too (light.sky_without_lamps), as the scene files' missing sun would
+    # otherwise be taken for it. The default, which takes it, is scored against the user's render
+    # (users_render.py; docs/liquid.md, "The world's light alone").
     default = {"liquid.smoothing": "plane_fit", "liquid.smoothing_iterations": 3, "liquid.plane_fit_window": 9,
-               "liquid.max_refractions": 4, "liquid.layers": "split"}
+               "liquid.max_refractions": 4, "liquid.layers": "split", **AS_THE_REFERENCE}
 
     def variant(label, foam=True, **changes):
         settings = dict(default)

@@ -24,6 +24,7 @@ from scipy import ndimage
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 import metrics  # noqa: E402
 import runs  # noqa: E402
+import world_light  # noqa: E402
 
 REPOSITORY = runs.REPOSITORY
 OUTPUT = os.path.join(REPOSITORY, "build", "bench", "thick")
@@ -36,16 +37,22 @@ NOISE_FLOOR = "Cycles, another seed (noise floor)"
 
 # Each Spindrift setting: a name, whether the scene's sun is kept, whether the background keeps Cycles'
 # light passes, and --set overrides.
+# Without the sun the scene names no lamp, and Spindrift's default takes the world's light alone
+# (light.sky_without_lamps): the rows "before" leave it off, as there were no light passes then.
+NO_LIGHT = {"light.sky_without_lamps": False}
 SETTINGS = [
-    ("no lights (before)", False, True, {}),
+    ("no lights (before)", False, True, NO_LIGHT),
     ("sun, light passes", True, True, {}),
     ("sun, no light passes", True, False, {}),
     ("sun, light passes, no sky occlusion", True, True, {"light.sky_occlusion_directions": 0}),
-    ("no lights, absorption x2.5", False, True, {"liquid.absorption": 2.5}),
+    ("no lights, absorption x2.5", False, True, {**NO_LIGHT, "liquid.absorption": 2.5}),
     ("sun, light passes, fixed 512-texel light views", True, True, {"light.texels_per_radius": 0}),
     ("sun, light passes, lights' views at 3 texels per radius", True, True, {"light.texels_per_radius": 3}),
     # The marches' step before session 36 (docs/frame-cost.md): what the cheaper default costs here.
     ("sun, light passes, marches in steps of 1.5 px", True, True, {"liquid.trace_step_pixels": 1.5}),
+    # The sun left out of a scene it lights: the defaults then take the background's light, the sun's with
+    # it, for the world's (docs/liquid.md, "The world's light alone").
+    ("no lamps: the world's light alone", False, True, {}),
 ]
 
 
@@ -127,14 +134,16 @@ def steady_frame_ms(scene, settings, directory):
 
 
 def marginal_cost(directory, settings):
-    """What the scene's lights add to a steady frame: the frame with them against the same frame without
-    (the same background with its light passes), each sequence run twice, interleaved; the medians."""
+    """What the scene's lights add to a steady frame: the frame with them against the same frame without any
+    light (the same background with its light passes) and against the frame without the sun that takes the
+    world's light alone, each sequence run twice, interleaved; the medians."""
     lit, unlit = scene_variant(directory, True, True), scene_variant(directory, False, True)
-    with_lights, without = [], []
+    with_lights, without, world = [], [], []
     for _ in range(2):
         with_lights.append(steady_frame_ms(lit, settings, directory))
-        without.append(steady_frame_ms(unlit, settings, directory))
-    return float(np.median(with_lights)), float(np.median(without))
+        without.append(steady_frame_ms(unlit, {**settings, **NO_LIGHT}, directory))
+        world.append(steady_frame_ms(unlit, settings, directory))
+    return float(np.median(with_lights)), float(np.median(without)), float(np.median(world))
 
 
 def write_plain_background(directory):
@@ -311,6 +320,7 @@ def main():
     parser.add_argument("--background-samples", type=int, default=128)
     arguments = parser.parse_args()
     ensure_renders(arguments.samples, arguments.background_samples)
+    world_light.ensure_renders(FRAMES, arguments.samples, arguments.background_samples)
     results, timings = {}, {}
     renderer = runs.gl_renderer()
     load_before = os.getloadavg()[0]
@@ -345,13 +355,14 @@ def main():
                 key = timed[name]
                 light_passes_ms, frame_ms = light_cost(stats)
                 steady_light_ms, steady_frame_ms, steady_prepare_ms = steady_cost(scene, settings, directory)
-                with_lights_ms, without_lights_ms = marginal_cost(directory, settings)
+                with_lights_ms, without_lights_ms, world_alone_ms = marginal_cost(directory, settings)
                 sky_occlusion_ms = sum(p["gpu_ms"] for p in stats["passes"] if p["name"] == "sky_occlusion")
                 timings[key] = {"light_gpu_ms": light_passes_ms, "frame_gpu_ms": frame_ms,
                                 "sky_occlusion_gpu_ms": sky_occlusion_ms,
                                 "steady_light_gpu_ms": steady_light_ms, "steady_frame_gpu_ms": steady_frame_ms,
                                 "steady_light_prepare_ms": steady_prepare_ms,
                                 "with_lights_ms": with_lights_ms, "without_lights_ms": without_lights_ms,
+                                "world_alone_ms": world_alone_ms,
                                 "view_size": stats["light"]["view_size"],
                                 "view_particles": stats["light"]["view_particles"],
                                 "view_particles_left_out": stats["light"]["view_particles_left_out"],
@@ -369,10 +380,12 @@ def main():
                composites["sun, light passes"], rgb(os.path.join(directory, "reference_noshadow.exr"))],
               os.path.join(IMAGES, f"light_{frame}.png"))
         passes_strip(os.path.join(directory, "spindrift_1.exr"), os.path.join(IMAGES, f"light_{frame}_passes.png"))
+    world = world_light.measure(sys.modules[__name__], FRAMES)
     with open(os.path.join(OUTPUT, "results.json"), "w") as handle:
-        json.dump({"results": results, "timings": timings, "renderer": renderer}, handle, indent=1)
+        json.dump({"results": results, "timings": timings, "renderer": renderer, "world_alone": world}, handle,
+                  indent=1)
     loads = (load_before, os.getloadavg()[0])
-    write_page(results, timings, renderer, arguments.samples, arguments.background_samples, loads)
+    write_page(results, timings, renderer, arguments.samples, arguments.background_samples, loads, world)
 
 
 def ratios(values):
@@ -402,7 +415,7 @@ def number(value):
     return "–" if not np.isfinite(value) else f"{value:.4f}"
 
 
-def write_page(results, timings, renderer, samples, background_samples, loads):
+def write_page(results, timings, renderer, samples, background_samples, loads, world):
     names = [name for name, *_ in SETTINGS] + ["VTK fluid mapper", NOISE_FLOOR]
     lines = ["# Light through the liquid: measured", "",
              "Generated by `tests/bench/thick_report.py` (do not edit by hand). Six frames of thick water (a block",
@@ -452,6 +465,7 @@ def write_page(results, timings, renderer, samples, background_samples, loads):
                       "sun and light passes) over Cycles', R/G/B, where the camera sees the pool's floor: "
                       f"{ratios(results[frame]['under_water_ratios']['floor'])}; its walls: "
                       f"{ratios(results[frame]['under_water_ratios']['walls'])} (their sky light: docs/liquid.md).", ""]
+    lines += world_light.section(world, number)
     lines += ["## Light passes", "", "Spindrift's `liquid_shadow`, `caustics` and `liquid_sky` (red channel, black 0, white 1) "
               "and its composite, with the sun and Cycles' light passes:", ""]
     lines += [f"![{frame}: light passes](images/light_{frame}_passes.png)" for frame in FRAMES]
@@ -469,12 +483,17 @@ def write_page(results, timings, renderer, samples, background_samples, loads):
               "every pass, the readback; frames 3 to 8 of a `--frames 1-8` sequence, passes not finished one by "
               "one) with the sun against the same frame without it, over the same background, each run twice, "
               "interleaved: the difference and its share of the frame with the sun. Finishing each pass (the GPU "
-              "columns) adds a wait to each of the lights' many small passes, so the GPU shares overstate them.",
+              "columns) adds a wait to each of the lights' many small passes, so the GPU shares overstate them. "
+              "*Without*: no light at all (`light.sky_without_lamps` off), so the difference is every light pass, "
+              "the sky's with the sun's. *The world alone*: the frame without the sun that takes the world's light "
+              "alone (the default for a scene without lamps), which runs the sky's passes; *what the sun adds* to "
+              "it is the sun's own view, shadow and caustics, what the issue's target names.",
               "",
               "| Frame | View | Particles drawn | Light passes, GPU ms | Sky occlusion, GPU ms | Whole frame, GPU ms | "
               "Share | Steady: light ms | Steady: frame GPU ms | Steady share | Steady: lights' CPU ms | "
-              "Frame with the sun, ms | Without, ms | What the lights cost a frame |",
-              "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|"]
+              "Frame with the sun, ms | Without, ms | What the lights cost a frame | The world alone, ms | "
+              "What the sun adds to it |",
+              "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|"]
     for frame in sorted(timings):
         t = timings[frame]
         drawn = t["view_particles"] - t["view_particles_left_out"]
@@ -484,7 +503,9 @@ def write_page(results, timings, renderer, samples, background_samples, loads):
                      f"{100 * t['steady_light_gpu_ms'] / t['steady_frame_gpu_ms']:.0f} % | "
                      f"{t['steady_light_prepare_ms']:.1f} | {t['with_lights_ms']:.0f} | {t['without_lights_ms']:.0f} | "
                      f"{t['with_lights_ms'] - t['without_lights_ms']:.0f} ms, "
-                     f"{100 * (t['with_lights_ms'] - t['without_lights_ms']) / t['with_lights_ms']:.0f} % |")
+                     f"{100 * (t['with_lights_ms'] - t['without_lights_ms']) / t['with_lights_ms']:.0f} % | "
+                     f"{t['world_alone_ms']:.0f} | {t['with_lights_ms'] - t['world_alone_ms']:.0f} ms, "
+                     f"{100 * (t['with_lights_ms'] - t['world_alone_ms']) / t['with_lights_ms']:.0f} % |")
     lines += ["", f"Load average (1 min) on the 2-core machine: {loads[0]:.1f} before, {loads[1]:.1f} after: the "
               "milliseconds are those of a loaded llvmpipe; the shares are what compares.", "",
               "## Path length in the water", "",

@@ -3,7 +3,10 @@ and caustics, as a user's render of the example has them, beside the benchmark's
 
 For every camera, each renderer is scored against both references (references.py --full-references):
 
-- Spindrift's defaults without lights: the benchmark's scene file, over the background render;
+- Spindrift without lights and without the world's light (light.sky_without_lamps off): the benchmark's scene
+  file, over the background render, as the main sweep runs it;
+- Spindrift's defaults on that scene file, which names no lamp: the world's light alone is taken, the whole
+  background counted as sky light (docs/liquid.md, "The world's light alone");
 - Spindrift's defaults with the example's sun (scene_sun.json, as the Blender add-on exports the scene's lamps)
   over the background with Cycles' light passes: the liquid's shadow, caustics and sky occlusion applied;
 - VTK's fluid mapper (the plan's first filter; the renders sweep.vtk_points made), which has no light model;
@@ -30,8 +33,9 @@ WHITEWATER_REFERENCE = "reference_full_whitewater.exr"
 # The user's render with the example's whitewater as white diffuse spheres (references.py --whitewater) is
 # scored where the example has it: the only reference in which foam is anything but error.
 REFERENCES = {"no_shadow": "reference.exr", "full": "reference_full.exr", "whitewater": WHITEWATER_REFERENCE}
-SPINDRIFT_VARIANTS = [("Spindrift, no lights", "scene.json"),
-                      ("Spindrift, the sun with light passes", "scene_sun.json")]
+SPINDRIFT_VARIANTS = [("Spindrift, no lights", "scene.json", {"light.sky_without_lamps": False}),
+                      ("Spindrift, no lamps: the world's light alone (defaults)", "scene.json", {}),
+                      ("Spindrift, the sun with light passes", "scene_sun.json", {})]
 
 
 def scores(camera_directory, test_exr=None, composite=None):
@@ -52,12 +56,12 @@ def compare(example, references, plan, vtk_rows, work):
     work_directory = os.path.join(work, "users_render", example)
     os.makedirs(work_directory, exist_ok=True)
     rows = []
-    for label, scene_name in SPINDRIFT_VARIANTS:
+    for variant, (label, scene_name, settings) in enumerate(SPINDRIFT_VARIANTS):
         per_camera, timing = [], None
         for index, camera in enumerate(plan["cameras"]):
             camera_directory = os.path.join(references, camera)
-            exr = os.path.join(work_directory, f"{camera}_{scene_name.replace('.json', '')}.exr")
-            measured = runs.timed_spindrift(os.path.join(camera_directory, scene_name), exr, {},
+            exr = os.path.join(work_directory, f"{camera}_{scene_name.replace('.json', '')}_{variant}.exr")
+            measured = runs.timed_spindrift(os.path.join(camera_directory, scene_name), exr, settings,
                                             plan["repeats"] if index == 0 else 1, work_directory)
             timing = timing or measured
             per_camera.append(scores(camera_directory, test_exr=exr))

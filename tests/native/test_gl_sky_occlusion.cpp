@@ -216,8 +216,8 @@ TEST(GLSkyOcclusion, TheWorldAloneLightsTheFloorAsItsSkyLightIsKept) {
   for (const double x : {0.0, 1.5, 2.3}) {
     const int column = columnOf(x);
     for (int c = 0; c < 3; ++c) {
-      const double expected = keptPastBoxAlongFewDirections(
-          floorPoint(column, row), low, high, scene.parameters.liquid.absorption_rgb[c], 16);
+      const double expected = keptPastBoxAlongFewDirections(floorPoint(column, row), low, high,
+                                                            scene.parameters.liquid.absorption_rgb[c], 16);
       EXPECT_NEAR(windowMean(*alone.layer("liquid_sky"), column, row, c), expected, 0.02)
           << "x " << x << ", channel " << c;
       const float sky = at(*alone.layer("liquid_sky"), kWidth, column, row, c);

@@ -154,7 +154,8 @@ TEST(LightViews, TheWorldAloneHasTheSkysViewAndNoLightsView) {
   EXPECT_TRUE(alone.lights.empty());
   ASSERT_TRUE(alone.sky.has_value());
   EXPECT_TRUE(alone.sky->view.sky);
-  const LightingPreparation withSun = prepareLighting(particles, distantCamera(), {Light{}}, false, parameters);
+  const LightingPreparation withSun =
+      prepareLighting(particles, distantCamera(), {Light{}}, false, parameters);
   ASSERT_TRUE(withSun.sky.has_value());
   EXPECT_EQ(alone.sky->view.camera.width, withSun.sky->view.camera.width);
   EXPECT_EQ(alone.sky->liquid.aggregates.size(), withSun.sky->liquid.aggregates.size());

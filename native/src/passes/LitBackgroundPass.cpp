@@ -38,7 +38,8 @@ LitBackgroundData LitBackgroundPass::run(const BackgroundData& background, const
   const bool hasLightPasses = background.lightPasses != nullptr;
   glUniform1i(uniformLocation(program, "hasLightPasses"), hasLightPasses ? 1 : 0);
   // Without a lamp none of the background's light comes from one (light.sky_without_lamps).
-  glUniform1f(uniformLocation(program, "directFraction"), lamps.none ? 0.0f : parameters.light.direct_fraction);
+  glUniform1f(uniformLocation(program, "directFraction"),
+              lamps.none ? 0.0f : parameters.light.direct_fraction);
   glUniform1i(uniformLocation(program, "worldAlone"), lamps.none ? 1 : 0);
   if (sky.occlusion) {
     glUniform1i(uniformLocation(program, "skyOcclusionScale"), sky.occlusion->scale);

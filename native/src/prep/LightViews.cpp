@@ -239,8 +239,7 @@ const LightingPreparation& LightingAcrossFrames::forFrame(const Particles& parti
   // The same particles and liquid parameters frame the views alike (the same bounds); the camera only sizes
   // them.
   kept_ = previous_ && sameParticles && lights == lights_ && worldLightsAlone == worldLightsAlone_ &&
-          parameters.liquid == liquidParameters_ &&
-          parameters.light == lightParameters_ && previous_->sky &&
+          parameters.liquid == liquidParameters_ && parameters.light == lightParameters_ && previous_->sky &&
           lightViewSize(previous_->bounds, camera, parameters.light) == previous_->viewSize &&
           skyViewSide(previous_->bounds, camera, parameters.light) == previous_->sky->view.camera.width;
   if (kept_) {
@@ -248,7 +247,8 @@ const LightingPreparation& LightingAcrossFrames::forFrame(const Particles& parti
         std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
     return *previous_;
   }
-  previous_ = prepareLighting(particles, camera, lights, worldLightsAlone, parameters, frameCache, &occlusion_);
+  previous_ =
+      prepareLighting(particles, camera, lights, worldLightsAlone, parameters, frameCache, &occlusion_);
   lights_ = lights;
   worldLightsAlone_ = worldLightsAlone;
   liquidParameters_ = parameters.liquid;

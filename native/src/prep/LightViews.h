@@ -94,8 +94,7 @@ LightsSeeing lightsSeeingTheLiquid(const Particles& particles, const std::vector
 /// the lights' occlusion tests, kept from an earlier frame.
 LightingPreparation prepareLighting(const Particles& particles, const Camera& camera,
                                     const std::vector<Light>& lights, bool worldLightsAlone,
-                                    const Parameters& parameters,
-                                    FrameLiquidCache* frameCache = nullptr,
+                                    const Parameters& parameters, FrameLiquidCache* frameCache = nullptr,
                                     OcclusionWorkspace* occlusion = nullptr);
 
 /// The lights' preparation kept for the frames after while nothing it depends on changes: the same particles
@@ -108,8 +107,8 @@ class LightingAcrossFrames {
   /// prepareLighting's result for this frame: the frame before's where it holds, else prepared anew.
   const LightingPreparation& forFrame(const Particles& particles, const Camera& camera,
                                       const std::vector<Light>& lights, bool worldLightsAlone,
-                                      const Parameters& parameters,
-                                      FrameLiquidCache* frameCache, bool sameParticles);
+                                      const Parameters& parameters, FrameLiquidCache* frameCache,
+                                      bool sameParticles);
   /// Whether forFrame kept the frame before's.
   bool kept() const { return kept_; }
 
