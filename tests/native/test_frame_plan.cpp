@@ -160,6 +160,36 @@ TEST(FramePlan, LightsRunTheLightPasses) {
   EXPECT_TRUE(planFrame(everyPixel).runs(Pass::LitBackground));
 }
 
+// The world's light alone (light.sky_without_lamps): without a lamp that sees the liquid the sky's passes and
+// the lit background run, in the order a lamp's frame runs them, and the lamps' own passes are skipped with
+// the lamps' reason; without the sky occlusion's samples the lit background still runs; when nothing reads
+// the lit background nothing runs.
+TEST(FramePlan, TheWorldAloneRunsTheSkysPassesOnly) {
+  for (const FrameContents& lampless : {withLights(0, 0, 0, true), withLights(1, 0, 0, true)}) {
+    FrameContents contents = lampless;
+    contents.worldLightsAlone = true;
+    const FramePlan plan = planFrame(contents);
+    const std::string lamps = contents.lights == 0 ? "no lights in the scene" : "no light sees the liquid";
+    for (const char* pass : {"light_depth_layers", "liquid_shadow", "caustics"})
+      EXPECT_EQ(reasonFor(plan, pass), lamps) << pass;
+    std::vector<std::string> lightPassesRun;
+    for (const std::string& pass : names(plan.passes))
+      if (std::find(kLightPasses.begin(), kLightPasses.end(), pass) != kLightPasses.end())
+        lightPassesRun.push_back(pass);
+    EXPECT_EQ(lightPassesRun, (std::vector<std::string>{"sky_occlusion", "lit_tiles", "lit_background"}));
+    FrameContents withoutSamples = contents;
+    withoutSamples.skyOcclusionDirections = 0;
+    const FramePlan withoutSky = planFrame(withoutSamples);
+    EXPECT_TRUE(withoutSky.runs(Pass::LitBackground));
+    EXPECT_EQ(reasonFor(withoutSky, "sky_occlusion"), "light.sky_occlusion_directions is 0");
+    FrameContents nothingRead = contents;
+    nothingRead.compositeWanted = nothingRead.liquidLayersWanted = nothingRead.foamLayersWanted = false;
+    nothingRead.lightLayersWanted = false;
+    for (const std::string& pass : kLightPasses)
+      EXPECT_EQ(reasonFor(planFrame(nothingRead), pass), lamps) << pass;
+  }
+}
+
 // --layers: the light passes run for the light layers alone, and not when nothing reads the lit background.
 TEST(FramePlan, LightPassesFollowTheLayerSelection) {
   FrameContents lightOnly = withLights(1, 1, 1, true);
