@@ -304,9 +304,17 @@ RenderResult Renderer::renderPrepared(const Scene& scene, const Particles& parti
       solids->addTriangles(*mesh);
   }
   const SolidDepthTiles* frameSolids = solids ? &*solids : nullptr;
+  // Without a lamp the world still lights the background where it has solids to light and liquid to take
+  // some of that light, which the sky's view then finds (docs/liquid.md, "The world's light alone").
+  const bool worldMayLight =
+      scene.parameters.light.sky_without_lamps &&
+      (glm::any(glm::greaterThan(backgroundImages.fallbackColor, glm::vec3(0.0f))) ||
+       backgroundImages.environment != nullptr) &&
+      (backgroundImages.eyeDepth != nullptr || !extras.occluders.empty());
   // What the camera's and the lights' views share, kept for the next frame while the particles and the
   // liquid parameters stay the same (liquid.reuse_shapes).
-  FrameLiquidCache* shared = impl_->liquidCache.forFrame(particles, liquidParameters, !scene.lights.empty());
+  FrameLiquidCache* shared =
+      impl_->liquidCache.forFrame(particles, liquidParameters, !scene.lights.empty() || worldMayLight);
   stats.liquid.shapesNotKept = impl_->liquidCache.whyNotKept();
   LiquidPreparation liquid = prepareLiquid(particles, camera, liquidParameters, shared, frameSolids);
   const bool cameraInLiquid = aggregatesContain(liquid.aggregates, camera.position(), domainBox);
@@ -363,13 +371,7 @@ RenderResult Renderer::renderPrepared(const Scene& scene, const Particles& parti
   // thread draws the camera's surface.
   const LightsSeeing seeing = lightsSeeingTheLiquid(particles, scene.lights, liquidParameters);
   contents.lightsSeeingLiquid = seeing.lights;
-  // Without a lamp the world still lights the background where it has solids to light and liquid to take
-  // some of that light (docs/liquid.md, "The world's light alone").
-  const bool worldLit = glm::any(glm::greaterThan(backgroundImages.fallbackColor, glm::vec3(0.0f))) ||
-                        backgroundImages.environment != nullptr;
-  const bool solidsLit = backgroundImages.eyeDepth != nullptr || !extras.occluders.empty();
-  contents.worldLightsAlone = seeing.lights == 0 && scene.parameters.light.sky_without_lamps && worldLit &&
-                              solidsLit && radius > 0.0f;
+  contents.worldLightsAlone = seeing.lights == 0 && worldMayLight && radius > 0.0f;
   contents.causticLights = seeing.causticLights;
   contents.caustics = scene.parameters.light.caustics;
   contents.skyOcclusionDirections = scene.parameters.light.sky_occlusion_directions;
