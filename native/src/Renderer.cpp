@@ -306,11 +306,10 @@ RenderResult Renderer::renderPrepared(const Scene& scene, const Particles& parti
   const SolidDepthTiles* frameSolids = solids ? &*solids : nullptr;
   // Without a lamp the world still lights the background where it has solids to light and liquid to take
   // some of that light, which the sky's view then finds (docs/liquid.md, "The world's light alone").
-  const bool worldMayLight =
-      scene.parameters.light.sky_without_lamps &&
-      (glm::any(glm::greaterThan(backgroundImages.fallbackColor, glm::vec3(0.0f))) ||
-       backgroundImages.environment != nullptr) &&
-      (backgroundImages.eyeDepth != nullptr || !extras.occluders.empty());
+  const bool worldMayLight = scene.parameters.light.sky_without_lamps &&
+                             (glm::any(glm::greaterThan(backgroundImages.fallbackColor, glm::vec3(0.0f))) ||
+                              backgroundImages.environment != nullptr) &&
+                             (backgroundImages.eyeDepth != nullptr || !extras.occluders.empty());
   // What the camera's and the lights' views share, kept for the next frame while the particles and the
   // liquid parameters stay the same (liquid.reuse_shapes).
   FrameLiquidCache* shared =
@@ -371,7 +370,9 @@ RenderResult Renderer::renderPrepared(const Scene& scene, const Particles& parti
   // thread draws the camera's surface.
   const LightsSeeing seeing = lightsSeeingTheLiquid(particles, scene.lights, liquidParameters);
   contents.lightsSeeingLiquid = seeing.lights;
-  contents.worldLightsAlone = seeing.lights == 0 && worldMayLight && radius > 0.0f;
+  // Liquid the sky's view can draw (none when the frame holds foam alone: prepareLighting then has no view).
+  contents.worldLightsAlone =
+      seeing.lights == 0 && worldMayLight && liquidBounds(particles, liquidParameters).radius > 0.0f;
   contents.causticLights = seeing.causticLights;
   contents.caustics = scene.parameters.light.caustics;
   contents.skyOcclusionDirections = scene.parameters.light.sky_occlusion_directions;

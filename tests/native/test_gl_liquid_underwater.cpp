@@ -205,11 +205,14 @@ TEST(GLLiquidUnderwater, SolidSeenThroughTheWaterIsAbsorbedOnTheWay) {
   // surface is seen, every pixel is the wall's colour (the background's) times exp(-sigma l) along its ray,
   // divided by n^2 as a submerged solid seen from air is (Cycles' convention, which the sky seen through the
   // surface from below keeps as well: SurfaceFromBelowStandsWhereItDoesFromAbove). The transmittance layer,
-  // which a compositor multiplies the background by, carries the same factor.
+  // which a compositor multiplies the background by, carries the same factor. The wall keeps all of its light
+  // here (light.sky_without_lamps off): what the world's light alone leaves a submerged solid is
+  // GLSkyOcclusion's.
   Scene scene;
   scene.camera = Camera::lookAt(96, 72, 40.0f, {0, 0, 0}, {0, 1, 0}, {0, 0, 1});
   scene.background.color = kSky;
   scene.parameters.liquid.absorption = 2.0f;
+  scene.parameters.light.sky_without_lamps = false;
   const RenderResult result =
       renderUnderWater(scene, liquid_test::block({-1, -1, -1}, {1, 1.5f, 1}, kSpacing),
                        {{{-3, 0.5f, -3}, {3, 0.5f, -3}, {3, 0.5f, 3}, {-3, 0.5f, 3}}});

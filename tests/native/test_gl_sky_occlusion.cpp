@@ -231,6 +231,15 @@ TEST(GLSkyOcclusion, TheWorldAloneLightsTheFloorAsItsSkyLightIsKept) {
       }
     }
   }
+  // Foam without liquid: nothing for the sky's view to draw, so nothing is lit (a degenerate frame that once
+  // planned the lit background without a sky's view).
+  Particles foamOnly;
+  for (int i = 0; i < 20; ++i)
+    foamOnly.append({0.1f * float(i) - 1.0f, 0.0f, 1.0f}, 0.05f, ParticleKind::Foam, 10.0f, {});
+  const RenderResult foam = renderer().renderParticles(scene, foamOnly, 1);
+  expectAllChannelsFinite(foam);
+  EXPECT_FALSE(foam.stats.light.worldAlone);
+  EXPECT_TRUE(skipped(foam, "lit_background"));
   Scene off = scene;
   off.parameters.light.sky_without_lamps = false;
   Scene black = scene;

@@ -147,9 +147,15 @@ def test_liquid_is_the_background_through_the_refraction_uv_times_transmittance_
     assert ((transmittance >= 0) & (transmittance <= 1)).all()
     assert (transmittance[looks_up] > 0).any(axis=-1).all()
     # Where the final ray looks up the background the UV is a texel centre, so the CPU's bilinear lookup reads
-    # exactly the texel the shader read; the tolerance covers float32 rounding of UV and of the sums.
+    # exactly the texel the shader read; the tolerance covers float32 rounding of UV and of the sums. The scene
+    # names no lamp, so the world's light alone lights the background first (light.sky_without_lamps): what
+    # is refracted is the background times liquid_sky, as the add-on's group multiplies the render before its
+    # Map UV node.
+    sky = layer(result, "liquid_sky")
+    assert (sky[~covered & (depth < 1e9)] < 0.999).any(), "the liquid takes sky light from the wall"
     recombined = reflection.copy()
-    recombined[looks_up] += bilinear(colour[..., :3], uv[looks_up][:, 0], uv[looks_up][:, 1]) * transmittance[looks_up]
+    lit = colour[..., :3] * sky[..., :3]
+    recombined[looks_up] += bilinear(lit, uv[looks_up][:, 0], uv[looks_up][:, 1]) * transmittance[looks_up]
     np.testing.assert_allclose(recombined[covered], liquid[covered][:, :3], rtol=0, atol=1e-4)
     assert (uv[~looks_up] == 0).all() and (transmittance[~looks_up] == 0).all()
 
