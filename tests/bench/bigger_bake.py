@@ -29,9 +29,8 @@ def steady_frame_ms(scene, work_directory, frames=5, reuse_shapes=True):
     shapes them anew (what a sequence's new particles cost)."""
     stats = os.path.join(work_directory, "steady_####.json")
     command = [runs.SPINDRIFT, "render", scene, "--stats", stats, "--frames", f"1-{frames}", "-q",
-               "--set", f"liquid.reuse_shapes={'true' if reuse_shapes else 'false'}"]
-    for key, value in sweep.AS_THE_REFERENCE.items():
-        command += ["--set", f"{key}={json.dumps(value)}"]
+               "--set", f"liquid.reuse_shapes={'true' if reuse_shapes else 'false'}",
+               *runs.set_arguments(sweep.AS_THE_REFERENCE)]
     subprocess.run(command, check=True, stdout=subprocess.DEVNULL,
                    env=dict(os.environ, SPINDRIFT_FINISH_PASSES="1"))
     totals = []

@@ -34,7 +34,7 @@ def plan(quick):
 # What the sweep's reference leaves out, left out of every run scored against it or timed beside the sweep
 # (scaling, the bigger bake): the world's light alone, which the examples' scene files, naming no lamp, would
 # otherwise take (see configurations).
-AS_THE_REFERENCE = {"light.sky_without_lamps": False}
+AS_THE_REFERENCE = runs.WORLD_LIGHT_OFF
 
 
 def configurations(quick):

@@ -39,7 +39,7 @@ NOISE_FLOOR = "Cycles, another seed (noise floor)"
 # light passes, and --set overrides.
 # Without the sun the scene names no lamp, and Spindrift's default takes the world's light alone
 # (light.sky_without_lamps): the rows "before" leave it off, as there were no light passes then.
-NO_LIGHT = {"light.sky_without_lamps": False}
+NO_LIGHT = runs.WORLD_LIGHT_OFF
 SETTINGS = [
     ("no lights (before)", False, True, NO_LIGHT),
     ("sun, light passes", True, True, {}),
@@ -76,11 +76,16 @@ def ensure_renders(samples, background_samples):
                                 "reference_full_seed2.exr", "water_mask.exr", "scene.json", "shape.json")):
             missing.append(frame)
     if missing:
-        subprocess.run(["nice", "-n", "5", "blender", "-b", "--factory-startup", "-t", "2", "--python-exit-code", "1",
-                        "--python", os.path.join(os.path.dirname(os.path.abspath(__file__)), "thick_bodies.py"), "--",
-                        "--output", OUTPUT, "--frames", ",".join(missing), "--samples", str(samples),
-                        "--background-samples", str(background_samples)],
-                       check=True)
+        render_thick_bodies(OUTPUT, missing, samples, background_samples)
+
+
+def render_thick_bodies(output, frames, samples, background_samples, *options):
+    """Renders `frames` with thick_bodies.py in Blender into `output` (`options`: its own, e.g. --sky-only)."""
+    subprocess.run(["nice", "-n", "5", "blender", "-b", "--factory-startup", "-t", "2", "--python-exit-code", "1",
+                    "--python", os.path.join(os.path.dirname(os.path.abspath(__file__)), "thick_bodies.py"), "--",
+                    "--output", output, "--frames", ",".join(frames), "--samples", str(samples),
+                    "--background-samples", str(background_samples), *options],
+                   check=True)
 
 
 LIGHT_PASS_NAMES = ("light_depth_layers", "liquid_shadow", "caustics", "sky_depth_layers", "sky_occlusion",
@@ -106,9 +111,8 @@ def steady_cost(scene, settings, directory):
     draws when a later pass reads them, and charges them to that pass (the background's to the lights').
     Every frame shapes its particles anew, as a sequence's new particles are (SEQUENCE_SETTINGS)."""
     command = [runs.SPINDRIFT, "render", scene, "-o", os.path.join(directory, "steady_####.exr"), "--stats",
-               os.path.join(directory, "steady_####.json"), "--frames", "1-6", "-q"]
-    for key, value in {**SEQUENCE_SETTINGS, **settings}.items():
-        command += ["--set", f"{key}={json.dumps(value)}"]
+               os.path.join(directory, "steady_####.json"), "--frames", "1-6", "-q",
+               *runs.set_arguments({**SEQUENCE_SETTINGS, **settings})]
     subprocess.run(command, check=True, stdout=subprocess.DEVNULL, env=dict(os.environ, SPINDRIFT_FINISH_PASSES="1"))
     costs = []
     for frame in range(3, 7):
@@ -122,9 +126,8 @@ def steady_frame_ms(scene, settings, directory):
     """The median whole-frame time (total_ms) of frames 3 to 8 of a `--frames 1-8` sequence, the passes not
     finished one by one (as a user's render runs), each frame's particles shaped anew (SEQUENCE_SETTINGS)."""
     command = [runs.SPINDRIFT, "render", scene, "-o", os.path.join(directory, "frames_####.exr"), "--stats",
-               os.path.join(directory, "frames_####.json"), "--frames", "1-8", "-q"]
-    for key, value in {**SEQUENCE_SETTINGS, **settings}.items():
-        command += ["--set", f"{key}={json.dumps(value)}"]
+               os.path.join(directory, "frames_####.json"), "--frames", "1-8", "-q",
+               *runs.set_arguments({**SEQUENCE_SETTINGS, **settings})]
     subprocess.run(command, check=True, stdout=subprocess.DEVNULL)
     totals = []
     for frame in range(3, 9):
@@ -320,7 +323,7 @@ def main():
     parser.add_argument("--background-samples", type=int, default=128)
     arguments = parser.parse_args()
     ensure_renders(arguments.samples, arguments.background_samples)
-    world_light.ensure_renders(FRAMES, arguments.samples, arguments.background_samples)
+    world_light.ensure_renders(sys.modules[__name__], FRAMES, arguments.samples, arguments.background_samples)
     results, timings = {}, {}
     renderer = runs.gl_renderer()
     load_before = os.getloadavg()[0]

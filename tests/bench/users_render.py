@@ -33,7 +33,7 @@ WHITEWATER_REFERENCE = "reference_full_whitewater.exr"
 # The user's render with the example's whitewater as white diffuse spheres (references.py --whitewater) is
 # scored where the example has it: the only reference in which foam is anything but error.
 REFERENCES = {"no_shadow": "reference.exr", "full": "reference_full.exr", "whitewater": WHITEWATER_REFERENCE}
-SPINDRIFT_VARIANTS = [("Spindrift, no lights", "scene.json", {"light.sky_without_lamps": False}),
+SPINDRIFT_VARIANTS = [("Spindrift, no lights", "scene.json", runs.WORLD_LIGHT_OFF),
                       ("Spindrift, no lamps: the world's light alone (defaults)", "scene.json", {}),
                       ("Spindrift, the sun with light passes", "scene_sun.json", {})]
 

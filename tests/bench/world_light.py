@@ -14,7 +14,6 @@ steady frame (thick_report.steady_frame_ms) with it against without it.
 
 import json
 import os
-import subprocess
 
 import numpy as np
 
@@ -22,12 +21,13 @@ import metrics
 import runs
 
 OUTPUT = os.path.join(runs.REPOSITORY, "build", "bench", "thick_sky")
-OFF = {"light.sky_without_lamps": False}
+OFF = runs.WORLD_LIGHT_OFF
 IMAGES_NEEDED = ("background.exr", "reference_full.exr", "water_mask.exr", "scene.json", "shape.json")
 
 
-def ensure_renders(frames, samples, background_samples):
-    """Renders the sky-only frames that are missing or were rendered at other sample counts."""
+def ensure_renders(report, frames, samples, background_samples):
+    """Renders the sky-only frames that are missing or were rendered at other sample counts. `report`: the
+    thick_report module (render_thick_bodies)."""
     missing = []
     for frame in frames:
         directory = os.path.join(OUTPUT, frame)
@@ -37,11 +37,7 @@ def ensure_renders(frames, samples, background_samples):
         if not same_samples or not all(os.path.isfile(os.path.join(directory, name)) for name in IMAGES_NEEDED):
             missing.append(frame)
     if missing:
-        subprocess.run(["nice", "-n", "5", "blender", "-b", "--factory-startup", "-t", "2", "--python-exit-code", "1",
-                        "--python", os.path.join(os.path.dirname(os.path.abspath(__file__)), "thick_bodies.py"), "--",
-                        "--output", OUTPUT, "--frames", ",".join(missing), "--samples", str(samples),
-                        "--background-samples", str(background_samples), "--sky-only"],
-                       check=True)
+        report.render_thick_bodies(OUTPUT, missing, samples, background_samples, "--sky-only")
 
 
 def measure(report, frames):
