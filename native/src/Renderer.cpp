@@ -557,8 +557,7 @@ RenderResult Renderer::renderPrepared(const Scene& scene, const Particles& parti
     }
     readFrameLayers(composite ? &*composite : nullptr, liquidLayer ? &*liquidLayer : nullptr,
                     foamLayer ? &*foamLayer : nullptr, width, height, layers, result.layers);
-    readLightLayers(lit ? &*lit : nullptr, !scene.lights.empty() || lit, width, height, layers,
-                    result.layers);
+    readLightLayers(lit ? &*lit : nullptr, !scene.lights.empty(), width, height, layers, result.layers);
     intermediate.appendTo(result.layers);
     stats.readbackMilliseconds = millisecondsSince(readbackStart);
   });
