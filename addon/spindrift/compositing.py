@@ -31,13 +31,25 @@ def frame_layers(mode, lit):
     return GROUP_LAYERS[mode] + (LIGHT_LAYERS if lit and mode == "OVER" else [])
 
 
-def direct_fraction():
-    """light.direct_fraction of the parameter table: the share of the render's brightness taken to come
-    straight from the lamps, as the command line's composite uses it without Cycles' light passes."""
-    from . import native
+def direct_fraction(scene):
+    """The scene's light.direct_fraction (Render properties > Spindrift > Light): the share of the render's
+    brightness taken to come straight from the lamps, as the command line's composite uses it without Cycles'
+    light passes and as the renderer's lit background under the liquid takes it from the same scene file."""
+    return float(scene.spindrift.light.direct_fraction)
 
-    return next(float(row["default"]) for row in native.parameter_table()
-                if row["group"] == "light" and row["name"] == "direct_fraction")
+
+# The node of the OVER group whose factor is light.direct_fraction: kept the scene's when the value changes.
+DIRECT_SHARE_NODE = "Direct fraction"
+
+
+def set_direct_fraction(fraction):
+    """Sets the OVER group's direct share to `fraction` (the group is built with the value at Set Up
+    Compositing; this keeps it when the setting changes afterwards). Only a change is written: a write tags
+    the node tree for the compositor."""
+    group = bpy.data.node_groups.get(GROUP_NAMES["OVER"])
+    node = group.nodes.get(DIRECT_SHARE_NODE) if group is not None else None
+    if node is not None and abs(node.inputs["Fac"].default_value - fraction) > 1e-7:
+        node.inputs["Fac"].default_value = fraction
 
 
 def _tree(scene):
@@ -116,9 +128,10 @@ def _new_group(mode, width, lit=False):
     return group, source, sink
 
 
-def _lit_render(group, source):
-    """render * (f * (liquid_shadow + caustics) + (1 - f) * liquid_sky): the render without the liquid, with
-    the liquid's shadow and caustics, before anything refracts or shows it (as the command line does)."""
+def _lit_render(group, source, fraction):
+    """render * (f * (liquid_shadow + caustics) + (1 - f) * liquid_sky), f = `fraction`: the render without
+    the liquid, with the liquid's shadow and caustics, before anything refracts or shows it (as the command
+    line does)."""
     nodes, links = group.nodes, group.links
     direct = nodes.new("CompositorNodeMixRGB")
     direct.blend_type = "ADD"
@@ -127,7 +140,8 @@ def _lit_render(group, source):
     links.new(source.outputs["caustics"], direct.inputs[2])
     share = nodes.new("CompositorNodeMixRGB")  # MIX: (1 - fac) * sky + fac * direct
     share.blend_type = "MIX"
-    share.inputs["Fac"].default_value = direct_fraction()
+    share.name = share.label = DIRECT_SHARE_NODE
+    share.inputs["Fac"].default_value = fraction
     share.location = (-800, 450)
     links.new(source.outputs["liquid_sky"], share.inputs[1])
     links.new(direct.outputs["Image"], share.inputs[2])
@@ -140,10 +154,11 @@ def _lit_render(group, source):
     return lit.outputs["Image"]
 
 
-def build_over_group(lit=False):
+def build_over_group(lit, fraction):
+    """The OVER group; `lit` applies the light layers with `fraction` as light.direct_fraction."""
     group, source, sink = _new_group("OVER", 1600, lit)
     nodes, links = group.nodes, group.links
-    render = _lit_render(group, source) if lit else source.outputs["Image"]
+    render = _lit_render(group, source, fraction) if lit else source.outputs["Image"]
 
     map_uv = nodes.new("CompositorNodeMapUV")
     map_uv.location = (-600, 200)
@@ -232,7 +247,7 @@ def build_tree(scene, mode, layers_path):
     # Lamps were handed when the EXR has their layers; the group then applies them.
     lit = mode == "OVER" and all(any(o.name == name and o.enabled for o in image_node.outputs)
                                  for name in LIGHT_LAYERS)
-    group = build_over_group(lit) if mode == "OVER" else build_foam_only_group()
+    group = build_over_group(lit, direct_fraction(scene)) if mode == "OVER" else build_foam_only_group()
     group_node = tree.nodes.new("CompositorNodeGroup")
     group_node.node_tree = group
     group_node.name = group_node.label = GROUP_NODE

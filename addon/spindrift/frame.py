@@ -40,13 +40,18 @@ class Frame:
         return 0 if particles is None else len(particles["radii"])
 
 
-def parameter_values(obj, quality=None):
+def parameter_values(scene, obj, quality=None):
+    """{group: the values the scene file's group object takes} for every group of the table: liquid and foam
+    from `obj` (the frame's primary object; none without one), light from the scene
+    (parameters.GROUP_OWNERS). `quality` adds a viewport preset's overrides."""
     table = native.parameter_table()
+    owners = {"object": obj.spindrift if obj else None, "scene": scene.spindrift}
     values = {}
-    for group in ("liquid", "foam"):
-        values[group] = parameters.group_values(table, group, getattr(obj.spindrift, group)) if obj else {}
+    for group, owner in parameters.GROUP_OWNERS.items():
+        settings = owners[owner]
+        values[group] = parameters.group_values(table, group, getattr(settings, group)) if settings else {}
         if quality:
-            values[group].update(QUALITY_OVERRIDES[quality][group])
+            values[group].update(QUALITY_OVERRIDES[quality].get(group, {}))
     return values
 
 
@@ -78,13 +83,13 @@ def collect(scene, depsgraph, frame, camera, *, mode="OVER", occluders=True, qua
                                            None if s.life is None else s.life[s.kinds != 0]) for s in sets]
             particle_sets.extend(sets)
 
-    values = parameter_values(export.primary_object(scene), quality)
+    values = parameter_values(scene, export.primary_object(scene), quality)
     # Lamps light the foam (foam.lit_by_lights) and, under OVER, the background under the liquid
     # (liquid_shadow, caustics); with the liquid in the render (FOAM_ONLY) Cycles has lit that already, and
     # no liquid particle is handed, so the light passes are skipped (no light sees the liquid).
     lights = export.scene_lights(depsgraph, for_render=for_render)
     document = scene_json.scene_document(camera, frame, sources, {"color": export.world_color(scene)},
-                                         values["liquid"], values["foam"], lights)
+                                         values["liquid"], values["foam"], lights, values["light"])
     kwargs = {}
     particles = export.merge_particles(particle_sets)
     if particles is not None:

@@ -4,6 +4,11 @@ Pure Python: `property_definitions` takes the table and a module with Blender's 
 (`bpy.props` in Blender, a fake in the plain-Python tests), so the mapping is testable without Blender.
 """
 
+# Where the add-on keeps each group of the table: liquid and foam on the object whose parameters a frame uses
+# (export.primary_object), light on the scene, because lamps and the world light the whole scene whichever
+# object holds the liquid. Properties, panels and the scene file all go by this one mapping.
+GROUP_OWNERS = {"liquid": "object", "foam": "object", "light": "scene"}
+
 # Blender's FloatProperty keeps soft limits for the slider; the table's range is the hard limit the native
 # validator enforces too, so a value Blender accepts is always one the renderer accepts.
 _SOFT_SPAN = 1e4
@@ -18,10 +23,13 @@ def _label(name):
     return name.replace("_", " ").capitalize()
 
 
-def property_definition(row, props):
-    """One table row as a Blender property (the object `props.XxxProperty(...)` returns)."""
+def property_definition(row, props, update=None):
+    """One table row as a Blender property (the object `props.XxxProperty(...)` returns); `update` is the
+    callback Blender calls when the value changes (none by default)."""
     kind = row["type"]
     common = {"name": _label(row["name"]), "description": _description(row)}
+    if update is not None:
+        common["update"] = update
     if kind == "float":
         low, high = float(row["min"]), float(row["max"])
         return props.FloatProperty(default=float(row["default"]), min=low, max=high,
@@ -49,12 +57,12 @@ def property_definition(row, props):
     raise ValueError(f"parameter {row['group']}.{row['name']}: unknown type {kind!r}")
 
 
-def property_definitions(table, group, props):
-    """{name: property} for every row of `group` ('liquid' or 'foam'), in table order."""
+def property_definitions(table, group, props, update=None):
+    """{name: property} for every row of `group` (one of GROUP_OWNERS), in table order."""
     definitions = {}
     for row in table:
         if row["group"] == group:
-            definitions[row["name"]] = property_definition(row, props)
+            definitions[row["name"]] = property_definition(row, props, update)
     if not definitions:
         raise ValueError(f"the parameter table has no rows in group {group!r}")
     return definitions
@@ -89,6 +97,12 @@ def group_values(table, group, settings):
         if not _same(value, default):
             values[row["name"]] = value
     return values
+
+
+def group_defaults(table, group):
+    """{name: default} of `group` as the scene file writes values: what a document's group object means for
+    every parameter it leaves out (group_values writes only the changed ones)."""
+    return {row["name"]: json_value(row, row["default"]) for row in table if row["group"] == group}
 
 
 def _same(a, b):

@@ -1,5 +1,6 @@
 """The add-on's properties: `obj.spindrift` (enabled, source settings, the generated `liquid` and `foam`
-parameter groups), `scene.spindrift` (preview and render-layer settings) and the add-on's preferences."""
+parameter groups), `scene.spindrift` (preview and render-layer settings, the generated `light` parameter group)
+and the add-on's preferences."""
 
 import bpy
 from bpy.props import BoolProperty, EnumProperty, FloatProperty, PointerProperty
@@ -104,14 +105,28 @@ class SpindriftPreferences(AddonPreferences):
         layout.label(text=f"Native module: {status}")
 
 
+def _light_changed(self, _context):
+    # The compositor's group multiplies the render with light.direct_fraction as a constant: keep it the
+    # scene's, as the renderer's lit background under the liquid takes it from the frame's scene file.
+    from . import compositing
+    compositing.set_direct_fraction(self.direct_fraction)
+    _redraw_viewports()
+
+
+# The classes that hold each owner's groups (parameters.GROUP_OWNERS), and what a change of a group's value
+# must do beyond the depsgraph update every property change brings.
+_OWNER_CLASSES = {"object": SpindriftObjectSettings, "scene": SpindriftSceneSettings}
+_GROUP_UPDATES = {"light": _light_changed}
+
+
 def parameter_group_classes():
-    """PropertyGroup classes for the liquid and foam parameters, generated from the native table."""
+    """{group: PropertyGroup class} for every group of the native table (liquid, foam, light), generated from
+    its rows."""
     table = native.parameter_table()
-    classes = []
-    for group in ("liquid", "foam"):
-        annotations = parameters.property_definitions(table, group, bpy.props)
-        cls = type(f"SpindriftParameters_{group}", (PropertyGroup,), {"__annotations__": annotations})
-        classes.append(cls)
+    classes = {}
+    for group in parameters.GROUP_OWNERS:
+        annotations = parameters.property_definitions(table, group, bpy.props, _GROUP_UPDATES.get(group))
+        classes[group] = type(f"SpindriftParameters_{group}", (PropertyGroup,), {"__annotations__": annotations})
     return classes
 
 
@@ -119,10 +134,10 @@ _registered = []
 
 
 def register():
-    liquid, foam = parameter_group_classes()
-    SpindriftObjectSettings.__annotations__["liquid"] = PointerProperty(type=liquid)
-    SpindriftObjectSettings.__annotations__["foam"] = PointerProperty(type=foam)
-    for cls in (liquid, foam, SpindriftObjectSettings, SpindriftSceneSettings, SpindriftPreferences):
+    groups = parameter_group_classes()
+    for group, cls in groups.items():
+        _OWNER_CLASSES[parameters.GROUP_OWNERS[group]].__annotations__[group] = PointerProperty(type=cls)
+    for cls in (*groups.values(), SpindriftObjectSettings, SpindriftSceneSettings, SpindriftPreferences):
         bpy.utils.register_class(cls)
         _registered.append(cls)
     bpy.types.Object.spindrift = PointerProperty(type=SpindriftObjectSettings)

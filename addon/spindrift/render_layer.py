@@ -13,7 +13,7 @@ import time
 import bpy
 from bpy.app.handlers import persistent
 
-from . import compositing, export, frame as frame_inputs, native, reports
+from . import compositing, export, frame as frame_inputs, native, parameters, reports, scene_json
 from .scene_json import BadInput
 
 # The frame's EXR is temporary (the compositor reads it once), so it is written for speed: only the layers the
@@ -52,14 +52,10 @@ def render_frame(scene, depsgraph, frame, exr_path):
 
 def lights_through_liquid(inputs, mode):
     """Whether the frame's EXR carries the light layers the OVER group multiplies the render by: with lamps,
-    and without them where the world's light alone is taken (light.sky_without_lamps: the scene's solids are
-    handed, so the renderer has a background to light, and the world is not black). Where the renderer then
-    lights nothing the layers leave the render as it is; without lamps liquid_shadow holds the world's
-    multiplier, liquid_sky's, so the group's formula gives it whatever its lamps' share."""
-    if inputs.document.get("lights"):
-        return True
-    world = inputs.document.get("background", {}).get("color", [0.0, 0.0, 0.0])
-    return mode == "OVER" and "occluders" in inputs.kwargs and max(world) > 0.0
+    and without them where the world's light alone is taken (light.sky_without_lamps, from the scene's
+    Light settings) over the scene's solids and a world that is not black (scene_json.lights_through_liquid)."""
+    light_defaults = parameters.group_defaults(native.parameter_table(), "light")
+    return scene_json.lights_through_liquid(inputs.document, mode, "occluders" in inputs.kwargs, light_defaults)
 
 
 def timing(stats, collect_s, total_s):

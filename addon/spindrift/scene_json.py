@@ -157,7 +157,9 @@ def camera_description(width, height, world_from_camera, projection):
 
 # --- The document ----------------------------------------------------------------------------------------------
 
-def scene_document(camera, frame, sources=(), background=None, liquid=None, foam=None, lights=()):
+def scene_document(camera, frame, sources=(), background=None, liquid=None, foam=None, lights=(), light=None):
+    """The scene file's document. `liquid`, `foam` and `light` hold the parameters that differ from the table's
+    defaults (parameters.group_values); "light" is written only when it holds one, as the lamps are."""
     document = {"version": 1, "frame": int(frame), "camera": camera, "particles": list(sources)}
     if background:
         document["background"] = background
@@ -165,7 +167,28 @@ def scene_document(camera, frame, sources=(), background=None, liquid=None, foam
         document["lights"] = list(lights)
     document["liquid"] = dict(liquid or {})
     document["foam"] = dict(foam or {})
+    if light:
+        document["light"] = dict(light)
     return document
+
+
+def lights_through_liquid(document, mode, occluders_handed, light_defaults):
+    """Whether the renderer lights the background under the liquid for `document`, so that the frame's EXR
+    carries the light layers the OVER group multiplies the render by (FOAM_ONLY has none: Cycles lit the
+    liquid in its render). With lamps; and without them where the world's light alone is taken
+    (light.sky_without_lamps, `light_defaults` standing for what the document's "light" leaves out: the
+    table's defaults): the scene's solids are handed (`occluders_handed`), so the renderer has a background to
+    light, and the world is not black. Where the renderer then lights nothing (no lamp sees the liquid) the
+    layers leave the render as it is; without lamps liquid_shadow holds the world's multiplier, liquid_sky's,
+    so the group's formula gives it whatever its lamps' share. With light.sky_without_lamps off a scene without
+    lamps is lit by nothing, and its EXR has no light layers."""
+    if mode != "OVER":
+        return False
+    if document.get("lights"):
+        return True
+    light = {**light_defaults, **document.get("light", {})}
+    world = document.get("background", {}).get("color", [0.0, 0.0, 0.0])
+    return bool(light["sky_without_lamps"]) and occluders_handed and max(world) > 0.0
 
 
 def dumps(document):

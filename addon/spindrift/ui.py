@@ -1,9 +1,10 @@
 """Panels: Physics properties (per object: enable, source, liquid and foam parameters), Render properties
-(render layer, compositing, viewport preview, the last frame) and the 3D viewport's sidebar (preview)."""
+(render layer, compositing, viewport preview, the last frame, the scene's light parameters) and the 3D
+viewport's sidebar (preview)."""
 
 import bpy
 
-from . import export, native, reports, viewport
+from . import export, native, parameters, reports, viewport
 
 
 def _draw_parameters(layout, settings, group):
@@ -61,22 +62,6 @@ class SPINDRIFT_PT_object(bpy.types.Panel):
             layout.label(text=f"The frame uses {primary.name}'s parameters", icon="INFO")
 
 
-def parameter_panel(group, label):
-    """A sub-panel of the object's Spindrift panel with every parameter of one group of the table."""
-
-    def draw(self, context):
-        self.layout.use_property_split = True
-        _draw_parameters(self.layout, getattr(context.object.spindrift, group), group)
-
-    return type(f"SPINDRIFT_PT_object_{group}", (bpy.types.Panel,), {
-        "bl_label": label, "bl_parent_id": "SPINDRIFT_PT_object", "bl_space_type": "PROPERTIES",
-        "bl_region_type": "WINDOW", "bl_context": "physics", "bl_options": {"DEFAULT_CLOSED"}, "draw": draw})
-
-
-SPINDRIFT_PT_object_liquid = parameter_panel("liquid", "Liquid")
-SPINDRIFT_PT_object_foam = parameter_panel("foam", "Foam")
-
-
 def draw_preview_settings(layout, scene):
     settings = scene.spindrift
     layout.prop(settings, "preview")
@@ -125,6 +110,28 @@ class SPINDRIFT_PT_render(bpy.types.Panel):
         draw_preview_settings(layout, scene)
 
 
+def parameter_panel(group, label, parent):
+    """A closed sub-panel of `parent` (a Spindrift panel) with every parameter of one group of the table, read
+    from the object or the scene as parameters.GROUP_OWNERS says; each tooltip is the row's documentation."""
+    owner = parameters.GROUP_OWNERS[group]
+
+    def draw(self, context):
+        self.layout.use_property_split = True
+        holder = context.object if owner == "object" else context.scene
+        _draw_parameters(self.layout, getattr(holder.spindrift, group), group)
+
+    return type(f"{parent.__name__}_{group}", (bpy.types.Panel,), {
+        "bl_label": label, "bl_parent_id": parent.__name__, "bl_space_type": "PROPERTIES",
+        "bl_region_type": "WINDOW", "bl_context": parent.bl_context, "bl_options": {"DEFAULT_CLOSED"},
+        "draw": draw})
+
+
+SPINDRIFT_PT_object_liquid = parameter_panel("liquid", "Liquid", SPINDRIFT_PT_object)
+SPINDRIFT_PT_object_foam = parameter_panel("foam", "Foam", SPINDRIFT_PT_object)
+# Lamps and the world light the whole scene: its light parameters sit with the render's settings.
+SPINDRIFT_PT_render_light = parameter_panel("light", "Light", SPINDRIFT_PT_render)
+
+
 class SPINDRIFT_PT_view3d(bpy.types.Panel):
     bl_label = "Spindrift"
     bl_space_type = "VIEW_3D"
@@ -137,7 +144,7 @@ class SPINDRIFT_PT_view3d(bpy.types.Panel):
 
 
 CLASSES = (SPINDRIFT_PT_object, SPINDRIFT_PT_object_liquid, SPINDRIFT_PT_object_foam, SPINDRIFT_PT_render,
-           SPINDRIFT_PT_view3d)
+           SPINDRIFT_PT_render_light, SPINDRIFT_PT_view3d)
 
 
 register, unregister = bpy.utils.register_classes_factory(CLASSES)

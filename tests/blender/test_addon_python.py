@@ -1,14 +1,18 @@
 """Plain-Python tests of the add-on's pure parts (no Blender, no native module): properties generated from the
-parameter table, Mantaflow's cache-to-world formula, cameras from projection matrices, viewport depth.
+parameter table (liquid and foam on the object, light on the scene) and the scene file's groups, when the EXR
+carries the light layers, Mantaflow's cache-to-world formula, cameras from projection matrices, viewport depth.
 
 Run: /usr/bin/python3 -m pytest -q tests/blender/test_addon_python.py
 """
 
 import ast
 import importlib.util
+import json
 import math
 import pathlib
 import re
+import sys
+import types
 
 import numpy as np
 import pytest
@@ -28,13 +32,30 @@ parameters = load("parameters")
 scene_json = load("scene_json")
 
 
+def load_in_package(name, **stubs):
+    """An add-on module that imports its siblings (`from . import ...`), in a package of the pure modules
+    above and `stubs` standing for those that need Blender or the native module."""
+    package = types.ModuleType("spindrift_stub")
+    package.__path__ = []
+    siblings = {"parameters": parameters, "scene_json": scene_json, **stubs}
+    for sibling, module in siblings.items():
+        setattr(package, sibling, module)
+        sys.modules[f"spindrift_stub.{sibling}"] = module
+    sys.modules["spindrift_stub"] = package
+    spec = importlib.util.spec_from_file_location(f"spindrift_stub.{name}", ADDON / f"{name}.py")
+    module = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(module)
+    return module
+
+
 # --- The parameter table, read from parameters.def independently of the native module ------------------------
 
 def table_from_def():
     """Rows of parameters.def as `_spindrift.parameter_table()` promises them (docs/python-module.md)."""
     text = (ROOT / "native/include/spindrift/parameters.def").read_text()
     rows = []
-    pattern = re.compile(r'X\((liquid|foam),\s*(\w+),\s*(\w+),\s*\(([^)]*)\),\s*([-\d.e+]+),\s*([-\d.e+]+),\s*"([^"]*)"')
+    pattern = re.compile(r'X\((liquid|foam|light),\s*(\w+),\s*(\w+),\s*\(([^)]*)\),'
+                         r'\s*([-\d.e+]+),\s*([-\d.e+]+),\s*"([^"]*)"')
     for group, name, kind, default, low, high, choices in pattern.findall(text):
         kind = kind.lower()
         values = [v.strip().rstrip("f").strip('"') for v in default.split(",")]
@@ -65,7 +86,8 @@ def test_every_parameter_becomes_a_property_of_its_type():
     assert len(table) > 40
     expected = {"float": "FloatProperty", "int": "IntProperty", "bool": "BoolProperty",
                 "color": "FloatVectorProperty", "vec3": "FloatVectorProperty", "choice": "EnumProperty"}
-    for group in ("liquid", "foam"):
+    assert list(parameters.GROUP_OWNERS) == ["liquid", "foam", "light"]
+    for group in parameters.GROUP_OWNERS:
         definitions = parameters.property_definitions(table, group, FakeProps())
         rows = [row for row in table if row["group"] == group]
         assert list(definitions) == [row["name"] for row in rows]
@@ -81,6 +103,100 @@ def test_every_parameter_becomes_a_property_of_its_type():
                 assert keywords["default"] == row["default"]
             if row["type"] == "color":
                 assert keywords["subtype"] == "COLOR" and keywords["size"] == 3
+
+
+def test_every_group_of_the_table_has_a_home():
+    """A group missing from GROUP_OWNERS would have no properties, no panel and no place in the scene file."""
+    text = (ROOT / "native/include/spindrift/parameters.def").read_text()
+    block = text[text.index("#define SPINDRIFT_PARAMETER_GROUPS"):]
+    groups = re.findall(r"X\((\w+), \w+, SPINDRIFT_\w+_PARAMETERS\)", block)
+    assert groups == ["liquid", "foam", "light"]
+    assert set(parameters.GROUP_OWNERS) == set(groups)
+    # Lamps and the world are scene-wide: the light group is the scene's, the others the primary object's.
+    assert parameters.GROUP_OWNERS == {"liquid": "object", "foam": "object", "light": "scene"}
+
+
+def test_light_rows_become_scene_properties_with_their_docs_and_update():
+    table = table_from_def()
+    rows = [row for row in table if row["group"] == "light"]
+    assert [row["name"] for row in rows] == [
+        "shadow_map_size", "texels_per_radius", "column_particles", "caustics", "caustic_grid_step",
+        "max_concentration", "skip_unlit_tiles", "direct_fraction", "sky_occlusion_directions", "sky_without_lamps"]
+
+    def changed(_self, _context):
+        pass
+
+    definitions = parameters.property_definitions(table, "light", FakeProps(), update=changed)
+    assert definitions["caustics"] == ("BoolProperty", {"default": True, "name": "Caustics",
+                                                        "description": "doc caustics", "update": changed})
+    assert definitions["sky_without_lamps"][0] == "BoolProperty"
+    assert definitions["sky_without_lamps"][1]["default"] is True
+    constructor, keywords = definitions["direct_fraction"]
+    assert constructor == "FloatProperty" and keywords["default"] == pytest.approx(0.6)
+    assert (keywords["min"], keywords["max"]) == (0.0, 1.0)
+    assert definitions["shadow_map_size"][0] == "IntProperty"
+    assert definitions["shadow_map_size"][1]["default"] == 512
+    assert all(keywords["update"] is changed for _, keywords in definitions.values())
+    # Without an update callback none is passed (Blender refuses update=None).
+    assert all("update" not in keywords for _, keywords in parameters.property_definitions(
+        table, "liquid", FakeProps()).values())
+
+
+class Settings:
+    """A PropertyGroup's stand-in: one attribute per row of `group`, at its default."""
+
+    def __init__(self, table, group):
+        for row in table:
+            if row["group"] == group:
+                setattr(self, row["name"], row["default"])
+
+
+def test_changed_light_values_reach_the_documents_light_group():
+    table = table_from_def()
+    scene_settings = types.SimpleNamespace(light=Settings(table, "light"))
+    obj = types.SimpleNamespace(spindrift=types.SimpleNamespace(liquid=Settings(table, "liquid"),
+                                                                foam=Settings(table, "foam")))
+    scene = types.SimpleNamespace(spindrift=scene_settings)
+    native = types.SimpleNamespace(parameter_table=lambda: table)
+    frame = load_in_package("frame", native=native, export=types.ModuleType("export"))
+
+    values = frame.parameter_values(scene, obj)
+    assert values == {"liquid": {}, "foam": {}, "light": {}}
+    document = scene_json.scene_document({}, 1, (), None, values["liquid"], values["foam"], (), values["light"])
+    assert "light" not in document, "a light group at its defaults is left out"
+
+    scene_settings.light.caustics = False
+    scene_settings.light.direct_fraction = float(np.float32(0.3))
+    scene_settings.light.sky_without_lamps = False
+    scene_settings.light.shadow_map_size = 512  # the default, still left out
+    # No object (nothing enabled yet): the scene's light values are written all the same.
+    values = frame.parameter_values(scene, None, quality="DRAFT")
+    assert values["light"] == {"caustics": False, "direct_fraction": pytest.approx(0.3), "sky_without_lamps": False}
+    assert values["liquid"] == frame.QUALITY_OVERRIDES["DRAFT"]["liquid"]
+    document = scene_json.scene_document({}, 1, (), None, values["liquid"], values["foam"], (), values["light"])
+    written = json.loads(scene_json.dumps(document))["light"]
+    assert written == {"caustics": False, "direct_fraction": pytest.approx(0.3), "sky_without_lamps": False}
+    assert type(written["direct_fraction"]) is float
+
+
+def test_the_exr_carries_light_layers_only_where_something_lights():
+    defaults = parameters.group_defaults(table_from_def(), "light")
+    assert defaults["sky_without_lamps"] is True and defaults["caustics"] is True
+    sun = [{"type": "sun", "direction": [0, 0, -1], "strength": 3.0, "color": [1, 1, 1]}]
+    grey = {"color": [0.05, 0.05, 0.05]}
+    black = {"color": [0.0, 0.0, 0.0]}
+
+    def lit(lights=(), background=grey, light=None, mode="OVER", occluders=True):
+        document = scene_json.scene_document({}, 1, (), background, {}, {}, lights, light)
+        return scene_json.lights_through_liquid(document, mode, occluders, defaults)
+
+    assert lit(sun) and lit(sun, black, {"sky_without_lamps": False}) and lit(sun, occluders=False)
+    assert not lit(sun, mode="FOAM_ONLY"), "Cycles lit the liquid of a Foam Only render"
+    # Without lamps: the world's light alone, over the scene's solids and a world that is not black...
+    assert lit() and lit(light={"caustics": False})
+    assert not lit(background=black) and not lit(occluders=False)
+    # ...unless light.sky_without_lamps is off: then nothing lights a scene without lamps.
+    assert not lit(light={"sky_without_lamps": False})
 
 
 def test_viewport_quality_presets_name_parameters_within_their_ranges():
@@ -122,14 +238,7 @@ def test_bad_rows_are_rejected_by_name():
 
 def test_scene_file_values_are_only_the_changed_ones():
     table = table_from_def()
-
-    class Settings:
-        pass
-
-    settings = Settings()
-    for row in table:
-        if row["group"] == "liquid":
-            setattr(settings, row["name"], row["default"])
+    settings = Settings(table, "liquid")
     # Blender stores floats in single precision: a default read back as float32 is still the default.
     settings.ior = float(np.float32(1.33))
     assert parameters.group_values(table, "liquid", settings) == {}

@@ -1,7 +1,9 @@
 """Blender's lamps handed to the renderer: each lamp type in the scene format's terms (docs/scene-format.md),
 the frame's EXR with the liquid's shadow where the sun's light crosses the liquid, and the compositing group
-applying the light layers; without lamps, the world's light alone, and under a black world no light at all. The composite itself is compared with the command line's (which gets the same
-lamps) by test_render_compare.py.
+applying the light layers; the scene's Light settings (scene.spindrift.light) reaching the renderer: caustics
+off, the group's direct fraction; without lamps, the world's light alone, none with Sky without lamps off, and
+under a black world no light at all. The composite itself is compared with the command line's (which gets the
+same lamps) by test_render_compare.py.
 
 Run: run_blender.py --zip ZIP test_lamps.py -- FIXTURE_DIR
 """
@@ -58,6 +60,39 @@ def check_conversions(scene, module):
         bpy.data.objects.remove(bpy.data.objects[name])
 
 
+def render_frame(scene, module):
+    """Frame 5 as a final frame renders it: (its scene document, {skipped pass: reason}, the EXR's layers)."""
+    path = module.render_layer.layer_path(scene, 5)
+    result, inputs, _ = module.render_layer.render_frame(scene, bpy.context.evaluated_depsgraph_get(), 5, path)
+    skipped = {entry["name"]: entry["reason"] for entry in result["stats"]["skipped"]}
+    return inputs.document, skipped, read_exr_layers(path)
+
+
+def check_light_settings_with_the_sun(scene, module):
+    """The scene's Light settings reach the renderer and the group: caustics off, another direct fraction."""
+    light = scene.spindrift.light
+    document, skipped, layers = render_frame(scene, module)
+    check("light" not in document, "the Light settings at their defaults leave the scene file's group out")
+    check("caustics" not in skipped and layers["caustics"][..., :3].any(), "the sun's caustics are splatted")
+    light.caustics = False
+    document, skipped, layers = render_frame(scene, module)
+    written = document.get("light")
+    check(written == {"caustics": False}, f"Caustics off reaches the scene file ({written})")
+    check(skipped.get("caustics") == "light.caustics is off", f"the renderer skips the caustics ({skipped})")
+    check(not layers["caustics"][..., :3].any(), "and the caustics layer is black")
+    check((layers["liquid_shadow"][..., :3].min(axis=2) < 0.5).any(), "while the liquid still shadows the floor")
+    light.caustics = True
+
+    share = bpy.data.node_groups["Spindrift Over"].nodes[module.compositing.DIRECT_SHARE_NODE]
+    check(abs(share.inputs["Fac"].default_value - 0.6) < 1e-6, "the group's direct share is the default 0.6")
+    light.direct_fraction = 0.25
+    check(abs(share.inputs["Fac"].default_value - 0.25) < 1e-6, "and follows the scene's Direct fraction")
+    document, _, _ = render_frame(scene, module)
+    check(document.get("light") == {"direct_fraction": 0.25}, "which the scene file carries to the renderer")
+    light.direct_fraction = 0.6
+    check(abs(share.inputs["Fac"].default_value - 0.6) < 1e-6, "back to the default")
+
+
 def main():
     install_addon()
     scene = open_fixture_scene(arguments()[0])
@@ -80,6 +115,7 @@ def main():
     image_node = scene.node_tree.nodes[module.compositing.IMAGE_NODE]
     for name in module.compositing.LIGHT_LAYERS:
         check(image_node.outputs[name].is_linked, f"the group reads {name}")
+    check_light_settings_with_the_sun(scene, module)
 
     # Without lamps the world's light alone is taken (light.sky_without_lamps): the liquid takes the sky light
     # of the floor under and beside it, and liquid_shadow carries the same multiplier as liquid_sky.
@@ -94,6 +130,20 @@ def main():
     check(0.001 < darkened < 0.9, f"the liquid takes sky light from part of the floor ({darkened:.1%})")
     group = bpy.data.node_groups["Spindrift Over"]
     check(any(node.label == "Lamps through the liquid" for node in group.nodes), "and the group applies them")
+    _, skipped, _ = render_frame(scene, module)
+    check("lit_background" not in skipped, "the renderer lights the background with the world's light")
+
+    # Sky without lamps off (light.sky_without_lamps): nothing lights a scene without lamps.
+    scene.spindrift.light.sky_without_lamps = False
+    check(bpy.ops.spindrift.setup_compositing(mode="OVER") == {"FINISHED"}, "set up again without the sky")
+    layers = read_exr_layers(module.render_layer.layer_path(scene, 5))
+    check(not set(module.compositing.LIGHT_LAYERS) & set(layers), "no light layers without the world's light")
+    group = bpy.data.node_groups["Spindrift Over"]
+    check(all(node.label != "Lamps through the liquid" for node in group.nodes), "and the group does not apply them")
+    document, skipped, _ = render_frame(scene, module)
+    check(document.get("light") == {"sky_without_lamps": False}, "the scene file says so")
+    check(skipped.get("lit_background") == "no lights in the scene", f"the renderer lights nothing ({skipped})")
+    scene.spindrift.light.sky_without_lamps = True
 
     world = scene.world.node_tree.nodes["Background"]
     world.inputs["Strength"].default_value = 0.0
