@@ -32,6 +32,8 @@ const char* passName(Pass pass) {
       return "liquid_tiles";
     case Pass::Smoothing:
       return "smoothing";
+    case Pass::RimNormals:
+      return "rim_normals";
     case Pass::RaymarchSurface:
       return "raymarch_surface";
     case Pass::Refraction:
@@ -133,6 +135,13 @@ FramePlan planFrame(const FrameContents& contents) {
                           : contents.smoothing == "none" ? "liquid.smoothing is none"
                           : !layersShown                 ? noLiquidOutput
                                                          : nullptr);
+  decide(Pass::RimNormals, !aggregates            ? "no aggregate particles in view"
+                           : !contents.rimNormals ? "liquid.rim_normals is off"
+                           : contents.surface == "raymarch"
+                               ? "the ray-marched surface replaces the front layer"
+                           : contents.cameraInLiquid ? "the camera is under water: no front layer is drawn"
+                           : !layersShown            ? noLiquidOutput
+                                                     : nullptr);
   // The ray-marched surface is part of the frame only where liquid.surface asks for it: a screen-space frame
   // does not list it as skipped.
   if (contents.surface == "raymarch")

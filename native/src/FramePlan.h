@@ -23,6 +23,7 @@ enum class Pass {
   AggregateDepthLayers,
   LiquidTiles,  ///< the pixel tiles that smoothing and refraction shade (liquid.skip_empty_tiles)
   Smoothing,
+  RimNormals,       ///< the front normals near the aggregated body's silhouette (liquid.rim_normals)
   RaymarchSurface,  ///< liquid.surface = raymarch: six passes, timed by RaymarchSurface itself
   Refraction,
   FoamSceneDepth,
@@ -68,6 +69,8 @@ struct FrameContents {
   bool skipEmptyTiles = true;      ///< liquid.skip_empty_tiles.
   bool skipEmptyFoamTiles = true;  ///< foam.skip_empty_tiles.
   bool skipUnlitTiles = true;      ///< light.skip_unlit_tiles.
+  bool rimNormals = true;          ///< liquid.rim_normals.
+  bool cameraInLiquid = false;     ///< The camera is under water: the body's front layer is not drawn.
 };
 
 /// Which passes a frame runs and, for each it does not, why. The wiring of the frame in one plain function,

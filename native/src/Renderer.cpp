@@ -34,6 +34,7 @@
 #include "passes/OccluderDepthPass.h"
 #include "passes/PixelTilePass.h"
 #include "passes/RefractionPass.h"
+#include "passes/RimNormalsPass.h"
 #include "prep/BackgroundCache.h"
 #include "prep/FoamPreparation.h"
 #include "prep/FrameLiquidCache.h"
@@ -73,6 +74,7 @@ struct FramePipeline {
   PixelTilePass foamTiles{shaders};
   DepthSmoothingPass frontSmoothing{shaders};
   DepthSmoothingPass backSmoothing{shaders};
+  RimNormalsPass rimNormals{shaders};
   RaymarchSurface raymarch{shaders};
   RefractionPass refraction{shaders};
   FoamSceneDepthPass foamSceneDepth{shaders};
@@ -361,6 +363,8 @@ RenderResult Renderer::renderPrepared(const Scene& scene, const Particles& parti
                          liquidParameters.smoothing, extras.occluders.size(),    extras.liquidMesh != nullptr,
                          layers.wantsComposite(),    layers.wantsLiquidLayers(), layers.wantsFoamLayers(),
                          impl_->intermediateLayers,  liquidParameters.surface};
+  contents.rimNormals = liquidParameters.rim_normals;
+  contents.cameraInLiquid = cameraInLiquid;
   contents.lights = scene.lights.size();
   contents.foamCulling = foamParameters.cull_hidden;
   contents.skipEmptyTiles = liquidParameters.skip_empty_tiles;
@@ -442,6 +446,13 @@ RenderResult Renderer::renderPrepared(const Scene& scene, const Particles& parti
                                                         withLiquid, width, height)};
       }));
       intermediate.keep(*aggregates, "aggregate_smoothed");
+    }
+    if (plan.runs(Pass::RimNormals)) {
+      const RecomputedNormals rim = timed(Pass::RimNormals, [&] {
+        return pipeline.rimNormals.run(*aggregates, unlit->eyeDepth, domainBox, radius, withLiquid, width,
+                                       height);
+      });
+      aggregates.emplace(SurfaceLayers{DepthLayer{aggregates->front.eyeDepth, rim.normal}, aggregates->back});
     }
   });
   const LightingPreparation* preparedLighting = nullptr;

@@ -1,0 +1,58 @@
+#include "passes/RimNormalsPass.h"
+
+#include <glm/matrix.hpp>
+
+#include "passes/FrameUniforms.h"
+
+namespace spindrift {
+
+RimNormalsPass::RimNormalsPass(const ShaderLibrary& shaders)
+    : edgeRowsProgram_(shaders.program({"fullscreen.vert", "rim_edge_rows.frag"})),
+      normalsProgram_(shaders.program({"fullscreen.vert", "rim_normals.frag"})),
+      emptyVertexArray_(createVertexArray()),
+      framebuffer_(createFramebuffer()) {}
+
+RecomputedNormals RimNormalsPass::run(const SurfaceLayers& body, const Texture2D& solidEyeDepth,
+                                      const DomainBox* domain, float particleRadius, const PixelTiles* tiles,
+                                      int width, int height) {
+  ensureTexture(edgeRows_, GL_R16F, width, height);
+  ensureTexture(normal_, GL_RGBA16F, width, height);
+  glBindFramebuffer(GL_FRAMEBUFFER, framebuffer_.id());
+  glViewport(0, 0, width, height);
+  glDisable(GL_DEPTH_TEST);
+  glDisable(GL_BLEND);
+  // A tile without the layer is uncovered throughout, so each of its pixels is its own row's nearest
+  // uncovered pixel: offset 0, which the clear writes, and only the tiles with the layer are drawn.
+  const float ownPixel[4] = {0.0f, 0.0f, 0.0f, 0.0f};
+  if (tiles) clearColorTargets(framebuffer_.id(), {&edgeRows_}, ownPixel);
+  glNamedFramebufferTexture(framebuffer_.id(), GL_COLOR_ATTACHMENT0, edgeRows_.id(), 0);
+  glBindFramebuffer(GL_FRAMEBUFFER, framebuffer_.id());
+  glUseProgram(edgeRowsProgram_.id());
+  glBindTextureUnit(0, body.front.eyeDepth.id());
+  drawFullscreen(emptyVertexArray_.id(), tiles);
+
+  const float noNormal[4] = {0.0f, 0.0f, 0.0f, 0.0f};  // the input's value off the surface
+  if (tiles) clearColorTargets(framebuffer_.id(), {&normal_}, noNormal);
+  glNamedFramebufferTexture(framebuffer_.id(), GL_COLOR_ATTACHMENT0, normal_.id(), 0);
+  glBindFramebuffer(GL_FRAMEBUFFER, framebuffer_.id());
+  const GLuint program = normalsProgram_.id();
+  glUseProgram(program);
+  glUniform1i(uniformLocation(program, "hasDomain"), domain ? 1 : 0);
+  if (domain) {
+    const glm::mat4 domainFromWorld = glm::inverse(domain->worldFromBox);
+    glUniformMatrix4fv(uniformLocation(program, "domainFromWorld"), 1, GL_FALSE, &domainFromWorld[0][0]);
+    glUniform3fv(uniformLocation(program, "domainLow"), 1, &domain->low.x);
+    glUniform3fv(uniformLocation(program, "domainHigh"), 1, &domain->high.x);
+  }
+  glUniform1f(uniformLocation(program, "particleRadius"), particleRadius);
+  glBindTextureUnit(0, body.front.eyeDepth.id());
+  glBindTextureUnit(1, body.front.normal.id());
+  glBindTextureUnit(2, body.back.eyeDepth.id());
+  glBindTextureUnit(3, solidEyeDepth.id());
+  glBindTextureUnit(4, edgeRows_.id());
+  drawFullscreen(emptyVertexArray_.id(), tiles);
+  checkGlError("bending the rim's normals");
+  return {normal_};
+}
+
+}  // namespace spindrift
