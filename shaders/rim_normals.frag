@@ -97,8 +97,13 @@ void main() {
   // oblique camera). Twice that and a few radii and pixels more take in the smoothing's shift, the mesh's
   // inset and a surface that rises towards the wall: on the examples' pools a margin of once that and two
   // radii and pixels left 10 to 20 % of the far edge's pixels bent, each 5 degrees further from Cycles' normal.
+  // A body cut by the wall behind it (a dome against the domain's side, a pool over its floor) has its back on
+  // the wall however far smoothing drew the rim's front towards the camera (6 radii on such a dome).
   float alongSurface = d / max(abs(dot(own, towardsCamera)), 0.1);
-  if (distanceToDomainWall(ray * frontDepth) < 2.0 * alongSurface + 4.0 * (pixelSize + particleRadius)) return;
+  float margin = 2.0 * (pixelSize + particleRadius);
+  if (distanceToDomainWall(ray * frontDepth) < 2.0 * alongSurface + 2.0 * margin ||
+      distanceToDomainWall(ray * backDepth) < margin)
+    return;
   // The rim's outward direction: the smoothed normal's own part across the view, which follows the contour;
   // the direction to the edge pixel is quantised to the pixel grid (twice the angle error at the rim).
   vec3 across = own - dot(own, towardsCamera) * towardsCamera;

@@ -53,6 +53,7 @@ TEST(FramePlan, FullFrameRunsEveryPassInRecipeOrder) {
                                              "aggregate_depth_layers",
                                              "liquid_tiles",
                                              "smoothing",
+                                             "rim_normals",
                                              "refraction",
                                              "foam_scene_depth",
                                              "foam_visibility",
@@ -70,7 +71,7 @@ TEST(FramePlan, FullFrameRunsEveryPassInRecipeOrder) {
 TEST(FramePlan, EmptyFrameRunsBackgroundAndCompositeOnly) {
   const FramePlan plan = planFrame({0, 0, 0, "plane_fit"});
   EXPECT_EQ(names(plan.passes), (std::vector<std::string>{"background", "composite"}));
-  ASSERT_EQ(plan.skipped.size(), 21u);
+  ASSERT_EQ(plan.skipped.size(), 22u);
   EXPECT_EQ(plan.skipped.front().name, "occluder_depth");
   EXPECT_EQ(reasonFor(plan, "occluder_depth"), "no occluders");
   EXPECT_EQ(reasonFor(plan, "liquid_mesh_depth"), "no liquid mesh");
@@ -78,6 +79,7 @@ TEST(FramePlan, EmptyFrameRunsBackgroundAndCompositeOnly) {
     EXPECT_EQ(reasonFor(plan, pass), "no lights in the scene");
   EXPECT_EQ(reasonFor(plan, "refraction"), "no liquid particles in view");
   EXPECT_EQ(reasonFor(plan, "smoothing"), "no aggregate particles in view");
+  EXPECT_EQ(reasonFor(plan, "rim_normals"), "no aggregate particles in view");
   EXPECT_EQ(reasonFor(plan, "liquid_tiles"), "no liquid particles in view");
   for (const std::string& pass : kFoamPasses)
     EXPECT_EQ(reasonFor(plan, pass), "no foam particles in view");
@@ -97,7 +99,28 @@ TEST(FramePlan, SmoothingNoneSkipsSmoothingOnly) {
   EXPECT_TRUE(plan.runs(Pass::AggregateDepthLayers));
   EXPECT_FALSE(plan.runs(Pass::Smoothing));
   EXPECT_EQ(reasonFor(plan, "smoothing"), "liquid.smoothing is none");
+  EXPECT_TRUE(plan.runs(Pass::RimNormals));  // the ellipsoids' own rim flattens as a filter's does
   EXPECT_TRUE(plan.runs(Pass::Refraction));
+}
+
+// The rim normals bend the aggregated body's front layer: not without one, nor when it is off.
+TEST(FramePlan, RimNormalsNeedTheBodysFrontLayer) {
+  EXPECT_EQ(reasonFor(planFrame({10, 0, 0, "plane_fit"}), "rim_normals"), "no aggregate particles in view");
+  FrameContents off{0, 10, 0, "plane_fit"};
+  off.rimNormals = false;
+  EXPECT_EQ(reasonFor(planFrame(off), "rim_normals"), "liquid.rim_normals is off");
+  FrameContents underWater{0, 10, 0, "plane_fit"};
+  underWater.cameraInLiquid = true;
+  EXPECT_EQ(reasonFor(planFrame(underWater), "rim_normals"),
+            "the camera is under water: no front layer is drawn");
+  FrameContents marched{0, 10, 0, "plane_fit"};
+  marched.surface = "raymarch";
+  EXPECT_EQ(reasonFor(planFrame(marched), "rim_normals"), "the ray-marched surface replaces the front layer");
+  FrameContents nothingRead{0, 10, 0, "plane_fit"};
+  nothingRead.compositeWanted = nothingRead.liquidLayersWanted = nothingRead.foamLayersWanted = false;
+  EXPECT_EQ(reasonFor(planFrame(nothingRead), "rim_normals"),
+            "no liquid layer, composite or foam asked for (--layers)");
+  EXPECT_TRUE(planFrame({0, 10, 0, "plane_fit"}).runs(Pass::RimNormals));
 }
 
 TEST(FramePlan, FoamWithoutLiquidRunsTheFoamPasses) {
@@ -240,8 +263,9 @@ TEST(FramePlan, EveryPassIsEitherRunOrSkippedExactlyOnce) {
             }
             std::sort(all.begin(), all.end());
             EXPECT_EQ(std::adjacent_find(all.begin(), all.end()), all.end());
-            EXPECT_EQ(all.size(), 23u);
+            EXPECT_EQ(all.size(), 24u);
             // A pass runs only when what it reads runs.
+            if (plan.runs(Pass::RimNormals)) EXPECT_TRUE(plan.runs(Pass::AggregateDepthLayers));
             if (plan.runs(Pass::LiquidTiles))
               EXPECT_TRUE(plan.runs(Pass::SplashDepthLayers) || plan.runs(Pass::AggregateDepthLayers));
             if (plan.runs(Pass::SkyOcclusion)) EXPECT_TRUE(plan.runs(Pass::LitBackground));
@@ -344,6 +368,7 @@ TEST(FramePlan, RaymarchedSurfaceRunsBetweenSmoothingAndRefraction) {
   };
   ASSERT_TRUE(plan.runs(Pass::RaymarchSurface));
   EXPECT_EQ(position("raymarch_surface"), position("smoothing") + 1);
+  EXPECT_FALSE(plan.runs(Pass::RimNormals));
   EXPECT_EQ(position("refraction"), position("raymarch_surface") + 1);
   EXPECT_FALSE(planFrame(withSurface(10, 100, "screen")).runs(Pass::RaymarchSurface));
   const FramePlan empty = planFrame(withSurface(0, 0, "raymarch"));
