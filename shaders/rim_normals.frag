@@ -37,6 +37,10 @@ const float kGrowthStep = 6.0;
 const float kContourGrowthHigh = 0.62;
 const float kContourGrowthLow = 0.15;
 const float kGrowthBlend = 0.1;
+// How far the front moves inwards for each step of the back's, on a contour 1 (below).
+const float kMirroredLow = 0.4;
+const float kMirroredHigh = 1.6;
+const float kMirroredBlend = 0.2;
 // A solid this far behind the liquid's back (as a share of its depth) at the edge ends the liquid against it.
 const float kSolidBehindShare = 0.2;
 
@@ -48,17 +52,19 @@ float distanceToDomainWall(vec3 position) {
   return min(toWalls.x, min(toWalls.y, toWalls.z));
 }
 
-float halfThickness(ivec2 pixel) {
-  float front = texelAt(frontEyeDepth, pixel).r, back = texelAt(backEyeDepth, pixel).r;
-  return hasSurface(front) && hasSurface(back) ? 0.5 * (back - front) : -1.0;
+// The front and back depth at a pixel; (0, 0) where either layer is empty.
+vec2 bodyDepths(ivec2 pixel) {
+  vec2 depths = vec2(texelAt(frontEyeDepth, pixel).r, texelAt(backEyeDepth, pixel).r);
+  return hasSurface(depths.x) && hasSurface(depths.y) ? depths : vec2(0.0);
 }
 
 void main() {
   ivec2 pixel = ivec2(gl_FragCoord.xy);
   vec4 normal = texelAt(frontNormal, pixel);
   outNormal = normal;
-  float frontDepth = texelAt(frontEyeDepth, pixel).r;
-  float h = halfThickness(pixel);
+  vec2 depths = bodyDepths(pixel);
+  float frontDepth = depths.x, backDepth = depths.y;
+  float h = 0.5 * (backDepth - frontDepth);
   if (normal.w == 0.0 || !(h > 0.0)) return;
   // The nearest uncovered pixel: each row holds its own nearest, so the nearest in the plane minimises
   // dx^2 + dy^2 over the rows.
@@ -76,13 +82,21 @@ void main() {
   // The edge lies between the last covered pixel's centre and the first uncovered one's.
   float edgePixels = max(sqrt(nearestSquared) - 0.5, 0.5);
   ivec2 inwardStep = ivec2(round(-normalize(towards) * kGrowthStep));
-  float inwardH = halfThickness(pixel + inwardStep);
-  if (!(inwardH > 0.0)) return;
+  vec2 inward = bodyDepths(pixel + inwardStep);
+  float inwardH = 0.5 * (inward.y - inward.x);
+  if (!(inwardH > h)) return;
   float growth = log(inwardH / h) / log((edgePixels + length(vec2(inwardStep))) / edgePixels);
+  // Inwards from a contour the front comes towards the camera as far as the back goes away from it; past an
+  // edge the two faces need not (a slab's end face seen from above: its back, the bottom face, moves, its
+  // front hardly). The light benchmark's ball measured 0.63 to 1.1 (10th to 90th percentile), the block's
+  // edges that pass the growth test 0.2 to 6, a slab's end face -5 to 11.
+  if (!(inward.y > backDepth)) return;
+  float mirrored = (frontDepth - inward.x) / (inward.y - backDepth);
   float weight = clamp((kContourGrowthHigh - growth) / kGrowthBlend, 0.0, 1.0) *
-                 clamp((growth - kContourGrowthLow) / kGrowthBlend, 0.0, 1.0);
+                 clamp((growth - kContourGrowthLow) / kGrowthBlend, 0.0, 1.0) *
+                 clamp((mirrored - kMirroredLow) / kMirroredBlend, 0.0, 1.0) *
+                 clamp((kMirroredHigh - mirrored) / kMirroredBlend, 0.0, 1.0);
   float solidBeyond = texelAt(solidEyeDepth, pixel + ivec2(towards)).r;
-  float backDepth = frontDepth + 2.0 * h;
   if (solidBeyond < (1.0 + kSolidBehindShare) * backDepth) weight = 0.0;
   if (!(weight > 0.0)) return;
 

@@ -50,6 +50,8 @@ SETTINGS = [
     ("sun, light passes, lights' views at 3 texels per radius", True, True, {"light.texels_per_radius": 3}),
     # The marches' step before session 36 (docs/frame-cost.md): what the cheaper default costs here.
     ("sun, light passes, marches in steps of 1.5 px", True, True, {"liquid.trace_step_pixels": 1.5}),
+    # The front normals near a silhouette as smoothing leaves them (docs/liquid.md, "Rim normals").
+    ("sun, light passes, no rim normals", True, True, {"liquid.rim_normals": False}),
     # The sun left out of a scene it lights: the defaults then take the background's light, the sun's with
     # it, for the world's (docs/liquid.md, "The world's light alone").
     ("no lamps: the world's light alone", False, True, {}),
