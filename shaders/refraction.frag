@@ -6,6 +6,7 @@
 #include "lib/environment.glsl"
 #include "lib/optics.glsl"
 #include "lib/screen_trace.glsl"
+#include "lib/domain_box.glsl"
 
 // The four layers' normals, layer = body * 2 + back (splash front, splash back, aggregate front, aggregate
 // back; refraction_layers.frag copies them): one fetch where a choice among four textures fetched all four.
@@ -40,12 +41,8 @@ uniform float reflectionStepPixels;    // screen distance between samples of the
 // near plane and the first surface a ray meets is the body's back layer, the liquid's surface seen from below.
 uniform bool cameraInLiquid;
 uniform float solidContactDistance;  // two particle radii: a solid this close behind the drawn back touches it
-// A Mantaflow domain's box, inset to where its mesh closes against the walls: beyond it lies air between the
-// liquid and whatever solid is there (the domain's floor), so a solid outside it never touches the liquid.
-uniform bool hasDomain;
-uniform mat4 domainFromWorld;
-uniform vec3 domainLow;
-uniform vec3 domainHigh;
+// A Mantaflow domain's box (lib/domain_box.glsl): beyond it lies air between the liquid and whatever solid is
+// there (the domain's floor), so a solid outside it never touches the liquid.
 
 // What a solid in the liquid, lit from above it, is seen with: its lit radiance divided by n^2, from air and
 // from inside the liquid alike. This is the convention of the path tracer the layers composite over: Cycles

@@ -12,6 +12,7 @@
 #include "lib/frame.glsl"
 #include "lib/depth_layer.glsl"
 #include "lib/rim.glsl"
+#include "lib/domain_box.glsl"
 
 layout(binding = 0) uniform sampler2D frontEyeDepth;
 layout(binding = 1) uniform sampler2D frontNormal;    // world normal, coverage in w
@@ -19,11 +20,6 @@ layout(binding = 2) uniform sampler2D backEyeDepth;
 layout(binding = 3) uniform sampler2D solidEyeDepth;  // the background's solids
 layout(binding = 4) uniform sampler2D edgeRows;       // rim_edge_rows.frag's offsets
 
-// A Mantaflow domain's box, inset to where its mesh closes against the walls (RefractionPass's).
-uniform bool hasDomain;
-uniform mat4 domainFromWorld;
-uniform vec3 domainLow;
-uniform vec3 domainHigh;
 uniform float particleRadius;
 
 layout(location = 0) out vec4 outNormal;  // xyz: world normal, w: coverage
@@ -47,7 +43,7 @@ const float kSolidBehindShare = 0.2;
 // Distance from a camera-space point to the nearest wall of the domain's box (infinite without one).
 float distanceToDomainWall(vec3 position) {
   if (!hasDomain) return 1e30;
-  vec3 inBox = (domainFromWorld * (frame.worldFromCamera * vec4(position, 1.0))).xyz;
+  vec3 inBox = inDomainBox(position);
   vec3 toWalls = min(inBox - domainLow, domainHigh - inBox);
   return min(toWalls.x, min(toWalls.y, toWalls.z));
 }

@@ -165,7 +165,7 @@ Crossing crossingAt(int body, vec3 origin, vec3 direction, float t) {
   if (crossing.solid && hasDomain) {
     // Where the ray meets the solid (its planar depth grows by -direction.z per unit).
     float toSolid = -direction.z > 1e-6 ? (solidDepth + origin.z) / -direction.z : t;
-    vec3 inBox = (domainFromWorld * (frame.worldFromCamera * vec4(origin + toSolid * direction, 1.0))).xyz;
+    vec3 inBox = inDomainBox(origin + toSolid * direction);
     crossing.solid = all(greaterThan(inBox, domainLow)) && all(lessThan(inBox, domainHigh));
   }
   return crossing;

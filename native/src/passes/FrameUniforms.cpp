@@ -2,7 +2,10 @@
 
 #include <cmath>
 
+#include <glm/matrix.hpp>
 #include <glm/trigonometric.hpp>
+
+#include "gl/ShaderLibrary.h"
 
 namespace spindrift {
 
@@ -76,6 +79,15 @@ void clearColorTargets(GLuint framebuffer, std::initializer_list<const Texture2D
   bindColorTargets(framebuffer, targets);
   for (GLint drawBuffer = 0; drawBuffer < GLint(targets.size()); ++drawBuffer)
     glClearNamedFramebufferfv(framebuffer, GL_COLOR, drawBuffer, value);
+}
+
+void setDomainBoxUniforms(GLuint program, const DomainBox* domain) {
+  glUniform1i(uniformLocation(program, "hasDomain"), domain ? 1 : 0);
+  if (!domain) return;
+  const glm::mat4 domainFromWorld = glm::inverse(domain->worldFromBox);
+  glUniformMatrix4fv(uniformLocation(program, "domainFromWorld"), 1, GL_FALSE, &domainFromWorld[0][0]);
+  glUniform3fv(uniformLocation(program, "domainLow"), 1, &domain->low.x);
+  glUniform3fv(uniformLocation(program, "domainHigh"), 1, &domain->high.x);
 }
 
 }  // namespace spindrift

@@ -8,6 +8,7 @@
 #include "framedata/PixelTiles.h"
 #include "gl/GlObjects.h"
 #include "spindrift/Camera.h"
+#include "spindrift/Scene.h"
 
 namespace spindrift {
 
@@ -50,5 +51,8 @@ void bindColorTargets(GLuint framebuffer, std::initializer_list<const Texture2D*
 /// llvmpipe's rasterizer threads do in their bins, where glClearTexImage fills the texture on the caller's.
 void clearColorTargets(GLuint framebuffer, std::initializer_list<const Texture2D*> targets,
                        const float value[4]);
+
+/// Sets shaders/lib/domain_box.glsl's uniforms of `program` (in use) to `domain`, or to none when it is null.
+void setDomainBoxUniforms(GLuint program, const DomainBox* domain);
 
 }  // namespace spindrift

@@ -1,7 +1,5 @@
 #include "passes/RefractionPass.h"
 
-#include <glm/matrix.hpp>
-
 #include "passes/FrameUniforms.h"
 
 namespace spindrift {
@@ -80,13 +78,7 @@ LiquidData RefractionPass::run(const std::optional<SurfaceLayers>& splashes,
   glUniform1i(uniformLocation(program, "maxInternalReflections"), parameters.internal_reflections);
   glUniform1i(uniformLocation(program, "cameraInLiquid"), cameraInLiquid ? 1 : 0);
   glUniform1f(uniformLocation(program, "solidContactDistance"), 2.0f * particleRadius);
-  glUniform1i(uniformLocation(program, "hasDomain"), domain ? 1 : 0);
-  if (domain) {
-    const glm::mat4 domainFromWorld = glm::inverse(domain->worldFromBox);
-    glUniformMatrix4fv(uniformLocation(program, "domainFromWorld"), 1, GL_FALSE, &domainFromWorld[0][0]);
-    glUniform3fv(uniformLocation(program, "domainLow"), 1, &domain->low.x);
-    glUniform3fv(uniformLocation(program, "domainHigh"), 1, &domain->high.x);
-  }
+  setDomainBoxUniforms(program, domain);
   glUniform1f(uniformLocation(program, "stepPixels"), parameters.trace_step_pixels);
   glUniform1f(uniformLocation(program, "reflectionStepPixels"), parameters.reflection_step_pixels);
   glUniform1i(uniformLocation(program, "maxSteps"), parameters.trace_max_steps);

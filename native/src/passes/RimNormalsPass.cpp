@@ -1,7 +1,5 @@
 #include "passes/RimNormalsPass.h"
 
-#include <glm/matrix.hpp>
-
 #include "passes/FrameUniforms.h"
 
 namespace spindrift {
@@ -37,13 +35,7 @@ RecomputedNormals RimNormalsPass::run(const SurfaceLayers& body, const Texture2D
   glBindFramebuffer(GL_FRAMEBUFFER, framebuffer_.id());
   const GLuint program = normalsProgram_.id();
   glUseProgram(program);
-  glUniform1i(uniformLocation(program, "hasDomain"), domain ? 1 : 0);
-  if (domain) {
-    const glm::mat4 domainFromWorld = glm::inverse(domain->worldFromBox);
-    glUniformMatrix4fv(uniformLocation(program, "domainFromWorld"), 1, GL_FALSE, &domainFromWorld[0][0]);
-    glUniform3fv(uniformLocation(program, "domainLow"), 1, &domain->low.x);
-    glUniform3fv(uniformLocation(program, "domainHigh"), 1, &domain->high.x);
-  }
+  setDomainBoxUniforms(program, domain);
   glUniform1f(uniformLocation(program, "particleRadius"), particleRadius);
   glBindTextureUnit(0, body.front.eyeDepth.id());
   glBindTextureUnit(1, body.front.normal.id());
