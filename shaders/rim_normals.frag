@@ -6,9 +6,10 @@
 // little and is trapped inside the body. A cross-section through the rim is taken as a circle: half the
 // thickness h at a distance d from the edge gives its radius rho = (h^2 + d^2) / 2d and the normal's parts
 // along the rim's outward direction and towards the camera, (rho - d) : h. Where the thickness grows as an
-// edge's does (a box seen past its side, in proportion to d, not as a contour's square root) or a solid lies
-// just behind the liquid's edge (a tank's wall ends the pool's surface there) or the edge is a Mantaflow
-// domain's wall (the liquid is cut there, flat), the normal is kept.
+// edge's does (a box seen past its side, in proportion to d, not as a contour's square root), the front and
+// back do not mirror each other as a contour's do, a solid lies just behind the liquid's edge (a tank's wall
+// ends the pool's surface there) or the edge is a Mantaflow domain's wall (the liquid is cut there, flat),
+// the normal is kept.
 #include "lib/frame.glsl"
 #include "lib/depth_layer.glsl"
 #include "lib/rim.glsl"
