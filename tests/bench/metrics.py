@@ -66,15 +66,20 @@ def silhouette_bias(test_depth, reference_depth, radius):
     return float(np.mean(test_depth[pixels] - reference_depth[pixels]) / radius)
 
 
+def normal_angles(test_normals, reference_normals):
+    """The angle, in degrees, between two arrays of normals (... x 3, any length), pixel by pixel."""
+    a = test_normals.astype(np.float64)
+    b = reference_normals.astype(np.float64)
+    a /= np.maximum(np.linalg.norm(a, axis=-1, keepdims=True), 1e-12)
+    b /= np.maximum(np.linalg.norm(b, axis=-1, keepdims=True), 1e-12)
+    return np.degrees(np.arccos(np.clip(np.sum(a * b, axis=-1), -1.0, 1.0)))
+
+
 def normal_angle_errors(test_normals, reference_normals, mask):
     """Median and 95th percentile angle, in degrees, between two H x W x 3 normal images over `mask`."""
     if not mask.any():
         return float("nan"), float("nan")
-    a = test_normals[mask].astype(np.float64)
-    b = reference_normals[mask].astype(np.float64)
-    a /= np.maximum(np.linalg.norm(a, axis=1, keepdims=True), 1e-12)
-    b /= np.maximum(np.linalg.norm(b, axis=1, keepdims=True), 1e-12)
-    angles = np.degrees(np.arccos(np.clip(np.sum(a * b, axis=1), -1.0, 1.0)))
+    angles = normal_angles(test_normals[mask], reference_normals[mask])
     return float(np.median(angles)), float(np.percentile(angles, 95))
 
 

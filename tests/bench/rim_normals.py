@@ -30,14 +30,6 @@ BANDS = ((0, 2), (2, 4), (4, 8), (8, 1e9))
 SETTINGS = (("without", {"liquid.rim_normals": False}), ("with", {}))
 
 
-def unit(vectors):
-    return vectors / np.maximum(np.linalg.norm(vectors, axis=-1, keepdims=True), 1e-12)
-
-
-def degrees_between(a, b):
-    return np.degrees(np.arccos(np.clip((unit(a) * unit(b)).sum(-1), -1.0, 1.0)))
-
-
 def exact_normals(scene, shape):
     """The exact shape's outward normal where each pixel's ray first meets it (NaN where it misses)."""
     origin, directions = thick_report.camera_rays(scene)
@@ -83,14 +75,15 @@ def thick_bodies():
         inner = ndimage.binary_erosion(water, iterations=4)
         full = thick_report.rgb(os.path.join(directory, "reference_full.exr"))
         scene_path = thick_report.scene_variant(directory, True, True)
-        exact = exact_normals(json.load(open(scene_path)), json.load(open(os.path.join(directory, "shape.json")))["shape"])
+        shape = json.load(open(os.path.join(directory, "shape.json")))["shape"]
+        exact = exact_normals(json.load(open(scene_path)), shape)
         for name, settings in SETTINGS:
             exr = os.path.join(directory, f"spindrift_rim_{name}.exr")
             runs.run_spindrift(scene_path, exr, settings, exr + ".stats.json")
             test = metrics.read_channels(exr, ["composite.R", "composite.G", "composite.B"])
             normal = metrics.read_channels(exr, ["normal.X", "normal.Y", "normal.Z"])
             covered = np.linalg.norm(normal, axis=-1) > 0.5
-            errors = np.where(covered & ~np.isnan(exact[..., 0]), degrees_between(normal, exact), np.nan)
+            errors = np.where(covered & ~np.isnan(exact[..., 0]), metrics.normal_angles(normal, exact), np.nan)
             rows.append((frame, name, thick_report.mae(test, full, water), thick_report.mae(test, full, water & ~inner),
                          thick_report.mae(test, full, inner), band_medians(errors, covered)))
             if frame == "ball":
@@ -111,7 +104,7 @@ def examples():
                 runs.run_spindrift(os.path.join(directory, "scene.json"), exr, settings, exr + ".stats.json")
                 normal = metrics.read_channels(exr, ["normal.X", "normal.Y", "normal.Z"])
                 covered = (np.linalg.norm(normal, axis=-1) > 0.5) & (np.linalg.norm(reference, axis=-1) > 0.5)
-                errors = degrees_between(normal, reference)
+                errors = metrics.normal_angles(normal, reference)
                 rows.append((example, camera, name, float(errors[covered].mean()), band_medians(
                     np.where(covered, errors, np.nan), np.linalg.norm(normal, axis=-1) > 0.5)))
     return rows
@@ -130,14 +123,16 @@ def write_picture(images):
 
 def main():
     thick, images = thick_bodies()
-    print("| Frame | Rim normals | Water | Outer 4 px | Inside | Normal error, median: 0–2 px | 2–4 px | 4–8 px | beyond |")
+    print("| Frame | Rim normals | Water | Outer 4 px | Inside | Normal error, median: 0–2 px | 2–4 px | 4–8 px "
+          "| beyond |")
     print("|---|---|---|---|---|---|---|---|---|")
     for frame, name, water, rim, inside, bands in thick:
         print(f"| {frame} | {name} | {water:.4f} | {rim:.4f} | {inside:.4f} | " +
               " | ".join(degrees_text(b) for b in bands) + " |")
     write_picture(images)
     print()
-    print("| Example | Camera | Rim normals | Normal error vs Cycles, mean | median 0–2 px | 2–4 px | 4–8 px | beyond |")
+    print("| Example | Camera | Rim normals | Normal error vs Cycles, mean | median 0–2 px | 2–4 px | 4–8 px "
+          "| beyond |")
     print("|---|---|---|---|---|---|---|---|")
     for example, camera, name, mean, bands in examples():
         print(f"| {example} | {camera} | {name} | {mean:.2f}° | " + " | ".join(degrees_text(b) for b in bands) + " |")

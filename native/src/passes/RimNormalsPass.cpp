@@ -15,24 +15,23 @@ RecomputedNormals RimNormalsPass::run(const SurfaceLayers& body, const Texture2D
                                       int width, int height) {
   ensureTexture(edgeRows_, GL_R16F, width, height);
   ensureTexture(normal_, GL_RGBA16F, width, height);
-  glBindFramebuffer(GL_FRAMEBUFFER, framebuffer_.id());
-  glViewport(0, 0, width, height);
   glDisable(GL_DEPTH_TEST);
   glDisable(GL_BLEND);
-  // A tile without the layer is uncovered throughout, so each of its pixels is its own row's nearest
-  // uncovered pixel: offset 0, which the clear writes, and only the tiles with the layer are drawn.
-  const float ownPixel[4] = {0.0f, 0.0f, 0.0f, 0.0f};
-  if (tiles) clearColorTargets(framebuffer_.id(), {&edgeRows_}, ownPixel);
-  glNamedFramebufferTexture(framebuffer_.id(), GL_COLOR_ATTACHMENT0, edgeRows_.id(), 0);
-  glBindFramebuffer(GL_FRAMEBUFFER, framebuffer_.id());
+  // Both targets hold 0 where the tiles leave them: a tile without the layer is uncovered throughout, so each
+  // of its pixels is its own row's nearest uncovered pixel (offset 0), and has no normal.
+  const float zero[4] = {0.0f, 0.0f, 0.0f, 0.0f};
+  const auto drawInto = [&](const Texture2D& target) {
+    if (tiles)
+      clearColorTargets(framebuffer_.id(), {&target}, zero);
+    else
+      bindColorTargets(framebuffer_.id(), {&target});
+  };
+  drawInto(edgeRows_);
   glUseProgram(edgeRowsProgram_.id());
   glBindTextureUnit(0, body.front.eyeDepth.id());
   drawFullscreen(emptyVertexArray_.id(), tiles);
 
-  const float noNormal[4] = {0.0f, 0.0f, 0.0f, 0.0f};  // the input's value off the surface
-  if (tiles) clearColorTargets(framebuffer_.id(), {&normal_}, noNormal);
-  glNamedFramebufferTexture(framebuffer_.id(), GL_COLOR_ATTACHMENT0, normal_.id(), 0);
-  glBindFramebuffer(GL_FRAMEBUFFER, framebuffer_.id());
+  drawInto(normal_);
   const GLuint program = normalsProgram_.id();
   glUseProgram(program);
   setDomainBoxUniforms(program, domain);
