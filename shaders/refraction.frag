@@ -64,7 +64,7 @@ layout(location = 5) out vec4 outFrontNormal;  // world normal of the first surf
 // The refraction split for a compositor that refracts another render of the background (Blender's Map UV):
 // liquid = background(uv) * transmittance + reflection. Images, not attachments: the framebuffer already has
 // six of the eight draw buffers GL guarantees. Every pixel writes all three.
-layout(rgba32f, binding = 0) uniform writeonly image2D refractionUvImage;  // u, v (0..1, bottom left), looked up
+layout(rgba32f, binding = 0) uniform writeonly image2D refractionUvImage;  // u, v (0..1, bottom left), looked up, stand-in
 layout(rgba32f, binding = 1) uniform writeonly image2D transmittanceImage; // of that background colour, to the eye
 layout(rgba32f, binding = 2) uniform writeonly image2D reflectionImage;    // every other light of the pixel
 
@@ -254,8 +254,11 @@ void main() {
     finalColour = colourBehind(position, direction, solid, finalTexel, ignoredDistance);
   }
   bool seesBackground = finalTexel.x >= 0.0;
+  // A: the texel only stands in for an end hidden behind a solid, so refraction_footprint.frag does not
+  // average about it (not read back).
   imageStore(refractionUvImage, pixel,
-             seesBackground ? vec4(finalTexel * frame.viewportSize.zw, 1.0, 0.0) : vec4(0.0));
+             seesBackground ? vec4(finalTexel * frame.viewportSize.zw, 1.0, hiddenEndTexel.x >= 0.0 ? 1.0 : 0.0)
+                            : vec4(0.0));
   imageStore(transmittanceImage, pixel, vec4(seesBackground ? throughput : vec3(0.0), 0.0));
   imageStore(reflectionImage, pixel, vec4(seesBackground ? colour : colour + throughput * finalColour, 0.0));
   colour += throughput * finalColour;

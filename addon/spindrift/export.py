@@ -372,6 +372,14 @@ def scene_lights(depsgraph, for_render=True):
     return lights
 
 
+def film_pixel_filter(scene):
+    """The render's pixel filter as (Cycles' filter type, width in pixels): Cycles' Film settings, or for
+    another engine the render's filter size, a Blackman-Harris width as Eevee's is."""
+    if scene.render.engine == "CYCLES" and hasattr(scene, "cycles"):
+        return scene.cycles.filter_type, scene.cycles.filter_width
+    return "BLACKMAN_HARRIS", scene.render.filter_size
+
+
 def world_color(scene):
     """The world's background colour (times its strength), what Spindrift shows and refracts where the
     background image has nothing."""

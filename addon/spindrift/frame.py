@@ -52,6 +52,11 @@ def parameter_values(scene, obj, quality=None):
         values[group] = parameters.group_values(table, group, getattr(settings, group)) if settings else {}
         if quality:
             values[group].update(QUALITY_OVERRIDES[quality].get(group, {}))
+    # What Blender's settings say (parameters.FROM_BLENDER): the film's pixel filter, written where it is not
+    # the table's default, as group_values writes the rest.
+    width = parameters.pixel_filter_width(*export.film_pixel_filter(scene))
+    if abs(width - parameters.group_defaults(table, "liquid")["pixel_filter_width"]) > 1e-6:
+        values["liquid"]["pixel_filter_width"] = width
     return values
 
 

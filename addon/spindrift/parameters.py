@@ -9,6 +9,26 @@ Pure Python: `property_definitions` takes the table and a module with Blender's 
 # object holds the liquid. Properties, panels and the scene file all go by this one mapping.
 GROUP_OWNERS = {"liquid": "object", "foam": "object", "light": "scene"}
 
+# Rows the add-on takes from Blender's own settings rather than from a property of its own: no property or
+# panel entry is made for them, and frame.parameter_values fills them from the scene. A second knob beside
+# Blender's would only disagree with it.
+FROM_BLENDER = {("liquid", "pixel_filter_width"): "Render properties > Film > Pixel Filter"}
+
+# The width of the Blackman-Harris filter (Cycles' default pixel filter) with the spread of Cycles' other
+# filters of width 1: a box's standard deviation is 1 / sqrt(12) of its width and a Blackman-Harris one's
+# 0.277 (Cycles spans it over twice its width); Cycles spans a Gaussian over three times its width with
+# sigma a quarter of it (intern/cycles/scene/film.cpp).
+_BLACKMAN_HARRIS_WIDTH_PER_WIDTH = {"BLACKMAN_HARRIS": 1.0, "BOX": 1.0 / 0.96, "GAUSSIAN": 0.866 / 0.96}
+
+
+def pixel_filter_width(filter_type, width):
+    """liquid.pixel_filter_width (a Blackman-Harris width in pixels) for a render whose pixel filter is
+    `filter_type` (Cycles' BOX, GAUSSIAN or BLACKMAN_HARRIS) of `width` pixels: the filter of the same spread."""
+    if filter_type not in _BLACKMAN_HARRIS_WIDTH_PER_WIDTH:
+        raise ValueError(f"unknown pixel filter {filter_type!r}")
+    return float(width) * _BLACKMAN_HARRIS_WIDTH_PER_WIDTH[filter_type]
+
+
 # Blender's FloatProperty keeps soft limits for the slider; the table's range is the hard limit the native
 # validator enforces too, so a value Blender accepts is always one the renderer accepts.
 _SOFT_SPAN = 1e4
@@ -58,10 +78,11 @@ def property_definition(row, props, update=None):
 
 
 def property_definitions(table, group, props, update=None):
-    """{name: property} for every row of `group` (one of GROUP_OWNERS), in table order."""
+    """{name: property} for every row of `group` (one of GROUP_OWNERS) but those FROM_BLENDER, in table
+    order."""
     definitions = {}
     for row in table:
-        if row["group"] == group:
+        if row["group"] == group and (group, row["name"]) not in FROM_BLENDER:
             definitions[row["name"]] = property_definition(row, props, update)
     if not definitions:
         raise ValueError(f"the parameter table has no rows in group {group!r}")
@@ -90,7 +111,7 @@ def group_values(table, group, settings):
     """
     values = {}
     for row in table:
-        if row["group"] != group:
+        if row["group"] != group or (group, row["name"]) in FROM_BLENDER:
             continue
         value = json_value(row, getattr(settings, row["name"]))
         default = json_value(row, row["default"])

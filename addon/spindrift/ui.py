@@ -15,7 +15,12 @@ def _draw_parameters(layout, settings, group):
         return
     column = layout.column(align=True)
     for row in table:
-        if row["group"] == group:
+        if row["group"] != group:
+            continue
+        from_blender = parameters.FROM_BLENDER.get((group, row["name"]))
+        if from_blender:  # no property of ours: Blender's own setting is the one to change
+            column.label(text=f"{row['name'].replace('_', ' ').capitalize()}: from {from_blender}")
+        else:
             column.prop(settings, row["name"])
 
 

@@ -38,6 +38,8 @@ const char* passName(Pass pass) {
       return "raymarch_surface";
     case Pass::Refraction:
       return "refraction";
+    case Pass::RefractionFootprint:
+      return "refraction_footprint";
     case Pass::FoamSceneDepth:
       return "foam_scene_depth";
     case Pass::FoamVisibility:
@@ -148,9 +150,13 @@ FramePlan planFrame(const FrameContents& contents) {
     decide(Pass::RaymarchSurface, !(splashes || aggregates) ? "no liquid particles in view"
                                   : !layersShown            ? noLiquidOutput
                                                             : nullptr);
-  decide(Pass::Refraction, !(splashes || aggregates) ? "no liquid particles in view"
-                           : !liquidShown            ? noLiquidOutput
-                                                     : nullptr);
+  const char* noRefraction = !(splashes || aggregates) ? "no liquid particles in view"
+                             : !liquidShown            ? noLiquidOutput
+                                                       : nullptr;
+  decide(Pass::Refraction, noRefraction);
+  decide(Pass::RefractionFootprint, noRefraction                     ? noRefraction
+                                    : contents.pixelFilterWidth <= 0 ? "liquid.pixel_filter_width is 0"
+                                                                     : nullptr);
   const char* foamReason = contents.foamParticles == 0 ? "no foam particles in view"
                            : !foamShown                ? "no foam layer or composite asked for (--layers)"
                                                        : nullptr;

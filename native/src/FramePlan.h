@@ -26,6 +26,8 @@ enum class Pass {
   RimNormals,       ///< the front normals near the aggregated body's silhouette (liquid.rim_normals)
   RaymarchSurface,  ///< liquid.surface = raymarch: six passes, timed by RaymarchSurface itself
   Refraction,
+  RefractionFootprint,  ///< the background averaged over each liquid pixel's footprint
+                        ///< (liquid.pixel_filter_width)
   FoamSceneDepth,
   FoamVisibility,
   FoamDepth,
@@ -71,6 +73,7 @@ struct FrameContents {
   bool skipUnlitTiles = true;      ///< light.skip_unlit_tiles.
   bool rimNormals = true;          ///< liquid.rim_normals.
   bool cameraInLiquid = false;     ///< The camera is under water: the body's front layer is not drawn.
+  float pixelFilterWidth = 1.5f;   ///< liquid.pixel_filter_width.
 };
 
 /// Which passes a frame runs and, for each it does not, why. The wiring of the frame in one plain function,

@@ -33,6 +33,7 @@
 #include "passes/FrameUniforms.h"
 #include "passes/OccluderDepthPass.h"
 #include "passes/PixelTilePass.h"
+#include "passes/RefractionFootprintPass.h"
 #include "passes/RefractionPass.h"
 #include "passes/RimNormalsPass.h"
 #include "prep/BackgroundCache.h"
@@ -77,6 +78,7 @@ struct FramePipeline {
   RimNormalsPass rimNormals{shaders};
   RaymarchSurface raymarch{shaders};
   RefractionPass refraction{shaders};
+  RefractionFootprintPass refractionFootprint{shaders};
   FoamSceneDepthPass foamSceneDepth{shaders};
   FoamVisibilityPass foamVisibility{shaders};
   FoamDepthPass foamDepth{shaders};
@@ -364,6 +366,7 @@ RenderResult Renderer::renderPrepared(const Scene& scene, const Particles& parti
                          layers.wantsComposite(),    layers.wantsLiquidLayers(), layers.wantsFoamLayers(),
                          impl_->intermediateLayers,  liquidParameters.surface};
   contents.rimNormals = liquidParameters.rim_normals;
+  contents.pixelFilterWidth = liquidParameters.pixel_filter_width;
   contents.cameraInLiquid = cameraInLiquid;
   contents.lights = scene.lights.size();
   contents.foamCulling = foamParameters.cull_hidden;
@@ -496,6 +499,11 @@ RenderResult Renderer::renderPrepared(const Scene& scene, const Particles& parti
         return pipeline.refraction.run(splashes, aggregates, background, liquidParameters, cameraInLiquid,
                                        radius, domainBox, refractionTiles, width, height);
       }));
+    if (plan.runs(Pass::RefractionFootprint))
+      timed(Pass::RefractionFootprint, [&] {
+        pipeline.refractionFootprint.run(*liquidLayer, background, liquidParameters.pixel_filter_width,
+                                         refractionTiles);
+      });
 
     // Foam (foam paper, figure 2): the solids' and the liquid's depth, the foam's nearest depth, its
     // thickness, intensity, shadow and irradiance, then blur and the foam layer. The plan runs all six or

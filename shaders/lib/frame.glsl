@@ -26,6 +26,34 @@ vec4 texelAt(sampler2DArray images, ivec3 texel) {
   return textureLod(images, vec3((vec2(texel.xy) + 0.5) / vec2(textureSize(images, 0).xy), float(texel.z)), 0.0);
 }
 
+// Bilinear weights of the four texels around a window position (in pixels, texel centres at half-integers),
+// and the first of them.
+void bilinearFootprint(vec2 fragCoord, out ivec2 base, out vec2 weight) {
+  vec2 texel = clamp(fragCoord - 0.5, vec2(0.0), frame.viewportSize.xy - 1.001);
+  base = ivec2(floor(texel));
+  weight = texel - vec2(base);
+}
+
+// A viewport-sized image between its texels' centres, bilinear in those of the four nearest that show the
+// surface at eye depth `depth` (their `eyeDepth` within a tenth of it): a lookup on the floor just behind a
+// wall's edge does not take the wall's colour. Where none of them does, the nearest texel.
+const float kSameSurface = 0.1;
+vec4 bilinearOnSurface(sampler2D image, sampler2D eyeDepth, vec2 fragCoord, float depth) {
+  ivec2 base;
+  vec2 weight;
+  bilinearFootprint(fragCoord, base, weight);
+  vec4 sum = vec4(0.0);
+  float total = 0.0;
+  for (int corner = 0; corner < 4; ++corner) {
+    ivec2 texel = base + ivec2(corner & 1, corner >> 1);
+    vec2 along = mix(1.0 - weight, weight, vec2(texel - base));
+    if (abs(texelAt(eyeDepth, texel).r - depth) > kSameSurface * depth) continue;
+    sum += along.x * along.y * texelAt(image, texel);
+    total += along.x * along.y;
+  }
+  return total > 0.0 ? sum / total : texelAt(image, ivec2(fragCoord));
+}
+
 float getNearClip() { return frame.clipPlanes.x; }
 float getFarClip() { return frame.clipPlanes.y; }
 vec3 getCameraWorldPosition() { return frame.worldFromCamera[3].xyz; }

@@ -22,13 +22,6 @@ vec4 normalTexel(int body, bool back, ivec2 pixel) {
   return texelAt(layerNormals, ivec3(pixel, body * 2 + (back ? 1 : 0)));
 }
 
-// Bilinear weights of the four texels around a window position, and the first of them.
-void bilinearFootprint(vec2 fragCoord, out ivec2 base, out vec2 weight) {
-  vec2 texel = clamp(fragCoord - 0.5, vec2(0.0), frame.viewportSize.xy - 1.001);
-  base = ivec2(floor(texel));
-  weight = texel - vec2(base);
-}
-
 // A body's front and back depth between texel centres, both from the same four texels of the packed layers:
 // fetched once for both, which llvmpipe did not share between two calls (the refraction pass 40-42 -> 35-37
 // ms on the dam break). Where one of the four texels has no surface in a layer (a silhouette) that layer takes
@@ -305,8 +298,10 @@ vec3 colourBehind(vec3 origin, vec3 direction, SolidHit solid, out vec2 backgrou
     float tHit = refineCrossing(kBehindSolid, 0, origin, direction, solid.previousT, solid.previousF, solid.t, solid.f);
     travelled = tHit;
     vec2 hit = clamp(fragCoordFromCamera(origin + tHit * direction), vec2(0.0), frame.viewportSize.xy - 1.0);
-    backgroundTexel = vec2(ivec2(hit)) + 0.5;
-    return texelAt(backgroundColor, ivec2(hit)).rgb;
+    backgroundTexel = hit;
+    // Between texels: where a refraction magnifies the background its image is drawn smooth, as the path
+    // tracer's is, not in steps of whole texels.
+    return bilinearOnSurface(backgroundColor, backgroundEyeDepth, hit, -(origin + tHit * direction).z).rgb;
   }
   if (direction.z < 0.0) {
     vec2 vanishing = fragCoordFromCamera(direction * getFarClip());

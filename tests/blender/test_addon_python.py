@@ -89,7 +89,7 @@ def test_every_parameter_becomes_a_property_of_its_type():
     assert list(parameters.GROUP_OWNERS) == ["liquid", "foam", "light"]
     for group in parameters.GROUP_OWNERS:
         definitions = parameters.property_definitions(table, group, FakeProps())
-        rows = [row for row in table if row["group"] == group]
+        rows = [row for row in table if row["group"] == group and (group, row["name"]) not in parameters.FROM_BLENDER]
         assert list(definitions) == [row["name"] for row in rows]
         for row in rows:
             constructor, keywords = definitions[row["name"]]
@@ -103,6 +103,41 @@ def test_every_parameter_becomes_a_property_of_its_type():
                 assert keywords["default"] == row["default"]
             if row["type"] == "color":
                 assert keywords["subtype"] == "COLOR" and keywords["size"] == 3
+
+
+def cycles_filter_deviation(filter_type, width):
+    """The standard deviation in pixels of Cycles' pixel filter, integrated here from the filter functions and
+    spans of intern/cycles/scene/film.cpp: a box over the width; a Gaussian exp(-2 (6 x / 3w)^2) over three
+    widths; Blackman-Harris over two."""
+    span = {"BOX": 1.0, "GAUSSIAN": 3.0, "BLACKMAN_HARRIS": 2.0}[filter_type] * width
+    x = np.linspace(-span / 2, span / 2, 200001)
+    if filter_type == "BOX":
+        weight = np.ones_like(x)
+    elif filter_type == "GAUSSIAN":
+        weight = np.exp(-2.0 * (x * 6.0 / span) ** 2)
+    else:
+        t = 2 * np.pi * (x / span + 0.5)
+        weight = 0.35875 - 0.48829 * np.cos(t) + 0.14128 * np.cos(2 * t) - 0.01168 * np.cos(3 * t)
+    return math.sqrt((weight * x * x).sum() / weight.sum())
+
+
+def test_the_pixel_filter_comes_from_the_film():
+    """liquid.pixel_filter_width is Blender's Film > Pixel Filter, as the Blackman-Harris width of the same
+    spread, not a property of the add-on's own."""
+    table = table_from_def()
+    assert ("liquid", "pixel_filter_width") in parameters.FROM_BLENDER
+    assert "pixel_filter_width" not in parameters.property_definitions(table, "liquid", FakeProps())
+    settings = types.SimpleNamespace(**{row["name"]: row["default"] for row in table if row["group"] == "liquid"})
+    settings.pixel_filter_width = 3.0  # would be written if it were a property; it is not
+    assert "pixel_filter_width" not in parameters.group_values(table, "liquid", settings)
+    assert parameters.pixel_filter_width("BLACKMAN_HARRIS", 1.5) == 1.5
+    for filter_type in ("BOX", "GAUSSIAN", "BLACKMAN_HARRIS"):
+        for width in (0.5, 1.5, 3.0):
+            equivalent = parameters.pixel_filter_width(filter_type, width)
+            assert cycles_filter_deviation("BLACKMAN_HARRIS", equivalent) == pytest.approx(
+                cycles_filter_deviation(filter_type, width), rel=0.01), (filter_type, width)
+    with pytest.raises(ValueError, match="unknown pixel filter"):
+        parameters.pixel_filter_width("MITCHELL", 1.5)
 
 
 def test_every_group_of_the_table_has_a_home():
@@ -158,10 +193,16 @@ def test_changed_light_values_reach_the_documents_light_group():
                                                                 foam=Settings(table, "foam")))
     scene = types.SimpleNamespace(spindrift=scene_settings)
     native = types.SimpleNamespace(parameter_table=lambda: table)
-    frame = load_in_package("frame", native=native, export=types.ModuleType("export"))
+    export = types.ModuleType("export")
+    export.film_pixel_filter = lambda scene: scene.film
+    frame = load_in_package("frame", native=native, export=export)
 
+    scene.film = ("BLACKMAN_HARRIS", 1.5)  # Cycles' default, the table's
     values = frame.parameter_values(scene, obj)
     assert values == {"liquid": {}, "foam": {}, "light": {}}
+    scene.film = ("BOX", 1.2)  # the film's filter reaches the liquid group (parameters.FROM_BLENDER)
+    assert frame.parameter_values(scene, obj)["liquid"] == {"pixel_filter_width": pytest.approx(1.25)}
+    scene.film = ("BLACKMAN_HARRIS", 1.5)
     document = scene_json.scene_document({}, 1, (), None, values["liquid"], values["foam"], (), values["light"])
     assert "light" not in document, "a light group at its defaults is left out"
 

@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <iterator>
 #include <string>
 #include <vector>
 
@@ -55,6 +56,7 @@ TEST(FramePlan, FullFrameRunsEveryPassInRecipeOrder) {
                                              "smoothing",
                                              "rim_normals",
                                              "refraction",
+                                             "refraction_footprint",
                                              "foam_scene_depth",
                                              "foam_visibility",
                                              "foam_depth",
@@ -71,7 +73,7 @@ TEST(FramePlan, FullFrameRunsEveryPassInRecipeOrder) {
 TEST(FramePlan, EmptyFrameRunsBackgroundAndCompositeOnly) {
   const FramePlan plan = planFrame({0, 0, 0, "plane_fit"});
   EXPECT_EQ(names(plan.passes), (std::vector<std::string>{"background", "composite"}));
-  ASSERT_EQ(plan.skipped.size(), 22u);
+  ASSERT_EQ(plan.skipped.size(), 23u);
   EXPECT_EQ(plan.skipped.front().name, "occluder_depth");
   EXPECT_EQ(reasonFor(plan, "occluder_depth"), "no occluders");
   EXPECT_EQ(reasonFor(plan, "liquid_mesh_depth"), "no liquid mesh");
@@ -121,6 +123,22 @@ TEST(FramePlan, RimNormalsNeedTheBodysFrontLayer) {
   EXPECT_EQ(reasonFor(planFrame(nothingRead), "rim_normals"),
             "no liquid layer, composite or foam asked for (--layers)");
   EXPECT_TRUE(planFrame({0, 10, 0, "plane_fit"}).runs(Pass::RimNormals));
+}
+
+// The footprint averages what the refraction looked up: it runs after it, with it, and not with a zero-width
+// pixel filter.
+TEST(FramePlan, TheFootprintFollowsTheRefraction) {
+  const FramePlan plan = planFrame({10, 0, 0, "plane_fit"});
+  ASSERT_TRUE(plan.runs(Pass::RefractionFootprint));
+  const auto refraction = std::find(plan.passes.begin(), plan.passes.end(), Pass::Refraction);
+  EXPECT_EQ(std::next(refraction),
+            std::find(plan.passes.begin(), plan.passes.end(), Pass::RefractionFootprint));
+  EXPECT_EQ(reasonFor(planFrame({0, 0, 5, "plane_fit"}), "refraction_footprint"),
+            "no liquid particles in view");
+  FrameContents sharp{10, 0, 0, "plane_fit"};
+  sharp.pixelFilterWidth = 0.0f;
+  EXPECT_EQ(reasonFor(planFrame(sharp), "refraction_footprint"), "liquid.pixel_filter_width is 0");
+  EXPECT_TRUE(planFrame(sharp).runs(Pass::Refraction));
 }
 
 TEST(FramePlan, FoamWithoutLiquidRunsTheFoamPasses) {
@@ -263,8 +281,9 @@ TEST(FramePlan, EveryPassIsEitherRunOrSkippedExactlyOnce) {
             }
             std::sort(all.begin(), all.end());
             EXPECT_EQ(std::adjacent_find(all.begin(), all.end()), all.end());
-            EXPECT_EQ(all.size(), 24u);
+            EXPECT_EQ(all.size(), 25u);
             // A pass runs only when what it reads runs.
+            if (plan.runs(Pass::RefractionFootprint)) EXPECT_TRUE(plan.runs(Pass::Refraction));
             if (plan.runs(Pass::RimNormals)) EXPECT_TRUE(plan.runs(Pass::AggregateDepthLayers));
             if (plan.runs(Pass::LiquidTiles))
               EXPECT_TRUE(plan.runs(Pass::SplashDepthLayers) || plan.runs(Pass::AggregateDepthLayers));

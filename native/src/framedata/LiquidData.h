@@ -14,8 +14,9 @@ struct LiquidData {
   const Texture2D& thickness;     ///< R32F: path length in liquid.
   const Texture2D& frontDepth;    ///< R32F: eye depth of the first surface; 1e10 where none.
   const Texture2D& frontNormal;   ///< RGBA16F: world normal of the first surface, coverage.
-  /// RGBA32F: where the final refracted ray looks up the background (u, v in 0..1 from the bottom left, at
-  /// the centre of the texel it reads), and 1 in B where it does (0 where the light came from elsewhere).
+  /// RGBA32F: where the final refracted ray looks up the background (u, v in 0..1 from the bottom left,
+  /// between texel centres), and 1 in B where it does (0 where the light came from elsewhere); 1 in A where
+  /// that texel only stands in for a path's end hidden behind a solid (not read back).
   const Texture2D& refractionUv;
   const Texture2D& transmittance;  ///< RGBA32F: the fraction of that background colour that reaches the eye.
   const Texture2D& reflection;  ///< RGBA32F: all other light: liquid = background(uv) * transmittance + this.
