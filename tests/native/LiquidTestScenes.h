@@ -8,6 +8,8 @@
 
 #include <gtest/gtest.h>
 
+#include <glm/geometric.hpp>
+
 #include "spindrift/Renderer.h"
 
 // Shared pieces of the liquid GL tests: one renderer per test binary (contexts are slow on llvmpipe), scenes
@@ -51,6 +53,17 @@ inline std::vector<glm::vec3> block(const glm::vec3& low, const glm::vec3& high,
       for (float x = low.x; x <= high.x + 1e-6f; x += spacing)
         positions.emplace_back(x, y, z);
   return positions;
+}
+
+// A ball of `radius` about `centre` filled with a regular lattice of particles `spacing` apart, the outermost
+// reaching its surface.
+inline spindrift::Particles latticeBall(const glm::vec3& centre, float radius, float spacing,
+                                        float particleRadius) {
+  std::vector<glm::vec3> inside;
+  const float reach = radius - particleRadius;
+  for (const glm::vec3& position : block(centre - glm::vec3(reach), centre + glm::vec3(reach), spacing))
+    if (glm::distance(position, centre) <= reach) inside.push_back(position);
+  return particlesOf(inside, particleRadius);
 }
 
 inline std::size_t nonFiniteValues(const spindrift::RenderResult& result, std::string* where = nullptr) {

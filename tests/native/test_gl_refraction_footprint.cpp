@@ -39,12 +39,7 @@ Scene sceneOverChecks(const TempDirectory& directory) {
 }
 
 Particles latticeBall() {
-  std::vector<glm::vec3> inside;
-  const float reach = kBallRadius - kParticleRadius;
-  for (const glm::vec3& position :
-       block(kBallCentre - glm::vec3(reach), kBallCentre + glm::vec3(reach), kSpacing))
-    if (glm::distance(position, kBallCentre) <= reach) inside.push_back(position);
-  return particlesOf(inside, kParticleRadius);
+  return liquid_test::latticeBall(kBallCentre, kBallRadius, kSpacing, kParticleRadius);
 }
 
 // Where a pixel's final ray reads the background, in texels (refraction_uv; rows counted from the top as the

@@ -42,11 +42,7 @@ Scene sceneOverAPlane(const TempDirectory& directory, float planeDepth) {
 }
 
 Particles latticeBall(const glm::vec3& centre) {
-  std::vector<glm::vec3> inside;
-  const float reach = kBallRadius - kParticleRadius;
-  for (const glm::vec3& position : block(centre - glm::vec3(reach), centre + glm::vec3(reach), kSpacing))
-    if (glm::distance(position, centre) <= reach) inside.push_back(position);
-  return particlesOf(inside, kParticleRadius);
+  return liquid_test::latticeBall(centre, kBallRadius, kSpacing, kParticleRadius);
 }
 
 // The world direction of a pixel's ray.
