@@ -376,7 +376,7 @@ def film_pixel_filter(scene):
     """The render's pixel filter as (Cycles' filter type, width in pixels): Cycles' Film settings, or for
     another engine the render's filter size, a Blackman-Harris width as Eevee's is."""
     if scene.render.engine == "CYCLES" and hasattr(scene, "cycles"):
-        return scene.cycles.filter_type, scene.cycles.filter_width
+        return scene.cycles.pixel_filter_type, scene.cycles.filter_width
     return "BLACKMAN_HARRIS", scene.render.filter_size
 
 

@@ -1,7 +1,7 @@
 """Blender's lamps handed to the renderer: each lamp type in the scene format's terms (docs/scene-format.md),
 the frame's EXR with the liquid's shadow where the sun's light crosses the liquid, and the compositing group
 applying the light layers; the scene's Light settings (scene.spindrift.light) reaching the renderer: caustics
-off, the group's direct fraction; without lamps, the world's light alone, none with Sky without lamps off, and
+off, the group's direct fraction; the film's pixel filter as liquid.pixel_filter_width; without lamps, the world's light alone, none with Sky without lamps off, and
 under a black world no light at all. The composite itself is compared with the command line's (which gets the
 same lamps) by test_render_compare.py.
 
@@ -93,6 +93,21 @@ def check_light_settings_with_the_sun(scene, module):
     check(abs(share.inputs["Fac"].default_value - 0.6) < 1e-6, "back to the default")
 
 
+def check_film_pixel_filter(scene, module):
+    """liquid.pixel_filter_width is the render's Film > Pixel Filter (parameters.FROM_BLENDER): left out at
+    Cycles' default Blackman-Harris 1.5, a box of 1.2 px written as the Blackman-Harris width of its spread."""
+    cycles = scene.cycles
+    check((cycles.pixel_filter_type, cycles.filter_width) == ("BLACKMAN_HARRIS", 1.5), "Cycles' default filter")
+    document, skipped, _ = render_frame(scene, module)
+    check("pixel_filter_width" not in document.get("liquid", {}), "the default film writes no width")
+    check("refraction_footprint" not in skipped, f"the footprint pass runs ({skipped})")
+    cycles.pixel_filter_type, cycles.filter_width = "BOX", 1.2
+    document, _, _ = render_frame(scene, module)
+    width = document.get("liquid", {}).get("pixel_filter_width")
+    check(width is not None and abs(width - 1.25) < 1e-4, f"a 1.2 px box reaches the scene file as 1.25 ({width})")
+    cycles.pixel_filter_type, cycles.filter_width = "BLACKMAN_HARRIS", 1.5
+
+
 def main():
     install_addon()
     scene = open_fixture_scene(arguments()[0])
@@ -116,6 +131,7 @@ def main():
     for name in module.compositing.LIGHT_LAYERS:
         check(image_node.outputs[name].is_linked, f"the group reads {name}")
     check_light_settings_with_the_sun(scene, module)
+    check_film_pixel_filter(scene, module)
 
     # Without lamps the world's light alone is taken (light.sky_without_lamps): the liquid takes the sky light
     # of the floor under and beside it, and liquid_shadow carries the same multiplier as liquid_sky.
