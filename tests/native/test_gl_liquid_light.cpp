@@ -70,34 +70,45 @@ SlabShadow slabShadow(const RenderResult& result, const Scene& scene, double inc
 }  // namespace
 
 // A sun at 40 degrees through a floating slab: the floor under the slab's middle keeps
-// exp(-sigma t / cos theta_t) (1 - F)^2 of the light, within 1 %. (At 40 degrees the light that enters the
+// exp(-sigma t / cos theta_t) (1 - F)^2 of the light, within 1 %, whether the sun's view of this deep body is
+// thinned by columns narrower than its particles' spacing (light.column_particles, the default) or keeps
+// every particle the exact tests cannot hide (column_particles 0). (At 40 degrees the light that enters the
 // slab's sunward wall meets its bottom 6 degrees beyond the critical angle, so none of it lands there; nearer
 // the critical angle the drawn bottom's small bumps let some of it out at grazing angles.)
 TEST(GLLiquidLight, SlabShadowFollowsBeerLambertAndFresnel) {
   TempDirectory directory;
   const double incidence = glm::radians(40.0);
-  const Scene scene = sunlitFloorScene(directory, incidence, {0.4f, 0.8f, 1.6f});
+  Scene scene = sunlitFloorScene(directory, incidence, {0.4f, 0.8f, 1.6f});
   // Wide towards the sun: light that enters the sunward wall and escapes the drawn bottom's rounded edge at
   // grazing angles lands far from the window measured here.
-  const RenderResult result =
-      renderer().renderParticles(scene, slabParticles({-3.0f, -1.5f, 1.0f}, {1.2f, 1.5f, 1.5f}), 1);
-  expectAllChannelsFinite(result);
-  ASSERT_NE(result.layer("liquid_shadow"), nullptr);
-  ASSERT_NE(result.layer("caustics"), nullptr);
-  // The sky's view is thinned to its columns' ends whatever the depth; the sun's keeps the exact test.
-  EXPECT_GT(result.stats.light.viewParticlesLeftOut, result.stats.light.viewParticlesColumnThinned)
-      << "a body this deep keeps the exact test in the sun's view";
-  const SlabShadow shadow = slabShadow(result, scene, incidence, 1.25);
-  ASSERT_GT(shadow.thickness, 0.4);
-  ASSERT_GT(shadow.pixels, 500);
-  for (int channel = 0; channel < 3; ++channel) {
-    std::printf("slab, channel %d: floor keeps %.4f, expected %.4f (thickness %.3f)\n", channel,
-                shadow.kept[channel], shadow.expected[channel], shadow.thickness);
-    EXPECT_NEAR(shadow.kept[channel], shadow.expected[channel], 0.01 * shadow.expected[channel])
-        << "channel " << channel;
+  const Particles slab = slabParticles({-3.0f, -1.5f, 1.0f}, {1.2f, 1.5f, 1.5f});
+  const RenderResult thinned = renderer().renderParticles(scene, slab, 1);
+  scene.parameters.light.column_particles = 0;
+  const RenderResult exact = renderer().renderParticles(scene, slab, 1);
+  expectAllChannelsFinite(thinned);
+  expectAllChannelsFinite(exact);
+  ASSERT_NE(thinned.layer("liquid_shadow"), nullptr);
+  ASSERT_NE(thinned.layer("caustics"), nullptr);
+  std::printf("deep slab: %zu of %zu view particles thinned out, %zu left out by the exact tests\n",
+              thinned.stats.light.viewParticlesColumnThinned, thinned.stats.light.viewParticles,
+              exact.stats.light.viewParticlesLeftOut);
+  EXPECT_EQ(exact.stats.light.viewParticlesColumnThinned, 0u);
+  EXPECT_GT(thinned.stats.light.viewParticlesColumnThinned, thinned.stats.light.viewParticles / 2)
+      << "the sky's view and the sun's leave out most of a body this deep";
+  for (const RenderResult* result : {&thinned, &exact}) {
+    const SlabShadow shadow = slabShadow(*result, scene, incidence, 1.25);
+    ASSERT_GT(shadow.thickness, 0.4);
+    ASSERT_GT(shadow.pixels, 500);
+    for (int channel = 0; channel < 3; ++channel) {
+      std::printf("slab (%s), channel %d: floor keeps %.4f, expected %.4f (thickness %.3f)\n",
+                  result == &thinned ? "thinned" : "exact", channel, shadow.kept[channel],
+                  shadow.expected[channel], shadow.thickness);
+      EXPECT_NEAR(shadow.kept[channel], shadow.expected[channel], 0.01 * shadow.expected[channel])
+          << "channel " << channel;
+    }
+    // Outside the slab's shadow the floor keeps all of the light and gets no caustic.
+    EXPECT_NEAR(directMultiplier(*result, 2, 2, 0), 1.0, 1e-4);
   }
-  // Outside the slab's shadow the floor keeps all of the light and gets no caustic.
-  EXPECT_NEAR(directMultiplier(result, 2, 2, 0), 1.0, 1e-4);
 }
 
 // A slab three particles deep has no interior particle, so its light views keep only the two particles

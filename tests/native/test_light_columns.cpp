@@ -9,6 +9,7 @@
 #include <map>
 #include <random>
 #include <set>
+#include <string>
 #include <vector>
 
 #include "prep/LightColumns.h"
@@ -59,40 +60,65 @@ TEST(LightColumns, EachLayerKeepsItsColumnsNearestAndFarthestCentres) {
   std::vector<glm::vec3> positions;
   for (int i = 0; i < 3000; ++i)
     positions.emplace_back(across(random), across(random), deep(random));
-  std::vector<EllipsoidInstance> ellipsoids = spheresAt(positions);
-  LayerSplit split;
-  const int perColumn = 2;
-  const std::size_t leftOut = keepColumnEnds(ellipsoids, split, view, perColumn);
+  // Columns of one texel, and of three, which do not divide the view's 16 (the last row and column are
+  // narrower).
+  for (const int side : {1, 3}) {
+    SCOPED_TRACE("columns of " + std::to_string(side) + " texels");
+    std::vector<EllipsoidInstance> ellipsoids = spheresAt(positions);
+    LayerSplit split;
+    const int perColumn = 2;
+    const std::size_t leftOut = keepColumnEnds(ellipsoids, split, view, perColumn, side);
 
-  // The brute-force selection: each position's column and depth, each column's two nearest and farthest.
-  std::map<std::pair<int, int>, std::vector<std::pair<float, std::size_t>>> columns;
-  std::vector<char> outside(positions.size(), 0);
-  for (std::size_t i = 0; i < positions.size(); ++i) {
-    const glm::vec3 pixel = view.pixelAndDepthFromWorld(positions[i]);
-    if (pixel.x < 0.0f || pixel.y < 0.0f || pixel.x >= 16.0f || pixel.y >= 16.0f) {
-      outside[i] = 1;
-      continue;
+    // The brute-force selection: each position's column and depth, each column's two nearest and farthest.
+    std::map<std::pair<int, int>, std::vector<std::pair<float, std::size_t>>> columns;
+    std::vector<char> outside(positions.size(), 0);
+    for (std::size_t i = 0; i < positions.size(); ++i) {
+      const glm::vec3 pixel = view.pixelAndDepthFromWorld(positions[i]);
+      if (pixel.x < 0.0f || pixel.y < 0.0f || pixel.x >= 16.0f || pixel.y >= 16.0f) {
+        outside[i] = 1;
+        continue;
+      }
+      columns[{int(pixel.x) / side, int(pixel.y) / side}].push_back({pixel.z, i});
     }
-    columns[{int(pixel.x), int(pixel.y)}].push_back({pixel.z, i});
-  }
-  std::map<std::vector<float>, char> expected;
-  const auto mark = [&](std::size_t i, char layer) {
-    const glm::vec3& p = positions[i];
-    char& entry = expected[{p.x, p.y, p.z}];
-    entry = entry == 0 ? layer : 'b';
-  };
-  for (std::size_t i = 0; i < positions.size(); ++i)
-    if (outside[i]) mark(i, 'b');
-  for (auto& [column, members] : columns) {
-    std::sort(members.begin(), members.end());
-    for (std::size_t k = 0; k < members.size(); ++k) {
-      if (k < std::size_t(perColumn)) mark(members[k].second, 'f');
-      if (k + perColumn >= members.size()) mark(members[k].second, 'k');
+    std::map<std::vector<float>, char> expected;
+    const auto mark = [&](std::size_t i, char layer) {
+      const glm::vec3& p = positions[i];
+      char& entry = expected[{p.x, p.y, p.z}];
+      entry = entry == 0 ? layer : 'b';
+    };
+    for (std::size_t i = 0; i < positions.size(); ++i)
+      if (outside[i]) mark(i, 'b');
+    for (auto& [column, members] : columns) {
+      std::sort(members.begin(), members.end());
+      for (std::size_t k = 0; k < members.size(); ++k) {
+        if (k < std::size_t(perColumn)) mark(members[k].second, 'f');
+        if (k + perColumn >= members.size()) mark(members[k].second, 'k');
+      }
     }
+    EXPECT_EQ(layersOf(ellipsoids, split), expected);
+    EXPECT_EQ(leftOut, positions.size() - expected.size());
+    EXPECT_GT(leftOut, positions.size() / 2) << "about twelve centres a texel column: most are left out";
   }
-  EXPECT_EQ(layersOf(ellipsoids, split), expected);
-  EXPECT_EQ(leftOut, positions.size() - expected.size());
-  EXPECT_GT(leftOut, positions.size() / 2) << "about twelve centres a column: most are left out";
+}
+
+// A lamp's columns fit in three quarters of the particles' spacing: the light benchmark's lattices, 2.7
+// to 3.0 texels apart, take 2; a Mantaflow liquid's particles, closer than a texel, take 1, as do degenerate
+// inputs.
+TEST(LightColumns, ALampsColumnsAreNarrowerThanTheParticlesSpacing) {
+  EXPECT_EQ(columnSideFor(2.688f, 1.0f), 2);
+  EXPECT_EQ(columnSideFor(0.0301f, 0.01f), 2);
+  EXPECT_EQ(columnSideFor(0.6f, 1.0f), 1);
+  EXPECT_EQ(columnSideFor(4.0f, 1.0f), 3);
+  EXPECT_EQ(columnSideFor(1.3f, 1.0f), 1);
+  EXPECT_EQ(columnSideFor(0.0f, 1.0f), 1) << "no spacing (no particles)";
+  EXPECT_EQ(columnSideFor(1.0f, 0.0f), 64) << "a texel of no size: the largest side";
+  EXPECT_EQ(columnSideFor(std::numeric_limits<float>::quiet_NaN(), 1.0f), 1);
+  EXPECT_EQ(columnSideFor(1e30f, 1e-30f), 64);
+  for (const float spacing : {0.5f, 1.0f, 2.0f, 2.7f, 3.0f, 5.0f, 40.0f}) {
+    const int side = columnSideFor(spacing, 1.0f);
+    EXPECT_GE(side, 1);
+    EXPECT_TRUE(side == 1 || float(side) <= kColumnSpacingFraction * spacing) << spacing;
+  }
 }
 
 TEST(LightColumns, ColumnsOfFewCentresAndCentresOffTheViewKeepEverything) {

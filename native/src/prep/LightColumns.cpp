@@ -12,12 +12,14 @@
 namespace spindrift {
 
 std::size_t keepColumnEnds(std::vector<EllipsoidInstance>& ellipsoids, LayerSplit& split, const Camera& view,
-                           int perColumn) {
+                           int perColumn, int columnSide) {
   const std::size_t count = ellipsoids.size();
   if (perColumn <= 0 || count == 0 || view.width <= 0 || view.height <= 0) return 0;
   // Each centre's column and depth along the view; kOutside where it projects nowhere on the view.
   constexpr std::uint32_t kOutside = ~std::uint32_t(0);
-  const std::uint32_t columns = std::uint32_t(view.width) * std::uint32_t(view.height);
+  const std::uint32_t side = std::uint32_t(std::max(columnSide, 1));
+  const std::uint32_t across = (std::uint32_t(view.width) + side - 1) / side;
+  const std::uint32_t columns = across * ((std::uint32_t(view.height) + side - 1) / side);
   const glm::mat4 cameraFromWorld = view.cameraFromWorld();
   std::vector<std::uint32_t> columnOf(count, kOutside);
   std::vector<float> depthOf(count, 0.0f);
@@ -28,7 +30,7 @@ std::size_t keepColumnEnds(std::vector<EllipsoidInstance>& ellipsoids, LayerSpli
     if (!(pixel.z > 0.0f) || !(pixel.x >= 0.0f && pixel.x < float(view.width)) ||
         !(pixel.y >= 0.0f && pixel.y < float(view.height)))
       continue;
-    columnOf[i] = std::uint32_t(pixel.y) * std::uint32_t(view.width) + std::uint32_t(pixel.x);
+    columnOf[i] = std::uint32_t(pixel.y) / side * across + std::uint32_t(pixel.x) / side;
     depthOf[i] = pixel.z;
   }
   // The ellipsoids by column (a counting sort, each column in the list's order), then each column's ends.
@@ -65,6 +67,12 @@ std::size_t keepColumnEnds(std::vector<EllipsoidInstance>& ellipsoids, LayerSpli
   }
   split = orderByLayers(ellipsoids, inFront, inBack);
   return count - ellipsoids.size();
+}
+
+int columnSideFor(float particleSpacing, float texelSize) {
+  const float side = std::floor(kColumnSpacingFraction * particleSpacing / texelSize);
+  // Below one, or not a number (no spacing, no texel): a texel.
+  return side >= 1.0f ? int(std::min(side, 64.0f)) : 1;
 }
 
 }  // namespace spindrift

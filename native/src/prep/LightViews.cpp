@@ -186,20 +186,28 @@ LightingPreparation prepareLighting(const Particles& particles, const Camera& ca
     std::vector<EllipsoidInstance>& body = light.liquid.aggregates;
     body.insert(body.end(), light.liquid.splashes.begin(), light.liquid.splashes.end());
     light.liquid.splashes.clear();
-    // The light's layers are the body's nearest entry and farthest exit too, unclipped by the domain. The
-    // occlusion test finds little of a body hidden where few of its particles are deep (a sheet, a spray):
-    // the dam break's sun hides 4,070 of 56,031 from both layers, for 28 ms of CPU a view (sessions 29 and
-    // 39). Such a body is thinned instead to the particles nearest and farthest in each texel column
-    // (light.column_particles): on the examples' suns and skies 77 % are left out and their layers take 13 to
-    // 22 ms instead of 84 to 105, the error against the user's render unchanged (docs/liquid.md).
-    // The sky's view is drawn as each texel's nearest entry and farthest exit, which a column's end particles
-    // hold however deep the body: thinned, the thick bodies' sky layers took 2-3 ms instead of 5-8, their
-    // images bit-identical, for under a millisecond of CPU (docs/frame-cost.md, session 44).
-    if (!manyDeepAggregates(light.liquid) || (depthRangeOnly && parameters.light.column_particles > 0)) {
+    // The light's layers are the body's nearest entry and farthest exit too, unclipped by the domain. Each
+    // view is thinned to the particles nearest and farthest in each column (light.column_particles):
+    // - A body few particles deep (a Mantaflow sheet, a spray) hides little from the exact occlusion test,
+    //   which costs more than it saves there (the dam break's sun: 4,070 of 56,031 hidden from both layers
+    //   for 28 ms of CPU a view; sessions 29 and 39). Thinned by texel columns, the examples' suns and skies
+    //   leave out 77 % and their layers take 13 to 22 ms instead of 84 to 105, the error against the user's
+    //   render unchanged (docs/liquid.md).
+    // - A deep body's lamp views are thinned by columns narrower than its particles' spacing (columnSideFor),
+    //   each of which holds about one particle of each layer: the light benchmark's bodies took 3 to 23 ms of
+    //   CPU a frame for their views instead of 11 to 36 with the exact test, for up to 8 ms more of their
+    //   layers' GPU time (docs/frame-cost.md, session 58).
+    // - The sky's view is drawn as each texel's nearest entry and farthest exit, which a texel column's end
+    //   particles hold however deep the body: thinned, the thick bodies' sky layers took 2-3 ms instead of
+    //   5-8, their images bit-identical, for under a millisecond of CPU (docs/frame-cost.md, session 44).
+    // light.column_particles 0 draws every particle of a view of a body few particles deep and leaves out of
+    // a deeper one's only what the exact tests find hidden.
+    if (parameters.light.column_particles > 0) {
+      const int columnSide = depthRangeOnly ? 1 : columnSideFor(light.liquid.particleSpacing, view.texelSize);
       light.columnThinned = keepColumnEnds(light.liquid.aggregates, light.liquid.aggregateLayers, view.camera,
-                                           parameters.light.column_particles);
+                                           parameters.light.column_particles, columnSide);
       light.leftOut = light.columnThinned;
-    } else if (parameters.liquid.drop_hidden_interior && depthRangeOnly) {
+    } else if (parameters.liquid.drop_hidden_interior && manyDeepAggregates(light.liquid) && depthRangeOnly) {
       // Blending the range costs llvmpipe a few texels an ellipsoid, far less than the occlusion test's CPU
       // time: the thick bodies' sky views took 1 to 8 ms less a frame without it (docs/frame-cost.md,
       // session 43). What lies inside the others is still left out, bit-identically.
@@ -207,7 +215,7 @@ LightingPreparation prepareLighting(const Particles& particles, const Camera& ca
                                                              nullptr, light.liquid.particleSpacing);
       light.liquid.aggregateLayers = hidden.split;
       light.leftOut = hidden.dropped;
-    } else if (parameters.liquid.drop_hidden_interior) {
+    } else if (parameters.liquid.drop_hidden_interior && manyDeepAggregates(light.liquid)) {
       const HiddenInteriorResult hidden =
           dropHiddenAggregates(light.liquid, view.camera, nullptr, nullptr, occlusion);
       light.leftOut = hidden.dropped + hidden.occluded.dropped;
