@@ -13,6 +13,8 @@
 #include "LiquidTestScenes.h"
 #include "OpticsReference.h"
 #include "TempDirectory.h"
+#include "prep/LightColumns.h"
+#include "prep/LightViews.h"
 
 using namespace spindrift;
 using namespace liquid_test;
@@ -152,6 +154,53 @@ TEST(GLLiquidLight, AThinSlabsThinnedLightViewsKeepItsShadow) {
   std::printf("thin slab: floor's direct light differs by %.5f on average from every particle drawn\n",
               difference);
   EXPECT_LT(difference, 0.01);
+}
+
+// A lattice ball 1.6 m across under a sun at 30 degrees: the sun's view of a body this deep is thinned by
+// columns of two texels, narrower than its particles' spacing (light.column_particles, columnSideFor). The
+// floor keeps the shadow and the caustics a view keeping every particle the exact tests cannot hide gives
+// (column_particles 0): on the light benchmark's frames the errors against Cycles moved by at most 0.0005.
+TEST(GLLiquidLight, ADeepBallsThinnedSunViewKeepsItsShadowAndCaustics) {
+  TempDirectory directory;
+  const double incidence = glm::radians(30.0);
+  Scene scene = sunlitFloorScene(directory, incidence, {0.4f, 0.8f, 1.6f});
+  const Particles ball = latticeBall({0.2f, 0.0f, 1.6f}, 0.8f, 0.1f, 0.07f);
+  // The view this test is about: columns wider than a texel.
+  const LightingPreparation views =
+      prepareLighting(ball, scene.camera, scene.lights, false, scene.parameters);
+  ASSERT_EQ(views.lights.size(), 1u);
+  const LightPreparation& sun = views.lights[0];
+  const int side = columnSideFor(sun.liquid.particleSpacing, sun.view.texelSize);
+  std::printf("deep ball: %zu particles, spacing %.3f, texel %.4f: columns of %d texels keep %zu of them\n",
+              ball.size(), sun.liquid.particleSpacing, sun.view.texelSize, side,
+              sun.liquid.aggregates.size());
+  ASSERT_GE(side, 2);
+  EXPECT_GT(sun.columnThinned, ball.size() / 3);
+
+  const RenderResult thinned = renderer().renderParticles(scene, ball, 1);
+  scene.parameters.light.column_particles = 0;
+  const RenderResult exact = renderer().renderParticles(scene, ball, 1);
+  expectAllChannelsFinite(thinned);
+  ASSERT_NE(thinned.layer("caustics"), nullptr);
+  ASSERT_NE(exact.layer("caustics"), nullptr);
+  double difference = 0.0, shadowed = 0.0, causticThinned = 0.0, causticExact = 0.0;
+  for (int row = 0; row < kHeight; ++row)
+    for (int column = 0; column < kWidth; ++column) {
+      difference +=
+          std::abs(directMultiplier(thinned, column, row, 0) - directMultiplier(exact, column, row, 0));
+      shadowed += 1.0 - at(*exact.layer("liquid_shadow"), kWidth, column, row, 0);
+      causticThinned += at(*thinned.layer("caustics"), kWidth, column, row, 0);
+      causticExact += at(*exact.layer("caustics"), kWidth, column, row, 0);
+    }
+  std::printf(
+      "deep ball: floor's direct light differs by %.5f on average (the shadow takes %.4f), caustics "
+      "%.1f thinned against %.1f exact\n",
+      difference / double(kWidth * kHeight), shadowed / double(kWidth * kHeight), causticThinned,
+      causticExact);
+  ASSERT_GT(shadowed, 0.02 * kWidth * kHeight) << "the ball shadows the floor";
+  ASSERT_GT(causticExact, 100.0) << "and focuses a caustic on it";
+  EXPECT_LT(difference, 0.05 * shadowed);
+  EXPECT_NEAR(causticThinned, causticExact, 0.03 * causticExact);
 }
 
 // A sun at 45 degrees through a floating slab. The light that enters the slab's sunward wall is reflected

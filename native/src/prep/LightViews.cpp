@@ -194,9 +194,9 @@ LightingPreparation prepareLighting(const Particles& particles, const Camera& ca
     //   leave out 77 % and their layers take 13 to 22 ms instead of 84 to 105, the error against the user's
     //   render unchanged (docs/liquid.md).
     // - A deep body's lamp views are thinned by columns narrower than its particles' spacing (columnSideFor),
-    //   each of which holds about one particle of each layer: the light benchmark's bodies took 3 to 23 ms of
-    //   CPU a frame for their views instead of 11 to 36 with the exact test, for up to 8 ms more of their
-    //   layers' GPU time (docs/frame-cost.md, session 58).
+    //   each of which holds about one particle of each layer: the light benchmark's views took 2 to 14 ms of
+    //   CPU a frame instead of 12 to 36 with the exact test, their layers' GPU time within -3 to +9 ms
+    //   (docs/frame-cost.md, session 58).
     // - The sky's view is drawn as each texel's nearest entry and farthest exit, which a texel column's end
     //   particles hold however deep the body: thinned, the thick bodies' sky layers took 2-3 ms instead of
     //   5-8, their images bit-identical, for under a millisecond of CPU (docs/frame-cost.md, session 44).
