@@ -9,7 +9,10 @@ Six frames of compact water a metre across over the dam-break example's checker 
 sky: a block resting on the floor, a ball floating just above it, a pool in a tank seen from above, from the
 side and from inside (the camera under its surface), and the block seen from five times as far. The water is
 an exact mesh (a box, a sphere), so the references measure Spindrift's light, not a simulation's surface;
-Spindrift gets a lattice of particles filling the same shapes. For every frame it writes into OUTPUT/FRAME/:
+Spindrift gets a lattice of particles filling the same shapes. One more frame, `ball_baked`, is the ball as a
+user's simulation has it: Mantaflow fills the sphere with FLIP particles (its first frame, without gravity),
+Cycles renders Mantaflow's own mesh of them and Spindrift reads the same bake (OUTPUT/ball_baked/cache). For
+every frame it writes into OUTPUT/FRAME/:
 
 - background.exr: everything but the water, with planar depth and Cycles' light passes (DiffDir, DiffInd,
   DiffCol, GlossDir, GlossInd, GlossCol), which Spindrift's lit background uses;
@@ -57,7 +60,7 @@ def load(path, name):
 references = load(os.path.join(HERE, "references.py"), "bench_references")
 # The dam-break example's floor, lighting and render settings (examples/bakelib, imported as its bake.py does).
 dam_break = load(os.path.join(ROOT, "examples", "dam_break", "bake.py"), "dam_break_bake")
-from bakelib import blender_scene, render, scene_file as scene_files  # noqa: E402 (on the path bake.py set)
+from bakelib import blender_scene, mantaflow, render, scene_file as scene_files  # noqa: E402 (on the path bake.py set)
 
 SUN_ROTATION = (math.radians(35.0), 0.0, math.radians(30.0))  # elevation 55 degrees
 SUN_STRENGTH = 3.0
@@ -83,7 +86,18 @@ FRAMES = {
     # The block five times as far: about 45 pixels across, its particles under a pixel and a half.
     "far": {"shape": ("box", (-0.5, -0.5, -0.02), (0.5, 0.5, 0.8)), "tank": False,
             "camera": ((11.5, -12.5, 8.5), (0.0, 0.0, 0.35), 35.0)},
+    # The ball as Mantaflow bakes it (BAKED_*): its mesh in Cycles, its particles in Spindrift.
+    "ball_baked": {"shape": ("sphere", (0.0, 0.0, 0.65), 0.5), "tank": False,
+                   "camera": ((2.3, -2.5, 1.7), (0.0, 0.0, 0.45), 35.0), "baked": True},
 }
+# The baked ball's domain: a cube around the sphere, its cells 4.4 cm (about the lattice's 4 cm spacing); its
+# 21,503 particles are 2.9 cm apart on average. Frame 1 holds the sphere as the flow object fills it;
+# without gravity it stays a sphere. The bake runs on to BAKED_LAST_FRAME: the light benchmark's steady
+# timings render a sequence of frames.
+BAKED_DOMAIN_SIDE = 1.4
+BAKED_RESOLUTION = 32
+BAKED_FRAME = 1
+BAKED_LAST_FRAME = 8
 TANK_WALL = 0.08
 TANK_HEIGHT = 0.6
 
@@ -148,6 +162,46 @@ def add_water(shape):
     return water
 
 
+def bake_ball(shape, directory):
+    """Mantaflow's liquid filling the sphere, baked into directory/cache once; returns the domain."""
+    centre, half = Vector(shape[1]), Vector((BAKED_DOMAIN_SIDE / 2,) * 3)
+    cache = os.path.join(directory, "cache")
+    scene = bpy.context.scene
+    scene.frame_start, scene.frame_end = BAKED_FRAME, BAKED_LAST_FRAME
+    scene.use_gravity = False
+    domain = blender_scene.add_box("LiquidDomain", centre - half, centre + half)
+    mantaflow.configure_liquid_domain(domain, cache, BAKED_RESOLUTION, BAKED_FRAME, BAKED_LAST_FRAME,
+                                      use_mesh=True)
+    domain.modifiers["Fluid"].domain_settings.gravity = (0.0, 0.0, 0.0)
+    domain.hide_render = True
+    bpy.ops.mesh.primitive_uv_sphere_add(segments=96, ring_count=48, radius=shape[2], location=shape[1])
+    mantaflow.add_liquid_flow(bpy.context.active_object)
+    if not os.path.isfile(os.path.join(cache, "mesh", f"fluid_mesh_{BAKED_LAST_FRAME:04d}.bobj.gz")):
+        mantaflow.bake_clean(domain, cache, BAKED_FRAME, BAKED_LAST_FRAME, log=lambda m: print(f"[thick_bodies] {m}"))
+    return domain
+
+
+def add_baked_water(domain):
+    """Mantaflow's liquid mesh of the baked frame as the water, placed as Blender's fluid modifier places it
+    (references.add_liquid_mesh: the bobj's vertices are centred on the domain, in units of its longest side),
+    casting its shadow as the exact meshes do."""
+    cache = domain.modifiers["Fluid"].domain_settings.cache_directory
+    vertices, triangles = references.read_bobj(os.path.join(cache, "mesh", f"fluid_mesh_{BAKED_FRAME:04d}.bobj.gz"))
+    corners = [domain.matrix_world @ vertex.co for vertex in domain.data.vertices]
+    low = Vector([min(c[a] for c in corners) for a in range(3)])
+    high = Vector([max(c[a] for c in corners) for a in range(3)])
+    centre, scale = (low + high) / 2, max(high - low)
+    mesh = bpy.data.meshes.new("Water")
+    mesh.from_pydata([tuple(centre + Vector(v) * scale) for v in vertices], [], [tuple(t) for t in triangles])
+    mesh.polygons.foreach_set("use_smooth", [True] * len(mesh.polygons))
+    mesh.update()
+    water = bpy.data.objects.new("Water", mesh)
+    bpy.context.scene.collection.objects.link(water)
+    water.data.materials.append(references.make_water_material(ABSORPTION_RGB))
+    print(f"[thick_bodies] Mantaflow's mesh: {len(vertices)} vertices, {len(triangles)} triangles", flush=True)
+    return water
+
+
 def add_tank(shape):
     low, high = Vector(shape[1]), Vector(shape[2])
     material = blender_scene.make_material("TankWall", (0.72, 0.7, 0.66), roughness=0.8)
@@ -160,14 +214,15 @@ def add_tank(shape):
         blender_scene.add_box(f"Tank{index}", Vector(box_min), Vector(box_max)).data.materials.append(material)
 
 
-def build_frame(definition, width, height, sky_only=False):
+def build_frame(definition, directory, width, height, sky_only=False):
     blender_scene.clear_scene()
     floor = blender_scene.add_plane("Floor", 24.0, (0.0, 0.0, 0.0))
     floor.data.materials.append(blender_scene.make_checker_material("FloorTiles", (0.62, 0.6, 0.56),
                                                                     (0.36, 0.35, 0.33), scale=12.0))
     if definition["tank"]:
         add_tank(definition["shape"])
-    water = add_water(definition["shape"])
+    domain = bake_ball(definition["shape"], directory) if definition.get("baked") else None
+    water = add_baked_water(domain) if domain else add_water(definition["shape"])
     location, target, lens = definition["camera"]
     camera = blender_scene.build_camera(Vector(location), Vector(target), lens)
     layout = dam_break.LAYOUT
@@ -179,7 +234,7 @@ def build_frame(definition, width, height, sky_only=False):
     scene = bpy.context.scene
     scene.render.resolution_x, scene.render.resolution_y = width, height
     bpy.context.view_layer.update()
-    return water, camera, sun
+    return water, camera, sun, domain
 
 
 def configure(output_directory, width, height):
@@ -193,17 +248,23 @@ def configure(output_directory, width, height):
         setattr(layer, name, True)
 
 
-def scene_file(camera, sun, width, height):
+def scene_file(camera, sun, width, height, domain=None):
+    # A baked frame's particles are its cache's, shaped as Mantaflow's domain settings say.
+    particles = [{"path": "cache/data/fluid_data_####.vdb", "grid": "particles", "role": "liquid",
+                  "domain": scene_files.domain_description(domain)}] if domain else \
+        [{"path": "particles.ply", "role": "liquid", "radius": PARTICLE_RADIUS}]
     description = {
         "version": 1,
         "camera": scene_files.camera_description(camera, width, height),
-        "particles": [{"path": "particles.ply", "role": "liquid", "radius": PARTICLE_RADIUS}],
+        "particles": particles,
         "background": {"image": "background.exr",
                        "color": list(dam_break.LAYOUT.world_radiance)},
         "lights": [{"type": "sun",
                     "direction": [scene_files.clean_number(-c) for c in sun.matrix_world.col[2][:3]],
                     "color": list(sun.data.color), "strength": sun.data.energy}] if sun else [],
     }
+    if domain:
+        description["frame"] = BAKED_FRAME
     return description
 
 
@@ -214,13 +275,15 @@ def main():
         definition = FRAMES[name]
         directory = os.path.join(output, name)
         os.makedirs(directory, exist_ok=True)
-        water, camera, sun = build_frame(definition, arguments.width, arguments.height, arguments.sky_only)
+        water, camera, sun, domain = build_frame(definition, directory, arguments.width, arguments.height,
+                                                 arguments.sky_only)
         configure(directory, arguments.width, arguments.height)
-        write_ply(os.path.join(directory, "particles.ply"), lattice(definition["shape"]))
+        if not domain:
+            write_ply(os.path.join(directory, "particles.ply"), lattice(definition["shape"]))
         with open(os.path.join(directory, "shape.json"), "w", encoding="utf-8") as handle:
             json.dump({"shape": definition["shape"], "tank": definition["tank"]}, handle)
         with open(os.path.join(directory, "scene.json"), "w", encoding="utf-8") as handle:
-            json.dump(scene_file(camera, sun, arguments.width, arguments.height), handle, indent=1)
+            json.dump(scene_file(camera, sun, arguments.width, arguments.height, domain), handle, indent=1)
         timings_path = os.path.join(directory, "timings.json")
         timings = json.load(open(timings_path)) if os.path.isfile(timings_path) else {}
 
@@ -233,7 +296,8 @@ def main():
                                                       arguments.background_samples)
             water.hide_render = False
         if missing("water_mask.exr"):
-            solids = [obj for obj in bpy.context.scene.objects if obj.type == 'MESH' and obj != water]
+            solids = [obj for obj in bpy.context.scene.objects
+                      if obj.type == 'MESH' and obj != water and not obj.hide_render]
             references.set_visible(solids, False)
             scene = bpy.context.scene
             scene.render.film_transparent = True
