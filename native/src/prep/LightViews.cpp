@@ -207,18 +207,20 @@ LightingPreparation prepareLighting(const Particles& particles, const Camera& ca
       light.columnThinned = keepColumnEnds(light.liquid.aggregates, light.liquid.aggregateLayers, view.camera,
                                            parameters.light.column_particles, columnSide);
       light.leftOut = light.columnThinned;
-    } else if (parameters.liquid.drop_hidden_interior && manyDeepAggregates(light.liquid) && depthRangeOnly) {
-      // Blending the range costs llvmpipe a few texels an ellipsoid, far less than the occlusion test's CPU
-      // time: the thick bodies' sky views took 1 to 8 ms less a frame without it (docs/frame-cost.md,
-      // session 43). What lies inside the others is still left out, bit-identically.
-      const HiddenInteriorResult hidden = dropHiddenInterior(light.liquid.aggregates, view.camera, nullptr,
-                                                             nullptr, light.liquid.particleSpacing);
-      light.liquid.aggregateLayers = hidden.split;
-      light.leftOut = hidden.dropped;
     } else if (parameters.liquid.drop_hidden_interior && manyDeepAggregates(light.liquid)) {
-      const HiddenInteriorResult hidden =
-          dropHiddenAggregates(light.liquid, view.camera, nullptr, nullptr, occlusion);
-      light.leftOut = hidden.dropped + hidden.occluded.dropped;
+      if (depthRangeOnly) {
+        // Blending the range costs llvmpipe a few texels an ellipsoid, far less than the occlusion test's CPU
+        // time: the thick bodies' sky views took 1 to 8 ms less a frame without it (docs/frame-cost.md,
+        // session 43). What lies inside the others is still left out, bit-identically.
+        const HiddenInteriorResult hidden = dropHiddenInterior(light.liquid.aggregates, view.camera, nullptr,
+                                                               nullptr, light.liquid.particleSpacing);
+        light.liquid.aggregateLayers = hidden.split;
+        light.leftOut = hidden.dropped;
+      } else {
+        const HiddenInteriorResult hidden =
+            dropHiddenAggregates(light.liquid, view.camera, nullptr, nullptr, occlusion);
+        light.leftOut = hidden.dropped + hidden.occluded.dropped;
+      }
     }
     return light;
   };
