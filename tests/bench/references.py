@@ -124,26 +124,33 @@ def read_bobj(path):
     return vertices, triangles
 
 
-def add_liquid_mesh(example, cache_directory, frame, absorption_rgb):
-    """Mantaflow's liquid mesh of `frame`, placed as Blender's fluid modifier places it, as water.
+def add_mantaflow_mesh(cache_directory, frame, domain_centre, domain_longest_side, absorption_rgb):
+    """Mantaflow's liquid mesh of `frame`, placed as Blender's fluid modifier places it, as water (smooth-shaded,
+    casting shadows).
 
     The bobj's vertices are in the domain's normalised frame: centred on the domain and divided by its
     longest side (checked: dam_break frame 16 spans 0.0213 to 2.8698 m from the minimum corner, as bake.py
     prints for Blender's own evaluated mesh).
     """
     vertices, triangles = read_bobj(os.path.join(cache_directory, "mesh", f"fluid_mesh_{frame:04d}.bobj.gz"))
-    centre = example.LAYOUT.domain_min + example.LAYOUT.domain_size / 2
-    scale = max(example.LAYOUT.domain_size)
-    world = [tuple(centre + Vector(v) * scale) for v in vertices]
+    world = [tuple(domain_centre + Vector(v) * domain_longest_side) for v in vertices]
     mesh = bpy.data.meshes.new("LiquidMesh")
     mesh.from_pydata(world, [], [tuple(t) for t in triangles])
     mesh.polygons.foreach_set("use_smooth", [True] * len(mesh.polygons))
     mesh.update()
     liquid = bpy.data.objects.new("LiquidMesh", mesh)
     bpy.context.scene.collection.objects.link(liquid)
-    liquid.visible_shadow = False
     liquid.data.materials.append(make_water_material(absorption_rgb))
     log(f"liquid mesh of frame {frame}: {len(world)} vertices, {len(triangles)} triangles")
+    return liquid
+
+
+def add_liquid_mesh(example, cache_directory, frame, absorption_rgb):
+    """An example's liquid mesh of `frame` as water casting no shadow (the no-shadow reference)."""
+    layout = example.LAYOUT
+    liquid = add_mantaflow_mesh(cache_directory, frame, layout.domain_min + layout.domain_size / 2,
+                                max(layout.domain_size), absorption_rgb)
+    liquid.visible_shadow = False
     return liquid
 
 

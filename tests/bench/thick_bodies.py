@@ -181,25 +181,10 @@ def bake_ball(shape, directory):
     return domain
 
 
-def add_baked_water(domain):
-    """Mantaflow's liquid mesh of the baked frame as the water, placed as Blender's fluid modifier places it
-    (references.add_liquid_mesh: the bobj's vertices are centred on the domain, in units of its longest side),
-    casting its shadow as the exact meshes do."""
+def add_baked_water(shape, domain):
+    """Mantaflow's liquid mesh of the baked frame as the water, casting its shadow as the exact meshes do."""
     cache = domain.modifiers["Fluid"].domain_settings.cache_directory
-    vertices, triangles = references.read_bobj(os.path.join(cache, "mesh", f"fluid_mesh_{BAKED_FRAME:04d}.bobj.gz"))
-    corners = [domain.matrix_world @ vertex.co for vertex in domain.data.vertices]
-    low = Vector([min(c[a] for c in corners) for a in range(3)])
-    high = Vector([max(c[a] for c in corners) for a in range(3)])
-    centre, scale = (low + high) / 2, max(high - low)
-    mesh = bpy.data.meshes.new("Water")
-    mesh.from_pydata([tuple(centre + Vector(v) * scale) for v in vertices], [], [tuple(t) for t in triangles])
-    mesh.polygons.foreach_set("use_smooth", [True] * len(mesh.polygons))
-    mesh.update()
-    water = bpy.data.objects.new("Water", mesh)
-    bpy.context.scene.collection.objects.link(water)
-    water.data.materials.append(references.make_water_material(ABSORPTION_RGB))
-    print(f"[thick_bodies] Mantaflow's mesh: {len(vertices)} vertices, {len(triangles)} triangles", flush=True)
-    return water
+    return references.add_mantaflow_mesh(cache, BAKED_FRAME, Vector(shape[1]), BAKED_DOMAIN_SIDE, ABSORPTION_RGB)
 
 
 def add_tank(shape):
@@ -222,7 +207,7 @@ def build_frame(definition, directory, width, height, sky_only=False):
     if definition["tank"]:
         add_tank(definition["shape"])
     domain = bake_ball(definition["shape"], directory) if definition.get("baked") else None
-    water = add_baked_water(domain) if domain else add_water(definition["shape"])
+    water = add_baked_water(definition["shape"], domain) if domain else add_water(definition["shape"])
     location, target, lens = definition["camera"]
     camera = blender_scene.build_camera(Vector(location), Vector(target), lens)
     layout = dam_break.LAYOUT
