@@ -66,8 +66,8 @@ LitBackgroundData LiquidLighting::run(const LightingPreparation& lights, const C
   std::optional<SkyOcclusionData> occlusion;
   if (occludeSky) {
     ScopedPassTimer timed(timer, "sky_occlusion");
-    occlusion.emplace(
-        skyOcclusion_.run(*skyLayers, sky.view, lights.bounds, background, parameters, width, height));
+    occlusion.emplace(skyOcclusion_.run(*skyLayers, sky.view, lights.bounds, background, parameters,
+                                        skyOcclusionScale(lights.bounds, camera), width, height));
   }
   std::optional<SurfaceLayers> lightLayers;
   LampLight lamps;

@@ -79,6 +79,27 @@ bool samePreparation(const LightingPreparation& a, const LightingPreparation& b)
 
 // A camera orbiting a paused frame keeps the lights' views; a moved light, other particles or a camera so far
 // that it wants coarser views prepare them anew, and whatever is kept is what a fresh preparation gives.
+// The sky occlusion's samples stand for as many pixels as span six detail radii where the camera sees the
+// liquid's centre, within [4, 8]: a near camera's 8, a far one's 4, and between them the pixels that fit.
+TEST(LightViews, SkyOcclusionSamplesSpanSixDetailRadiiWithinFourToEightPixels) {
+  LiquidParameters liquid;
+  const LiquidBounds bounds = liquidBounds(sheet(), liquid);
+  const auto cameraAt = [](float distance) {
+    return Camera::lookAt(480, 270, 40.0f, {0.0f, -distance, 0.0f}, {0.0f, 0.0f, 0.0f}, {0, 0, 1});
+  };
+  EXPECT_EQ(skyOcclusionScale(bounds, cameraAt(1.0f)), 8);
+  EXPECT_EQ(skyOcclusionScale(bounds, cameraAt(100.0f)), 4);
+  // Six radii over 5.5 of its pixels there.
+  const float distance = 6.0f * kRadius / 5.5f / cameraAt(1.0f).pixelSizeAt(1.0f);
+  EXPECT_EQ(skyOcclusionScale(bounds, cameraAt(distance)), 5);
+  // Degenerate: no liquid, a camera at the liquid's centre, a NaN position.
+  EXPECT_EQ(skyOcclusionScale(LiquidBounds{}, cameraAt(1.0f)), 4);
+  const Camera inside =
+      Camera::lookAt(480, 270, 40.0f, bounds.centre, bounds.centre + glm::vec3(0, 1, 0), {0, 0, 1});
+  EXPECT_EQ(skyOcclusionScale(bounds, inside), 8);
+  EXPECT_EQ(skyOcclusionScale(bounds, cameraAt(std::nanf(""))), 4);
+}
+
 TEST(LightViews, ViewsAreKeptWhileParticlesLightsAndViewSidesStayTheSame) {
   const Particles particles = sheet();
   Parameters parameters;

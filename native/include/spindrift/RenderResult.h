@@ -157,6 +157,9 @@ struct LightFrameStats {
   /// light the liquid takes change a pixel (light.skip_unlit_tiles); the rest keep the background.
   std::size_t tilesShaded = 0;
   std::size_t tiles = 0;
+  /// Pixels per sample along each axis of the sky occlusion, 4 to 8 by the camera's distance
+  /// (skyOcclusionScale); 0 when it did not run.
+  int skyOcclusionScale = 0;
 };
 
 /// The cost a Renderer pays once: the GL context, made while it is constructed, and the shader programs,

@@ -16,9 +16,6 @@ struct LiquidShadowData {
   const Texture2D& lampDiffuse;
 };
 
-/// Points per axis of the sky occlusion's samples: it varies over the liquid's size, not the pixel's.
-constexpr int kSkyOcclusionScale = 4;
-
 /// The sky and bounced light each background point keeps past liquid other than the body it lies in, one
 /// sample per scale × scale pixels (the sky occlusion pass's output).
 struct SkyOcclusionData {

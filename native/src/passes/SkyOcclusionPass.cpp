@@ -13,8 +13,7 @@ SkyOcclusionPass::SkyOcclusionPass(const ShaderLibrary& shaders)
 
 SkyOcclusionData SkyOcclusionPass::run(const SurfaceLayers& skyLayers, const LightView& sky,
                                        const LiquidBounds& bounds, const BackgroundData& background,
-                                       const Parameters& parameters, int width, int height) {
-  const int scale = kSkyOcclusionScale;
+                                       const Parameters& parameters, int scale, int width, int height) {
   ensureTexture(kept_, GL_RGBA32F, (width + scale - 1) / scale, (height + scale - 1) / scale);
   bindColorTargets(framebuffer_.id(), {&kept_});
   glDisable(GL_DEPTH_TEST);

@@ -81,6 +81,18 @@ LiquidBounds liquidBounds(const Particles& particles, const LiquidParameters& pa
   return bounds;
 }
 
+int skyOcclusionScale(const LiquidBounds& bounds, const Camera& camera) {
+  // 4 pixels a sample cost the far block 0.003 of its water's error when they were 8 (12.7 detail radii
+  // apart there); on the near frames 8 pixels are 2.4 to 3 radii and moved no error by more than 0.0013.
+  constexpr float kSkyOcclusionSpacingInDetailRadii = 6.0f;
+  constexpr int kFinest = 4, kCoarsest = 8;
+  const float pixel =
+      camera.pixelSizeAt(std::max(glm::distance(camera.position(), bounds.centre), camera.nearClip));
+  const float pixels = kSkyOcclusionSpacingInDetailRadii * bounds.detailRadius / pixel;
+  if (!(pixels >= float(kFinest))) return kFinest;  // also no liquid, or a NaN
+  return std::min(int(pixels), kCoarsest);
+}
+
 int lightViewSize(const LiquidBounds& bounds, const Camera& camera, const LightParameters& parameters) {
   const int largest = parameters.shadow_map_size;
   if (!(parameters.texels_per_radius > 0.0f) || !(bounds.radius > 0.0f)) return largest;
