@@ -11,8 +11,8 @@
 namespace spindrift {
 
 /// The sky and bounced light a background point keeps past liquid that is not above it: the floor beside a
-/// block of water, under a floating ball (shaders/sky_occlusion.frag), one sample per scale²
-/// pixels (skyOcclusionScale). The sky's view must be bound at binding 2 (LightDepthLayers) when `run` runs.
+/// block of water, under a floating ball (shaders/sky_occlusion.frag), one sample per scale² pixels
+/// (skyOcclusionScale). The sky's view must be bound at binding 2 (LightDepthLayers) when `run` runs.
 class SkyOcclusionPass {
  public:
   explicit SkyOcclusionPass(const ShaderLibrary& shaders);

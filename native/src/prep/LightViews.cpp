@@ -82,8 +82,9 @@ LiquidBounds liquidBounds(const Particles& particles, const LiquidParameters& pa
 }
 
 int skyOcclusionScale(const LiquidBounds& bounds, const Camera& camera) {
-  // 4 pixels a sample cost the far block 0.003 of its water's error when they were 8 (12.7 detail radii
-  // apart there); on the near frames 8 pixels are 2.4 to 3 radii and moved no error by more than 0.0013.
+  // Samples 8 pixels apart cost the light benchmark's far block 0.003 of its water's error (12.7 detail radii
+  // apart there; 4 pixels are 6.4); on its near frames 8 pixels are 2.4 to 3 radii and moved no error by
+  // more than 0.0013.
   constexpr float kSkyOcclusionSpacingInDetailRadii = 6.0f;
   constexpr int kFinest = 4, kCoarsest = 8;
   const float pixel =

@@ -35,9 +35,8 @@ int lightViewSize(const LiquidBounds& bounds, const Camera& camera, const LightP
 
 /// Pixels per sample along each axis of the sky occlusion (SkyOcclusionPass): what a point keeps of its sky
 /// varies over the liquid's depth and size, not the pixel's, so a sample may stand for as many pixels as
-/// span kSkyOcclusionSpacingInDetailRadii of the liquid's detail (LiquidBounds::detailRadius) where the
-/// camera sees its centre, within [4, 8]: 8 on a near camera's frame, 4 on a far one's (docs/frame-cost.md,
-/// session 59).
+/// span six radii of the liquid's detail (LiquidBounds::detailRadius) where the camera sees its centre,
+/// within [4, 8]: 8 on a near camera's frame, 4 on a far one's (docs/frame-cost.md, session 59).
 int skyOcclusionScale(const LiquidBounds& bounds, const Camera& camera);
 
 LiquidBounds liquidBounds(const Particles& particles, const LiquidParameters& parameters);
