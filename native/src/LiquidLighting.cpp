@@ -64,10 +64,11 @@ LitBackgroundData LiquidLighting::run(const LightingPreparation& lights, const C
     skyLayers.emplace(layers_.runDepthOnly(sky, camera));
   }
   std::optional<SkyOcclusionData> occlusion;
+  skyOcclusionScale_ = occludeSky ? spindrift::skyOcclusionScale(lights.bounds, camera) : 0;
   if (occludeSky) {
     ScopedPassTimer timed(timer, "sky_occlusion");
     occlusion.emplace(skyOcclusion_.run(*skyLayers, sky.view, lights.bounds, background, parameters,
-                                        skyOcclusionScale(lights.bounds, camera), width, height));
+                                        skyOcclusionScale_, width, height));
   }
   std::optional<SurfaceLayers> lightLayers;
   LampLight lamps;

@@ -31,6 +31,9 @@ class LiquidLighting {
                         bool occludeSky, bool shadowPass, bool litTiles, PassTimer& timer);
   /// How many tiles the last frame's lit background shaded (waits for the GPU).
   std::uint32_t litTilesShaded() const { return litTiles_.litTiles(); }
+  /// Pixels per sample along each axis of the last frame's sky occlusion (skyOcclusionScale); 0 when it did
+  /// not run.
+  int skyOcclusionScale() const { return skyOcclusionScale_; }
 
  private:
   /// One light's depth layers, its shadow (`withShadowPass`) and its caustics (suns and spots, with
@@ -44,6 +47,7 @@ class LiquidLighting {
   SkyOcclusionPass skyOcclusion_;
   CausticPass caustics_;
   LitTilePass litTiles_;
+  int skyOcclusionScale_ = 0;
   LitBackgroundPass litBackground_;
 };
 

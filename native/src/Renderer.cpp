@@ -566,8 +566,7 @@ RenderResult Renderer::renderPrepared(const Scene& scene, const Particles& parti
       recordFoamOcclusion(pipeline.foamOcclusion.statistics(), stats.foam);
       stats.foam.lights = foamParameters.lit_by_lights ? scene.lights.size() : 0;
     }
-    if (plan.runs(Pass::SkyOcclusion))
-      stats.light.skyOcclusionScale = skyOcclusionScale(lighting.bounds, camera);
+    if (plan.runs(Pass::SkyOcclusion)) stats.light.skyOcclusionScale = pipeline.lighting.skyOcclusionScale();
     if (plan.runs(Pass::LitTiles)) {
       stats.light.tilesShaded = pipeline.lighting.litTilesShaded();
       stats.light.tiles = std::size_t(pixelTilesAcross(width)) * std::size_t(pixelTilesDown(height));

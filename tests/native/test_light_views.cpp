@@ -77,8 +77,6 @@ bool samePreparation(const LightingPreparation& a, const LightingPreparation& b)
   return sameView(*a.sky, *b.sky);
 }
 
-// A camera orbiting a paused frame keeps the lights' views; a moved light, other particles or a camera so far
-// that it wants coarser views prepare them anew, and whatever is kept is what a fresh preparation gives.
 // The sky occlusion's samples stand for as many pixels as span six detail radii where the camera sees the
 // liquid's centre, within [4, 8]: a near camera's 8, a far one's 4, and between them the pixels that fit.
 TEST(LightViews, SkyOcclusionSamplesSpanSixDetailRadiiWithinFourToEightPixels) {
@@ -100,6 +98,8 @@ TEST(LightViews, SkyOcclusionSamplesSpanSixDetailRadiiWithinFourToEightPixels) {
   EXPECT_EQ(skyOcclusionScale(bounds, cameraAt(std::nanf(""))), 4);
 }
 
+// A camera orbiting a paused frame keeps the lights' views; a moved light, other particles or a camera so far
+// that it wants coarser views prepare them anew, and whatever is kept is what a fresh preparation gives.
 TEST(LightViews, ViewsAreKeptWhileParticlesLightsAndViewSidesStayTheSame) {
   const Particles particles = sheet();
   Parameters parameters;
