@@ -45,6 +45,7 @@
 #include "prep/LiquidPreparation.h"
 #include "prep/MantaflowSurface.h"
 #include "prep/RaymarchPreparation.h"
+#include "prep/SurfaceRelaxation.h"
 #include "spindrift/Error.h"
 #include "spindrift/Limits.h"
 
@@ -148,6 +149,7 @@ struct Renderer::Impl {
   std::unique_ptr<FramePipeline> pipeline;  // Lives on glThread; reset there before the thread ends.
   BackgroundCache backgroundCache;
   LiquidCacheAcrossFrames liquidCache;
+  SurfaceRelaxationAcrossFrames surfaceRelaxation;
   LightingAcrossFrames lightingCache;
   OcclusionWorkspace occlusionWorkspace;  // the camera's occlusion test's memory, kept for the next frame
   GlLimits glLimits;
@@ -265,15 +267,19 @@ RenderResult Renderer::renderParticles(const Scene& scene, const Particles& part
   return renderPrepared(scene, particles, frame, FrameExtras{});
 }
 
-RenderResult Renderer::renderPrepared(const Scene& scene, const Particles& particles, int frame,
+RenderResult Renderer::renderPrepared(const Scene& scene, const Particles& givenParticles, int frame,
                                       const FrameExtras& extras) {
   const Clock::time_point start = Clock::now();
   const Camera& camera = scene.camera;
   const LiquidParameters& liquidParameters = scene.parameters.liquid;
   const FoamParameters& foamParameters = scene.parameters.foam;
   const int width = camera.width, height = camera.height;
-  checkFrame(scene, particles.size());
-  validateParticles(particles);
+  checkFrame(scene, givenParticles.size());
+  validateParticles(givenParticles);
+  // Every view of the frame (the camera's, each light's, the sky's) draws the same relaxed liquid.
+  SurfaceRelaxationStats relaxation;
+  const Particles& particles =
+      impl_->surfaceRelaxation.forFrame(givenParticles, liquidParameters, relaxation);
   // A Mantaflow liquid is clipped to its domain's box, as Mantaflow closes its mesh at the walls.
   const DomainBox* domainBox = nullptr;
   for (const ParticleSource& source : scene.particles)
@@ -282,6 +288,12 @@ RenderResult Renderer::renderPrepared(const Scene& scene, const Particles& parti
   result.stats.glRenderer = glRenderer();
   result.stats.glVersion = glVersion();
   FrameStats& stats = result.stats;
+  stats.liquid.surfaceParticles = relaxation.surfaceParticles;
+  stats.liquid.surfaceRaised = relaxation.raised;
+  stats.liquid.surfaceSpacing = relaxation.spacing;
+  stats.liquid.surfaceRelaxationMilliseconds = relaxation.milliseconds;
+  stats.liquid.surfaceRelaxationNotApplied = relaxation.notApplied;
+  stats.liquid.surfaceRelaxationKept = relaxation.kept;
 
   const Clock::time_point prepareStart = Clock::now();
   // Under water is decided on every aggregate; dropHiddenAggregates below leaves a body that reaches the

@@ -14,6 +14,7 @@
 #include "EllipsoidRayCast.h"
 #include "LiquidTestScenes.h"
 #include "prep/LiquidPreparation.h"
+#include "prep/SurfaceRelaxation.h"
 #include "prep/WindowRectangle.h"
 #include "spindrift/Renderer.h"
 
@@ -70,6 +71,14 @@ Scene grazingView() {
   return scene;
 }
 
+// The particles as the renderer draws them: relaxed onto their smooth surface (liquid.relax_surface), which
+// raises some of the sheet's surface particles.
+Particles drawnParticles(const Particles& particles, const LiquidParameters& parameters) {
+  if (!relaxesSurface(parameters)) return particles;
+  SurfaceRelaxationStats stats;
+  return relaxLiquidSurface(particles, parameters, stats);
+}
+
 // A frame with the depth layers before smoothing kept (aggregate_front_depth, aggregate_front_normal, ...).
 RenderResult renderIntermediateLayers(const Scene& scene, const Particles& particles) {
   Renderer renderer;
@@ -83,7 +92,8 @@ RenderResult renderIntermediateLayers(const Scene& scene, const Particles& parti
 TEST(GLImpostorBounds, TightRectanglesLoseNoPixelOfAnyEllipsoid) {
   const Scene scene = grazingView();
   const Particles particles = wavySheet();
-  const LiquidPreparation preparation = prepareLiquid(particles, scene.camera, scene.parameters.liquid);
+  const LiquidPreparation preparation = prepareLiquid(drawnParticles(particles, scene.parameters.liquid),
+                                                      scene.camera, scene.parameters.liquid);
   ASSERT_GT(preparation.aggregates.size(), 1000u);
 
   const RenderResult result = renderIntermediateLayers(scene, particles);
@@ -123,7 +133,8 @@ TEST(GLImpostorBounds, EachPixelHasTheNormalOfTheEllipsoidThatHoldsIt) {
   const Scene scene = grazingView();
   const Particles particles = wavySheet();
   const std::vector<EllipsoidInstance> ellipsoids =
-      prepareLiquid(particles, scene.camera, scene.parameters.liquid).aggregates;
+      prepareLiquid(drawnParticles(particles, scene.parameters.liquid), scene.camera, scene.parameters.liquid)
+          .aggregates;
 
   const RenderResult result = renderIntermediateLayers(scene, particles);
   const ImageLayer* layers[2] = {result.layer("aggregate_front_normal"),
@@ -202,7 +213,8 @@ TEST(GLImpostorBounds, NormalsOutsideTheResolvedRectangleAreClearedBetweenFrames
   const Particles block =
       liquid_test::particlesOf(liquid_test::block({0.6f, 0.1f, 0.0f}, {0.9f, 0.3f, 0.15f}, 0.05f), 0.04f);
   const std::vector<EllipsoidInstance> blockEllipsoids =
-      prepareLiquid(block, scene.camera, scene.parameters.liquid).aggregates;
+      prepareLiquid(drawnParticles(block, scene.parameters.liquid), scene.camera, scene.parameters.liquid)
+          .aggregates;
   const WindowRectangle rectangle = windowRectangleOfSpheres(blockEllipsoids, scene.camera);
   ASSERT_GT(rectangle.pixels(), 0);
   ASSERT_LT(rectangle.pixels(), (long long)scene.camera.width * scene.camera.height / 4)

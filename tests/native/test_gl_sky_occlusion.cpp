@@ -127,6 +127,10 @@ Scene litFloorScene(const TempDirectory& directory, int directions) {
   Scene scene = floorScene(directory);
   scene.parameters.liquid.absorption_rgb = {0.4f, 1.2f, 3.0f};
   scene.parameters.light.sky_occlusion_directions = directions;
+  // The slab's lattice as given: the expectations take its drawn shape for a box, and liquid.relax_surface
+  // raises the particles beside its edges by up to a tenth of a spacing (test_surface_relaxation.cpp), which
+  // moves the floor's light just past the edges by 0.02.
+  scene.parameters.liquid.relax_surface = false;
   scene.lights.push_back(sunAlong({0.3f, 0.0f, -1.0f}));
   return scene;
 }

@@ -48,6 +48,15 @@ struct LiquidFrameStats {
   /// The density of an interior particle, rho_0, from a sample of the whole frame's liquid: a particle is a
   /// splash below liquid.splash_density_threshold times it. 0 with liquid.layers = merged.
   float restDensity = 0.0f;
+  /// liquid.relax_surface: the particles on the body's surface, those raised onto the smooth surface through
+  /// their neighbours, the spacing it measured, and why it did nothing (empty when it ran;
+  /// "liquid.relax_surface is off" or "Mantaflow's surface" when not asked to).
+  std::size_t surfaceParticles = 0;
+  std::size_t surfaceRaised = 0;
+  float surfaceSpacing = 0.0f;
+  std::string surfaceRelaxationNotApplied;
+  bool surfaceRelaxationKept = false;  ///< The frame before's, for the same particles (liquid.reuse_shapes).
+  double surfaceRelaxationMilliseconds = 0.0;
   std::size_t culled = 0;  ///< Outside the view frustum.
   /// In the frustum, but the background's solids hide them wholly (liquid.drop_hidden_interior): not shaped,
   /// not drawn.

@@ -15,6 +15,7 @@ const std::vector<std::string>& shapingParameterKeys() {
                                                 "liquid.max_ellipsoid_scale",
                                                 "liquid.surface_offset",
                                                 "liquid.reach_radius",
+                                                "liquid.relax_surface",
                                                 "liquid.mesh_kernel_radius",
                                                 "liquid.reuse_shapes"};
   return keys;
