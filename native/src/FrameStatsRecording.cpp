@@ -61,4 +61,13 @@ void recordFoamCulling(const VisibleFoam& visible, FoamFrameStats& stats) {
   stats.hiddenUnderLiquid = visible.underLiquid;
 }
 
+void recordSurfaceRelaxation(const SurfaceRelaxationStats& relaxation, LiquidFrameStats& stats) {
+  stats.surfaceParticles = relaxation.surfaceParticles;
+  stats.surfaceRaised = relaxation.raised;
+  stats.surfaceSpacing = relaxation.spacing;
+  stats.surfaceRelaxationMilliseconds = relaxation.milliseconds;
+  stats.surfaceRelaxationNotApplied = relaxation.notApplied;
+  stats.surfaceRelaxationKept = relaxation.kept;
+}
+
 }  // namespace spindrift

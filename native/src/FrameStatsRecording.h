@@ -6,6 +6,7 @@
 #include "prep/HiddenFoam.h"
 #include "prep/LightViews.h"
 #include "prep/LiquidPreparation.h"
+#include "prep/SurfaceRelaxation.h"
 #include "spindrift/RenderResult.h"
 
 namespace spindrift {
@@ -16,6 +17,8 @@ void recordPreparation(const LiquidPreparation& liquid, const FoamPreparation& f
 /// background came with Cycles' light passes.
 void recordLighting(std::size_t sceneLights, const LightingPreparation& lighting, bool lightPasses,
                     LightFrameStats& stats);
+/// Copies what the surface relaxation did (liquid.relax_surface) into the liquid stats.
+void recordSurfaceRelaxation(const SurfaceRelaxationStats& relaxation, LiquidFrameStats& stats);
 /// Copies the refraction pass's GPU counters into the liquid stats.
 void recordRefraction(const RefractionStatistics& rays, LiquidFrameStats& stats);
 /// Copies the counts of the foam particles the sprite passes left out into the foam stats.

@@ -288,12 +288,7 @@ RenderResult Renderer::renderPrepared(const Scene& scene, const Particles& given
   result.stats.glRenderer = glRenderer();
   result.stats.glVersion = glVersion();
   FrameStats& stats = result.stats;
-  stats.liquid.surfaceParticles = relaxation.surfaceParticles;
-  stats.liquid.surfaceRaised = relaxation.raised;
-  stats.liquid.surfaceSpacing = relaxation.spacing;
-  stats.liquid.surfaceRelaxationMilliseconds = relaxation.milliseconds;
-  stats.liquid.surfaceRelaxationNotApplied = relaxation.notApplied;
-  stats.liquid.surfaceRelaxationKept = relaxation.kept;
+  recordSurfaceRelaxation(relaxation, stats.liquid);
 
   const Clock::time_point prepareStart = Clock::now();
   // Under water is decided on every aggregate; dropHiddenAggregates below leaves a body that reaches the
