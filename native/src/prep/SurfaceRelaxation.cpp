@@ -76,20 +76,16 @@ SortedCells sortByCell(const std::vector<glm::vec3>& positions, const std::vecto
 
 using Ranges = std::vector<std::pair<std::uint32_t, std::uint32_t>>;
 
-// The sorted ranges of `of`'s cells within `reach` cells of `around`'s cell `cell`.
-void rangesNear(const SortedCells& around, std::size_t cell, const SortedCells& of, int reach,
-                Ranges& ranges) {
+// The sorted ranges of the cells within `reach` cells of cell `cell`.
+void rangesNear(const SortedCells& cells, std::size_t cell, int reach, Ranges& ranges) {
   ranges.clear();
-  const double scale = double(around.cell) / double(of.cell);
-  const std::int64_t cx = std::int64_t(std::floor((double(around.cellX[cell]) + 0.5) * scale));
-  const std::int64_t cy = std::int64_t(std::floor((double(around.cellY[cell]) + 0.5) * scale));
-  const std::int64_t cz = std::int64_t(std::floor((double(around.cellZ[cell]) + 0.5) * scale));
+  const std::int64_t cx = cells.cellX[cell], cy = cells.cellY[cell], cz = cells.cellZ[cell];
   for (std::int64_t dx = -reach; dx <= reach; ++dx)
     for (std::int64_t dy = -reach; dy <= reach; ++dy)
       for (std::int64_t dz = -reach; dz <= reach; ++dz) {
-        const auto found = of.cellOf.find(cellKey(cx + dx, cy + dy, cz + dz));
-        if (found == of.cellOf.end()) continue;
-        const std::uint32_t first = of.cellStart[found->second], last = of.cellStart[found->second + 1];
+        const auto found = cells.cellOf.find(cellKey(cx + dx, cy + dy, cz + dz));
+        if (found == cells.cellOf.end()) continue;
+        const std::uint32_t first = cells.cellStart[found->second], last = cells.cellStart[found->second + 1];
         // Cells along z are neighbours in the sorted order: a column is one range, which the vectorised
         // distance loops run through in fewer, longer passes.
         if (!ranges.empty() && ranges.back().second == first)
@@ -110,7 +106,7 @@ void densities(const SortedCells& liquid, float kernelRadius, std::vector<double
                       Ranges ranges;
                       std::vector<float> nx, ny, nz;
                       for (std::size_t c = cells.begin(); c != cells.end(); ++c) {
-                        rangesNear(liquid, c, liquid, 1, ranges);
+                        rangesNear(liquid, c, 1, ranges);
                         nx.clear();
                         ny.clear();
                         nz.clear();
@@ -222,7 +218,7 @@ void surfaceRises(const SortedCells& surface, const std::vector<glm::dvec3>& nor
                     [&](const tbb::blocked_range<std::size_t>& cells) {
                       Ranges ranges;
                       for (std::size_t c = cells.begin(); c != cells.end(); ++c) {
-                        rangesNear(surface, c, surface, reach, ranges);
+                        rangesNear(surface, c, reach, ranges);
                         for (std::uint32_t m = surface.cellStart[c]; m < surface.cellStart[c + 1]; ++m) {
                           const glm::vec3 own = normal[m];
                           FitSums sums;
