@@ -10,6 +10,7 @@
 #include "lib/optics.glsl"
 #include "lib/light_view.glsl"
 #include "lib/screen_trace.glsl"
+#include "lib/caustic_receiver.glsl"
 
 layout(local_size_x = 8, local_size_y = 8) in;
 
@@ -19,7 +20,7 @@ layout(binding = 2) uniform sampler2D lightBackDepth;
 layout(binding = 3) uniform sampler2D lightFrontNormal;
 layout(binding = 4) uniform sampler2D lightBackNormal;
 
-layout(rgba32f, binding = 0) uniform writeonly image2D receiverPosition;  // camera space; w: 1 if reached
+layout(rgba32f, binding = 0) uniform writeonly image2D receiverPosition;  // camera space; w: receiverSeen
 layout(rgba32f, binding = 1) uniform writeonly image2D receiverLight;     // carried fraction of the light
 layout(rgba32f, binding = 2) uniform writeonly image2D receiverLightTexel;  // xy: texel in the light's view
 
@@ -72,6 +73,17 @@ float solidAlong(vec3 origin, vec3 direction) {
     if (behindSolid(origin + middle * direction) >= 0.0) high = middle; else low = middle;
   }
   return high;
+}
+
+// The receiver's w: 1 where the camera may see it, 2 where it lies behind the visible surface by more than the
+// splat's tolerance (the floor of a pool behind its tank's near wall, seen from outside): caustic_splat.geom
+// drops a triangle whose three receivers are hidden. Off screen counts as seen (the triangle may reach in).
+float receiverSeen(vec3 receiverCamera) {
+  vec2 pixel = fragCoordFromCamera(receiverCamera);
+  if (-receiverCamera.z <= getNearClip() || !onScreen(pixel)) return 1.0;
+  float visible = texelFetch(backgroundEyeDepth, ivec2(pixel), 0).r;
+  if (visible >= kNoSurfaceDepth * 0.5) return 1.0;
+  return -receiverCamera.z - visible > causticDepthTolerance(visible) ? 2.0 : 1.0;
 }
 
 void main() {
@@ -152,7 +164,7 @@ void main() {
     carried = (1.0 - entryFresnel) * (1.0 - exitFresnel) * exp(-absorptionPerUnitLength * pathLength);
   }
   vec3 receiverWorld = (frame.worldFromCamera * vec4(receiverCamera, 1.0)).xyz;
-  imageStore(receiverPosition, vertex, vec4(receiverCamera, 1.0));
+  imageStore(receiverPosition, vertex, vec4(receiverCamera, receiverSeen(receiverCamera)));
   imageStore(receiverLight, vertex, vec4(carried, 0.0));
   imageStore(receiverLightTexel, vertex, vec4(lightTexelFromWorld(receiverWorld), 0.0, 0.0));
 }

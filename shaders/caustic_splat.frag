@@ -4,6 +4,7 @@
 #include "lib/frame.glsl"
 #include "lib/optics.glsl"
 #include "lib/light_view.glsl"
+#include "lib/caustic_receiver.glsl"
 
 layout(binding = 3) uniform sampler2D backgroundEyeDepth;
 // 1 in each pixel tile (framedata/PixelTiles.h) a splat lands in, so the lit tiles (lit_tiles.comp) need not
@@ -18,8 +19,7 @@ layout(location = 0) out vec4 outCaustic;
 
 void main() {
   float eyeDepth = texelFetch(backgroundEyeDepth, ivec2(gl_FragCoord.xy), 0).r;
-  float pixelSize = 2.0 * frame.tanHalfFov.y * eyeDepth * frame.viewportSize.w;
-  if (eyeDepth >= kNoSurfaceDepth * 0.5 || abs(gEyeDepth - eyeDepth) > 0.02 * eyeDepth + 3.0 * pixelSize) discard;
+  if (eyeDepth >= kNoSurfaceDepth * 0.5 || abs(gEyeDepth - eyeDepth) > causticDepthTolerance(eyeDepth)) discard;
   vec3 world = worldPositionFromFragCoord(gl_FragCoord.xy, eyeDepth);
   outCaustic = vec4(lightWeightAt(world) * gCarried * gConcentration, 0.0);
   imageStore(causticTiles, ivec2(gl_FragCoord.xy) / int(frame.pixelTiles.x), uvec4(1u));

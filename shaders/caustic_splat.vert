@@ -8,7 +8,7 @@ layout(binding = 2) uniform sampler2D receiverLightTexel;
 uniform int gridStep;
 
 out VertexPath {
-  vec4 cameraPosition;  // w: 1 where the light reached the background
+  vec4 cameraPosition;  // w: 0 lost, 1 reached, 2 reached but hidden (caustic_paths.comp)
   vec3 carried;
   vec2 receiverTexel;   // where the receiver lies in the light's view
   vec2 sourceTexel;     // where the light entered, in the light's view

@@ -8,6 +8,7 @@
 #include "passes/DepthSmoothingPass.h"
 #include "passes/EllipsoidImpostorPass.h"
 #include "passes/FrameUniforms.h"
+#include "passes/PixelTilePass.h"
 #include "prep/LightViews.h"
 
 namespace spindrift {
@@ -34,6 +35,7 @@ class LightDepthLayers {
   FrameUniformBuffer lightUniforms_;
   FrameUniformBuffer cameraUniforms_;
   EllipsoidImpostorPass impostors_;
+  PixelTilePass tiles_;
   DepthSmoothingPass frontSmoothing_;
   DepthSmoothingPass backSmoothing_;
 };
