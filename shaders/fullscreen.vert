@@ -25,6 +25,7 @@ void main() {
     gl_Position = vec4(2.0, 2.0, 2.0, 1.0);  // outside the clip volume: not drawn
     return;
   }
-  vec2 centre = (vec2(tile) + 0.5) * tileSize;
-  gl_Position = vec4(centre * frame.viewportSize.zw * 2.0 - 1.0, 0.0, 1.0);
+  // In the viewport drawFullscreen widens to whole tiles, so that every tile's centre lies inside it.
+  vec2 centre = (vec2(tile) + 0.5) / vec2(textureSize(drawnTiles, 0));
+  gl_Position = vec4(centre * 2.0 - 1.0, 0.0, 1.0);
 }

@@ -129,3 +129,11 @@ TEST(GLPixelTiles, FoamOverAndUnderASheet) {
     EXPECT_LT(result.stats.foam.tilesShaded, result.stats.foam.tiles / 2);
   }
 }
+
+TEST(GLPixelTiles, LiquidInTheLastTilesOfAFrameTheirCentresMiss) {
+  // 150 × 100 pixels: the last column of tiles holds 6 pixels and the last row 4, so those tiles' centres lie
+  // outside the frame (a point whose centre leaves the viewport is clipped whole); liquid fills them.
+  const Scene scene = sceneOfSize(150, 100, {0, -3, 0.5f}, {0, 0, 0.5f});
+  const RenderResult result = expectSameBothWays(scene, fillingTheView(scene.camera));
+  EXPECT_EQ(result.stats.liquid.tilesShaded, result.stats.liquid.tiles);
+}

@@ -48,7 +48,15 @@ void drawFullscreen(GLuint emptyVertexArray, const PixelTiles* tiles) {
   glBindTextureUnit(kPixelTilesTextureUnit, marked.id());
   glBindVertexArray(emptyVertexArray);
   glEnable(GL_PROGRAM_POINT_SIZE);
+  // A point whose centre leaves the viewport is clipped whole, and the last column or row of tiles of a frame
+  // whose side is more than half a tile short of a whole tile (38, 100, 900 pixels) has its centre beyond it:
+  // those tiles went unshaded. The viewport is widened to whole tiles for the draw (fullscreen.vert places
+  // the points in it); rendering stops at the targets' own edge.
+  GLint viewport[4];
+  glGetIntegerv(GL_VIEWPORT, viewport);
+  glViewport(viewport[0], viewport[1], marked.width * kPixelTileSize, marked.height * kPixelTileSize);
   glDrawArrays(GL_POINTS, 3, marked.width * marked.height);
+  glViewport(viewport[0], viewport[1], viewport[2], viewport[3]);
   glDisable(GL_PROGRAM_POINT_SIZE);
 }
 
