@@ -47,8 +47,8 @@ SurfaceLayers LightDepthLayers::run(const LightPreparation& light, const Camera&
     smoothing.plane_fit_window = std::clamp(2 * halfWindow + 1, 3, parameters.plane_fit_window);
   }
   // Only the texel tiles that hold liquid are smoothed, as the camera's are. The view frames the liquid's
-  // bounding sphere, which a compact body fills about half of: a pool's sun view holds it in 63 % of its
-  // tiles (docs/frame-cost.md, session 61).
+  // bounding sphere, which a compact body fills half of or less: the light benchmark's pool holds its sun's
+  // view in 61 of 121 tiles, its ball in 24 of 64 (docs/frame-cost.md, session 61).
   const PixelTiles withLiquid = tiles_.run({&drawn.front.eyeDepth, &drawn.back.eyeDepth}, size, size);
   const DepthLayer front =
       frontSmoothing_.run(drawn.front, particleRadius, false, smoothing, &withLiquid, size, size);
