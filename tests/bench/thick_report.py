@@ -124,10 +124,13 @@ def steady_cost(scene, settings, directory):
     return tuple(float(np.median([c[k] for c in costs])) for k in range(3))
 
 
-def steady_frame_ms(scene, settings, directory):
+def steady_frame_ms(scene, settings, directory, written=True):
     """The median whole-frame time (total_ms) of frames 3 to 8 of a `--frames 1-8` sequence, the passes not
-    finished one by one (as a user's render runs), each frame's particles shaped anew (SEQUENCE_SETTINGS)."""
-    command = [runs.SPINDRIFT, "render", scene, "-o", os.path.join(directory, "frames_####.exr"), "--stats",
+    finished one by one (as a user's render runs), each frame's particles shaped anew (SEQUENCE_SETTINGS).
+    `written`: each frame's EXR is written (every layer, the command line's defaults), on a thread of its own
+    while the next frame renders, whose CPU it shares; else the frames are rendered alone."""
+    output = ["-o", os.path.join(directory, "frames_####.exr")] if written else []
+    command = [runs.SPINDRIFT, "render", scene, *output, "--stats",
                os.path.join(directory, "frames_####.json"), "--frames", "1-8", "-q",
                *runs.set_arguments({**SEQUENCE_SETTINGS, **settings})]
     subprocess.run(command, check=True, stdout=subprocess.DEVNULL)
@@ -141,14 +144,20 @@ def steady_frame_ms(scene, settings, directory):
 def marginal_cost(directory, settings):
     """What the scene's lights add to a steady frame: the frame with them against the same frame without any
     light (the same background with its light passes) and against the frame without the sun that takes the
-    world's light alone, each sequence run twice, interleaved; the medians."""
+    world's light alone, each sequence run twice, interleaved; the medians. Then the frames with and without
+    any light rendered alone, their EXRs written nowhere: writing every layer in 32-bit float takes about a
+    third of the thick bodies' frames (docs/frame-cost.md, session 62)."""
     lit, unlit = scene_variant(directory, True, True), scene_variant(directory, False, True)
-    with_lights, without, world = [], [], []
+    runs_of = {"with_lights_ms": [], "without_lights_ms": [], "world_alone_ms": [], "with_lights_alone_ms": [],
+               "without_lights_alone_ms": []}
     for _ in range(2):
-        with_lights.append(steady_frame_ms(lit, settings, directory))
-        without.append(steady_frame_ms(unlit, {**settings, **NO_LIGHT}, directory))
-        world.append(steady_frame_ms(unlit, settings, directory))
-    return float(np.median(with_lights)), float(np.median(without)), float(np.median(world))
+        runs_of["with_lights_ms"].append(steady_frame_ms(lit, settings, directory))
+        runs_of["without_lights_ms"].append(steady_frame_ms(unlit, {**settings, **NO_LIGHT}, directory))
+        runs_of["world_alone_ms"].append(steady_frame_ms(unlit, settings, directory))
+        runs_of["with_lights_alone_ms"].append(steady_frame_ms(lit, settings, directory, written=False))
+        runs_of["without_lights_alone_ms"].append(
+            steady_frame_ms(unlit, {**settings, **NO_LIGHT}, directory, written=False))
+    return {key: float(np.median(values)) for key, values in runs_of.items()}
 
 
 def write_plain_background(directory):
@@ -360,14 +369,13 @@ def main():
                 key = timed[name]
                 light_passes_ms, frame_ms = light_cost(stats)
                 steady_light_ms, steady_frame_ms, steady_prepare_ms = steady_cost(scene, settings, directory)
-                with_lights_ms, without_lights_ms, world_alone_ms = marginal_cost(directory, settings)
+                frame_times = marginal_cost(directory, settings)
                 sky_occlusion_ms = sum(p["gpu_ms"] for p in stats["passes"] if p["name"] == "sky_occlusion")
                 timings[key] = {"light_gpu_ms": light_passes_ms, "frame_gpu_ms": frame_ms,
                                 "sky_occlusion_gpu_ms": sky_occlusion_ms,
                                 "steady_light_gpu_ms": steady_light_ms, "steady_frame_gpu_ms": steady_frame_ms,
                                 "steady_light_prepare_ms": steady_prepare_ms,
-                                "with_lights_ms": with_lights_ms, "without_lights_ms": without_lights_ms,
-                                "world_alone_ms": world_alone_ms,
+                                **frame_times,
                                 "view_size": stats["light"]["view_size"],
                                 "view_particles": stats["light"]["view_particles"],
                                 "view_particles_left_out": stats["light"]["view_particles_left_out"],
@@ -495,13 +503,16 @@ def write_page(results, timings, renderer, samples, background_samples, loads, w
               "*Without*: no light at all (`light.sky_without_lamps` off), so the difference is every light pass, "
               "the sky's with the sun's. *The world alone*: the frame without the sun that takes the world's light "
               "alone (the default for a scene without lamps), which runs the sky's passes; *what the sun adds* to "
-              "it is the sun's own view, shadow and caustics, what the issue's target names.",
+              "it is the sun's own view, shadow and caustics, what the issue's target names. Each of those frames "
+              "shares the CPU with the writing of the frame before's EXR (every layer in 32-bit float, the command "
+              "line's defaults), about a third of a frame here; *rendered alone*: the frames with the sun and "
+              "without any light again, their EXRs written nowhere, and what the lights cost those.",
               "",
               "| Frame | View | Particles drawn | Light passes, GPU ms | Sky occlusion, GPU ms | Whole frame, GPU ms | "
               "Share | Steady: light ms | Steady: frame GPU ms | Steady share | Steady: lights' CPU ms | "
               "Frame with the sun, ms | Without, ms | What the lights cost a frame | The world alone, ms | "
-              "What the sun adds to it |",
-              "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|"]
+              "What the sun adds to it | Rendered alone: with the sun, without, ms | What the lights cost it |",
+              "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|"]
     for frame in sorted(timings):
         t = timings[frame]
         drawn = t["view_particles"] - t["view_particles_left_out"]
@@ -513,7 +524,10 @@ def write_page(results, timings, renderer, samples, background_samples, loads, w
                      f"{t['with_lights_ms'] - t['without_lights_ms']:.0f} ms, "
                      f"{100 * (t['with_lights_ms'] - t['without_lights_ms']) / t['with_lights_ms']:.0f} % | "
                      f"{t['world_alone_ms']:.0f} | {t['with_lights_ms'] - t['world_alone_ms']:.0f} ms, "
-                     f"{100 * (t['with_lights_ms'] - t['world_alone_ms']) / t['with_lights_ms']:.0f} % |")
+                     f"{100 * (t['with_lights_ms'] - t['world_alone_ms']) / t['with_lights_ms']:.0f} % | "
+                     f"{t['with_lights_alone_ms']:.0f}, {t['without_lights_alone_ms']:.0f} | "
+                     f"{t['with_lights_alone_ms'] - t['without_lights_alone_ms']:.0f} ms, "
+                     f"{100 * (t['with_lights_alone_ms'] - t['without_lights_alone_ms']) / t['with_lights_alone_ms']:.0f} % |")
     lines += ["", f"Load average (1 min) on the 2-core machine: {loads[0]:.1f} before, {loads[1]:.1f} after: the "
               "milliseconds are those of a loaded llvmpipe; the shares are what compares.", "",
               "## Path length in the water", "",
