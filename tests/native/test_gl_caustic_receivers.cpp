@@ -3,7 +3,9 @@
 // the camera sees the floor is the light a frame without that solid gets there.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
+#include <cstdio>
 
 #include "BackgroundFiles.h"
 #include "FloorLightScenes.h"
