@@ -148,15 +148,15 @@ def marginal_cost(directory, settings):
     any light rendered alone, their EXRs written nowhere: writing every layer in 32-bit float takes about a
     third of the thick bodies' frames (docs/frame-cost.md, session 62)."""
     lit, unlit = scene_variant(directory, True, True), scene_variant(directory, False, True)
+    no_light = {**settings, **NO_LIGHT}
     runs_of = {"with_lights_ms": [], "without_lights_ms": [], "world_alone_ms": [], "with_lights_alone_ms": [],
                "without_lights_alone_ms": []}
     for _ in range(2):
         runs_of["with_lights_ms"].append(steady_frame_ms(lit, settings, directory))
-        runs_of["without_lights_ms"].append(steady_frame_ms(unlit, {**settings, **NO_LIGHT}, directory))
+        runs_of["without_lights_ms"].append(steady_frame_ms(unlit, no_light, directory))
         runs_of["world_alone_ms"].append(steady_frame_ms(unlit, settings, directory))
         runs_of["with_lights_alone_ms"].append(steady_frame_ms(lit, settings, directory, written=False))
-        runs_of["without_lights_alone_ms"].append(
-            steady_frame_ms(unlit, {**settings, **NO_LIGHT}, directory, written=False))
+        runs_of["without_lights_alone_ms"].append(steady_frame_ms(unlit, no_light, directory, written=False))
     return {key: float(np.median(values)) for key, values in runs_of.items()}
 
 
@@ -368,12 +368,12 @@ def main():
             if name in timed:
                 key = timed[name]
                 light_passes_ms, frame_ms = light_cost(stats)
-                steady_light_ms, steady_frame_ms, steady_prepare_ms = steady_cost(scene, settings, directory)
+                steady_light_ms, steady_frame_gpu_ms, steady_prepare_ms = steady_cost(scene, settings, directory)
                 frame_times = marginal_cost(directory, settings)
                 sky_occlusion_ms = sum(p["gpu_ms"] for p in stats["passes"] if p["name"] == "sky_occlusion")
                 timings[key] = {"light_gpu_ms": light_passes_ms, "frame_gpu_ms": frame_ms,
                                 "sky_occlusion_gpu_ms": sky_occlusion_ms,
-                                "steady_light_gpu_ms": steady_light_ms, "steady_frame_gpu_ms": steady_frame_ms,
+                                "steady_light_gpu_ms": steady_light_ms, "steady_frame_gpu_ms": steady_frame_gpu_ms,
                                 "steady_light_prepare_ms": steady_prepare_ms,
                                 **frame_times,
                                 "view_size": stats["light"]["view_size"],
@@ -426,6 +426,11 @@ def under_water_ratios(directory, test):
 
 def number(value):
     return "–" if not np.isfinite(value) else f"{value:.4f}"
+
+
+def cost_cell(with_ms, without_ms):
+    """What the frame of `with_ms` costs over that of `without_ms`, and its share of the former: "36 ms, 23 %"."""
+    return f"{with_ms - without_ms:.0f} ms, {100 * (with_ms - without_ms) / with_ms:.0f} %"
 
 
 def write_page(results, timings, renderer, samples, background_samples, loads, world):
@@ -521,13 +526,10 @@ def write_page(results, timings, renderer, samples, background_samples, loads, w
                      f"{t['steady_light_gpu_ms']:.1f} | {t['steady_frame_gpu_ms']:.1f} | "
                      f"{100 * t['steady_light_gpu_ms'] / t['steady_frame_gpu_ms']:.0f} % | "
                      f"{t['steady_light_prepare_ms']:.1f} | {t['with_lights_ms']:.0f} | {t['without_lights_ms']:.0f} | "
-                     f"{t['with_lights_ms'] - t['without_lights_ms']:.0f} ms, "
-                     f"{100 * (t['with_lights_ms'] - t['without_lights_ms']) / t['with_lights_ms']:.0f} % | "
-                     f"{t['world_alone_ms']:.0f} | {t['with_lights_ms'] - t['world_alone_ms']:.0f} ms, "
-                     f"{100 * (t['with_lights_ms'] - t['world_alone_ms']) / t['with_lights_ms']:.0f} % | "
+                     f"{cost_cell(t['with_lights_ms'], t['without_lights_ms'])} | {t['world_alone_ms']:.0f} | "
+                     f"{cost_cell(t['with_lights_ms'], t['world_alone_ms'])} | "
                      f"{t['with_lights_alone_ms']:.0f}, {t['without_lights_alone_ms']:.0f} | "
-                     f"{t['with_lights_alone_ms'] - t['without_lights_alone_ms']:.0f} ms, "
-                     f"{100 * (t['with_lights_alone_ms'] - t['without_lights_alone_ms']) / t['with_lights_alone_ms']:.0f} % |")
+                     f"{cost_cell(t['with_lights_alone_ms'], t['without_lights_alone_ms'])} |")
     lines += ["", f"Load average (1 min) on the 2-core machine: {loads[0]:.1f} before, {loads[1]:.1f} after: the "
               "milliseconds are those of a loaded llvmpipe; the shares are what compares.", "",
               "## Path length in the water", "",
